@@ -1,0 +1,87 @@
+// The turbodyn command line.
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app/modal_command.h"
+#include "model/model_file.h"
+#include "model/rotor.h"
+
+namespace {
+
+constexpr int kExitModelError = 2;
+
+int run_check(const std::filesystem::path& file, const std::vector<turbodyn::Override>& overrides) {
+  const turbodyn::MachineSpec spec = turbodyn::load_model(file, overrides);
+  const turbodyn::Rotor rotor = turbodyn::build_rotor(spec);
+  std::cout << file.string() << ": ok\n"
+            << "  name            " << spec.name << "\n"
+            << "  shaft length    " << spec.shaft_length() * 1e3 << " mm in " << spec.shaft.size() << " sections\n"
+            << "  mesh            " << rotor.node_z.size() << " nodes, " << rotor.elements.size() << " elements, "
+            << rotor.n_dof << " DOF\n"
+            << "  rotor mass      " << rotor.total_mass << " kg\n"
+            << "  disks           " << rotor.disks.size() << "\n"
+            << "  bearings        " << spec.bearings.size() << "\n";
+  for (const turbodyn::RigidDisk& d : rotor.disks)
+    std::cout << "    disk " << d.name << " at z = " << rotor.node_z[d.node] * 1e3 << " mm, m = " << d.mass
+              << " kg, unbalance " << d.unbalance * 1e6 << " g*mm\n";
+  for (const turbodyn::BearingSpec& b : spec.bearings)
+    std::cout << "    bearing " << b.name << " (" << b.type << ") at z = " << b.z * 1e3 << " mm\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"turbodyn: nonlinear run-up simulation of turbocharger rotors"};
+  app.set_version_flag("--version", "turbodyn 0.1.0");
+  app.require_subcommand(1);
+
+  std::vector<std::string> sets;
+  auto add_sets = [&](CLI::App* cmd) {
+    cmd->add_option("--set", sets,
+                    "Override a model-file value: PATH=VALUE, e.g. bearings.compressor.kxx=2e7 (repeatable)");
+  };
+
+  std::filesystem::path check_file;
+  CLI::App* check = app.add_subcommand("check", "Read a model file, report errors, print a short summary");
+  check->add_option("MODEL", check_file, "Model file (TOML)")->required();
+  add_sets(check);
+
+  turbodyn::app::ModalCommandOptions modal_options;
+  std::string frame = "inertial";
+  CLI::App* modal = app.add_subcommand("modal", "Complex modes, Campbell diagram and critical speeds");
+  modal->add_option("MODEL", modal_options.model_file, "Model file (TOML)")->required();
+  modal->add_option("-o,--output", modal_options.output_dir, "Output directory")->capture_default_str();
+  modal->add_option("--speeds", modal_options.speeds,
+                    "Speeds: START:END:COUNT or a comma list, units allowed (\"0:150000 rpm:31\"); "
+                    "default from [modal] in the model file");
+  modal->add_option("--modes", modal_options.n_modes, "Number of modes per speed (default from the model file)")
+      ->check(CLI::PositiveNumber);
+  modal->add_option("--frame", frame, "inertial (default) or rotating (paper Eq. 9 in the shaft frame)")
+      ->check(CLI::IsMember({"inertial", "rotating"}));
+  modal->add_flag("!--no-plots", modal_options.plots, "Do not draw PNG pictures");
+  add_sets(modal);
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    std::vector<turbodyn::Override> overrides;
+    for (const std::string& s : sets) overrides.push_back(turbodyn::parse_override(s));
+    if (check->parsed()) return run_check(check_file, overrides);
+    if (modal->parsed()) {
+      modal_options.overrides = overrides;
+      modal_options.frame = frame == "rotating" ? turbodyn::Frame::Rotating : turbodyn::Frame::Inertial;
+      return turbodyn::app::run_modal_command(modal_options);
+    }
+  } catch (const turbodyn::ModelError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitModelError;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

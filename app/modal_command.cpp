@@ -1,0 +1,326 @@
+#include "app/modal_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "model/plot.h"
+#include "model/rotor.h"
+#include "model/units.h"
+
+namespace turbodyn::app {
+namespace {
+
+constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
+
+std::string trim(std::string s) {
+  s.erase(0, s.find_first_not_of(" \t"));
+  s.erase(s.find_last_not_of(" \t") + 1);
+  return s;
+}
+
+double speed_value(const std::string& text, const std::string& whole) {
+  try {
+    return parse_quantity(trim(text), dim::angular_speed);
+  } catch (const UnitError& e) {
+    throw ModelError("--speeds '" + whole + "': " + e.what());
+  }
+}
+
+nlohmann::json complex_list(const Eigen::VectorXcd& v, const Rotor& rotor, Dof d) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t n = 0; n < rotor.node_z.size(); ++n) {
+    const std::complex<double> c = v(rotor.dof(static_cast<int>(n), d));
+    out.push_back({c.real(), c.imag()});
+  }
+  return out;
+}
+
+// Signed orbit size along the rotor: the major semi-axis of each node's orbit, negative where the node moves in
+// antiphase to the node of largest motion.
+std::vector<double> signed_major_axis(const Rotor& rotor, const Eigen::VectorXcd& shape) {
+  const int n_nodes = static_cast<int>(rotor.node_z.size());
+  int ref = 0;
+  double best = -1.0;
+  for (int n = 0; n < n_nodes; ++n) {
+    const double s = std::norm(shape(rotor.dof(n, kX))) + std::norm(shape(rotor.dof(n, kY)));
+    if (s > best) {
+      best = s;
+      ref = n;
+    }
+  }
+  const std::complex<double> xr = shape(rotor.dof(ref, kX)), yr = shape(rotor.dof(ref, kY));
+  std::vector<double> out(n_nodes);
+  for (int n = 0; n < n_nodes; ++n) {
+    const std::complex<double> a = shape(rotor.dof(n, kX)), b = shape(rotor.dof(n, kY));
+    // Major semi-axis of the ellipse Re(a e^{iwt}), Re(b e^{iwt}).
+    const double p = std::norm(a) + std::norm(b);
+    const double q = std::abs(a * a + b * b);
+    const double major = std::sqrt(0.5 * (p + q));
+    const double phase = (a * std::conj(xr) + b * std::conj(yr)).real();
+    out[n] = phase < 0 ? -major : major;
+  }
+  const double scale = *std::max_element(out.begin(), out.end(), [](double x, double y) {
+    return std::abs(x) < std::abs(y);
+  });
+  if (scale != 0.0)
+    for (double& v : out) v /= std::abs(scale);
+  return out;
+}
+
+std::string speed_tag(double speed) {
+  std::ostringstream os;
+  os << std::llround(speed * kRadPerSToRpm) << "rpm";
+  return os.str();
+}
+
+void write_campbell_picture(const MachineSpec& spec, const Campbell& campbell, const std::vector<double>& orders,
+                            double fmax, const std::filesystem::path& png) {
+  using plot::Series;
+  plot::LineChart chart;
+  chart.title = "Campbell diagram: " + spec.name;
+  chart.xlabel = "rotor speed [rpm]";
+  chart.ylabel = "damped natural frequency [Hz]";
+  Series fw{"forward whirl", {}, {}, Series::Style::Points, "#1f77b4", 1.2};
+  Series bw{"backward whirl", {}, {}, Series::Style::Points, "#d62728", 1.2};
+  Series other{"mixed / planar", {}, {}, Series::Style::Points, "#7f7f7f", 1.2};
+  Series tor{"torsional", {}, {}, Series::Style::Points, "#17becf", 1.2};
+  for (const ModalResult& r : campbell.points) {
+    for (const Mode& m : r.modes) {
+      if (m.frequency > fmax) continue;
+      Series& s = m.whirl == Whirl::Forward ? fw : m.whirl == Whirl::Backward ? bw : m.whirl == Whirl::Torsional ? tor : other;
+      s.x.push_back(r.speed * kRadPerSToRpm);
+      s.y.push_back(m.frequency);
+    }
+  }
+  const double smin = campbell.points.front().speed, smax = campbell.points.back().speed;
+  const char* order_colors[] = {"black", "#2ca02c", "#9467bd", "#8c564b"};
+  int oi = 0;
+  for (double order : orders) {
+    std::ostringstream label;
+    label << order << "x";
+    Series line{label.str(), {smin * kRadPerSToRpm, smax * kRadPerSToRpm},
+                {order * smin / (2 * M_PI), order * smax / (2 * M_PI)},
+                oi == 0 ? Series::Style::Lines : Series::Style::Dashed, order_colors[oi % 4], 1.5};
+    chart.series.push_back(line);
+    ++oi;
+  }
+  for (Series* s : {&fw, &bw, &other, &tor})
+    if (!s->x.empty()) chart.series.push_back(*s);
+  Series crit{"critical speeds", {}, {}, Series::Style::Points, "#ff7f0e", 2.5};
+  for (const CriticalSpeed& c : campbell.critical) {
+    if (c.frequency > fmax) continue;
+    crit.x.push_back(c.speed * kRadPerSToRpm);
+    crit.y.push_back(c.frequency);
+  }
+  if (!crit.x.empty()) chart.series.push_back(crit);
+  chart.xrange = std::make_pair(smin * kRadPerSToRpm, smax * kRadPerSToRpm);
+  chart.legend_position = "bottom right";
+  chart.yrange = std::make_pair(0.0, fmax);
+  plot::render_png(chart, png);
+}
+
+void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const ModalResult& r,
+                              const std::filesystem::path& png) {
+  using plot::Series;
+  plot::LineChart chart;
+  std::ostringstream title;
+  title << "Mode shapes of " << spec.name << " at " << std::llround(r.speed * kRadPerSToRpm) << " rpm";
+  chart.title = title.str();
+  chart.xlabel = "axial position z [mm]";
+  chart.ylabel = "orbit major semi-axis (signed, normalised) [-]";
+  std::vector<double> z_mm;
+  for (double z : rotor.node_z) z_mm.push_back(z * 1e3);
+  const int shown = std::min<int>(6, static_cast<int>(r.modes.size()));
+  for (int i = 0; i < shown; ++i) {
+    const Mode& m = r.modes[i];
+    std::ostringstream label;
+    label << "mode " << i + 1 << ": " << std::fixed << std::setprecision(1) << m.frequency << " Hz, "
+          << to_string(m.whirl) << ", zeta " << std::setprecision(3) << m.damping_ratio;
+    chart.series.push_back(Series{label.str(), z_mm, signed_major_axis(rotor, m.shape), Series::Style::LinesPoints, "", 1.5});
+  }
+  for (const RigidDisk& d : rotor.disks) {
+    chart.vertical_lines.push_back(rotor.node_z[d.node] * 1e3);
+    chart.annotations.push_back({rotor.node_z[d.node] * 1e3, 1.15, "disk " + d.name});
+  }
+  for (const LinearBearing& b : rotor.bearings) {
+    chart.vertical_lines.push_back(rotor.node_z[b.node] * 1e3);
+    chart.annotations.push_back({rotor.node_z[b.node] * 1e3, 1.15, "bearing " + b.name});
+  }
+  chart.yrange = std::make_pair(-1.25, 1.25);
+  chart.legend_position = "below";
+  plot::render_png(chart, png, plot::Size{1000, 800});
+}
+
+}  // namespace
+
+void require_linear_supports(const MachineSpec& spec) {
+  for (const BearingSpec& b : spec.bearings)
+    if (b.pedestal_mass > 0.0)
+      throw ModelError(spec.source.string() + ": bearings." + b.name +
+                       ".pedestal_mass: pedestal masses are part of the run-up model only; the linear analyses "
+                       "(modal, response) do not include them yet, so they would give wrong answers");
+}
+
+std::vector<double> parse_speed_list(const std::string& text) {
+  std::vector<double> out;
+  if (text.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::stringstream ss(text);
+    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+    if (parts.size() != 3) throw ModelError("--speeds '" + text + "': expected START:END:COUNT");
+    const double a = speed_value(parts[0], text), b = speed_value(parts[1], text);
+    const std::string count = trim(parts[2]);
+    if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos || std::stoi(count) < 2)
+      throw ModelError("--speeds '" + text + "': COUNT must be a whole number of at least 2");
+    const int n = std::stoi(count);
+    if (!(b > a)) throw ModelError("--speeds '" + text + "': END must be larger than START");
+    for (int i = 0; i < n; ++i) out.push_back(a + (b - a) * i / (n - 1));
+  } else {
+    std::stringstream ss(text);
+    for (std::string p; std::getline(ss, p, ',');) out.push_back(speed_value(p, text));
+    for (std::size_t i = 1; i < out.size(); ++i)
+      if (!(out[i] > out[i - 1])) throw ModelError("--speeds '" + text + "': speeds must be increasing");
+  }
+  for (double s : out)
+    if (s < 0) throw ModelError("--speeds '" + text + "': speeds must not be negative");
+  if (out.empty()) throw ModelError("--speeds is empty");
+  return out;
+}
+
+int run_modal_command(const ModalCommandOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const MachineSpec spec = load_model(options.model_file, options.overrides);
+  require_linear_supports(spec);
+  const Rotor rotor = build_rotor(spec);
+
+  std::vector<double> speeds;
+  if (!options.speeds.empty()) {
+    speeds = parse_speed_list(options.speeds);
+  } else {
+    const double smax = spec.modal.speed_max > 0 ? spec.modal.speed_max : spec.speed.end;
+    if (!(smax > spec.modal.speed_min))
+      throw ModelError(options.model_file.string() +
+                       ": no speed range for the Campbell diagram: set modal.speed_max (or speed.end), or pass "
+                       "--speeds");
+    for (int i = 0; i < spec.modal.n_speeds; ++i)
+      speeds.push_back(spec.modal.speed_min + (smax - spec.modal.speed_min) * i / (spec.modal.n_speeds - 1));
+  }
+  ModalOptions mo;
+  mo.n_modes = options.n_modes > 0 ? options.n_modes : spec.modal.n_modes;
+  mo.frame = options.frame;
+  mo.torsion = spec.modal.torsion;
+  const Campbell campbell = campbell_diagram(rotor, speeds, spec.modal.orders, mo);
+
+  std::vector<double> shape_speeds = spec.modal.mode_shape_speeds;
+  if (shape_speeds.empty()) shape_speeds = {speeds.front(), speeds.back()};
+  std::vector<ModalResult> shapes;
+  for (double s : shape_speeds) shapes.push_back(modal_analysis(rotor, s, mo));
+
+  std::filesystem::create_directories(options.output_dir);
+  const std::string frame_name = options.frame == Frame::Rotating ? "rotating" : "inertial";
+
+  // modal.json: every number, documented in docs/output-format.md.
+  nlohmann::json j;
+  j["turbodyn_version"] = "0.1.0";
+  j["model"] = {{"name", spec.name},
+                {"source", spec.source.string()},
+                {"n_nodes", rotor.node_z.size()},
+                {"n_dof", rotor.n_dof},
+                {"total_mass_kg", rotor.total_mass},
+                {"node_z_m", rotor.node_z}};
+  nlohmann::json overrides = nlohmann::json::array();
+  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
+  j["overrides"] = overrides;
+  j["frame"] = frame_name;
+  j["orders"] = spec.modal.orders;
+  nlohmann::json points = nlohmann::json::array();
+  for (const ModalResult& r : campbell.points) {
+    nlohmann::json modes = nlohmann::json::array();
+    for (const Mode& m : r.modes)
+      modes.push_back({{"frequency_hz", m.frequency},
+                       {"damping_ratio", m.damping_ratio},
+                       {"eigenvalue", {m.eigenvalue.real(), m.eigenvalue.imag()}},
+                       {"whirl", to_string(m.whirl)}});
+    points.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
+  }
+  j["campbell"] = points;
+  nlohmann::json crit = nlohmann::json::array();
+  for (const CriticalSpeed& c : campbell.critical)
+    crit.push_back({{"order", c.order},
+                    {"branch", c.branch},
+                    {"whirl", to_string(c.whirl)},
+                    {"speed_rad_s", c.speed},
+                    {"speed_rpm", c.speed * kRadPerSToRpm},
+                    {"frequency_hz", c.frequency},
+                    {"damping_ratio", c.damping_ratio}});
+  j["critical_speeds"] = crit;
+  nlohmann::json shape_json = nlohmann::json::array();
+  for (const ModalResult& r : shapes) {
+    nlohmann::json modes = nlohmann::json::array();
+    for (const Mode& m : r.modes)
+      modes.push_back({{"frequency_hz", m.frequency},
+                       {"damping_ratio", m.damping_ratio},
+                       {"whirl", to_string(m.whirl)},
+                       {"node_whirl", m.node_whirl},
+                       {"twist", std::vector<double>(m.twist.data(), m.twist.data() + m.twist.size())},
+                       {"x", complex_list(m.shape, rotor, kX)},
+                       {"y", complex_list(m.shape, rotor, kY)},
+                       {"theta_x", complex_list(m.shape, rotor, kThetaX)},
+                       {"theta_y", complex_list(m.shape, rotor, kThetaY)}});
+    shape_json.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
+  }
+  j["mode_shapes"] = shape_json;
+  {
+    std::ofstream out(options.output_dir / "modal.json");
+    out << std::setw(1) << j << "\n";
+  }
+  {
+    std::ofstream csv(options.output_dir / "campbell.csv");
+    csv << "speed_rad_s,speed_rpm,mode,frequency_hz,damping_ratio,whirl\n" << std::setprecision(10);
+    for (const ModalResult& r : campbell.points)
+      for (std::size_t i = 0; i < r.modes.size(); ++i)
+        csv << r.speed << ',' << r.speed * kRadPerSToRpm << ',' << i + 1 << ',' << r.modes[i].frequency << ','
+            << r.modes[i].damping_ratio << ',' << to_string(r.modes[i].whirl) << '\n';
+  }
+
+  std::cout << spec.name << ": " << rotor.node_z.size() << " nodes, " << rotor.n_dof << " DOF, rotor mass "
+            << std::setprecision(4) << rotor.total_mass << " kg, " << frame_name << " frame\n";
+  std::cout << "Modes at " << std::llround(speeds.front() * kRadPerSToRpm) << " rpm:\n";
+  for (std::size_t i = 0; i < campbell.points.front().modes.size(); ++i) {
+    const Mode& m = campbell.points.front().modes[i];
+    std::cout << "  " << std::setw(2) << i + 1 << "  " << std::fixed << std::setprecision(2) << std::setw(10)
+              << m.frequency << " Hz  zeta " << std::setprecision(4) << m.damping_ratio << "  "
+              << to_string(m.whirl) << "\n";
+  }
+  std::cout << "Critical speeds (order-line crossings):\n";
+  for (const CriticalSpeed& c : campbell.critical)
+    std::cout << "  " << std::defaultfloat << c.order << "x " << std::setw(8) << to_string(c.whirl) << " branch "
+              << c.branch + 1 << ": " << std::fixed << std::setprecision(0) << c.speed * kRadPerSToRpm << " rpm ("
+              << std::setprecision(1) << c.frequency << " Hz), zeta " << std::setprecision(4) << c.damping_ratio
+              << "\n";
+  std::cout << std::defaultfloat;
+
+  if (options.plots) {
+    double fmax = spec.modal.frequency_max;
+    if (fmax <= 0) {
+      const double top_order = *std::max_element(spec.modal.orders.begin(), spec.modal.orders.end());
+      fmax = 1.1 * std::max(top_order * speeds.back() / (2 * M_PI), 1.0);
+    }
+    write_campbell_picture(spec, campbell, spec.modal.orders, fmax, options.output_dir / "campbell.png");
+    for (const ModalResult& r : shapes)
+      write_mode_shape_picture(spec, rotor, r, options.output_dir / ("modes_" + speed_tag(r.speed) + ".png"));
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv"
+            << (options.plots ? ", campbell.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall
+            << " s)\n";
+  return 0;
+}
+
+}  // namespace turbodyn::app

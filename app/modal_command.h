@@ -1,0 +1,34 @@
+// `turbodyn modal`: complex modes, Campbell diagram and critical speeds of the linearised rotor.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/model_file.h"
+#include "model/modal.h"
+
+namespace turbodyn::app {
+
+struct ModalCommandOptions {
+  std::filesystem::path model_file;
+  std::vector<Override> overrides;
+  std::string speeds;                    ///< "" = from the model file; "A:B:N" or "A, B, C" with units
+  std::filesystem::path output_dir = "out/modal";
+  int n_modes = 0;                       ///< 0 = from the model file
+  Frame frame = Frame::Inertial;
+  bool plots = true;
+};
+
+/// Runs the analysis and writes modal.json, campbell.csv, campbell.png and modes_*.png into the output directory.
+/// Returns the process exit code.
+int run_modal_command(const ModalCommandOptions& options);
+
+/// Throws ModelError if the machine has supports the linear analyses do not model (pedestal masses).
+void require_linear_supports(const MachineSpec& spec);
+
+/// Parses a speed list: "0:150000 rpm:31" (start:end:count, units on the numbers) or "0, 50000 rpm, 2500 Hz".
+/// Throws ModelError naming the option.
+std::vector<double> parse_speed_list(const std::string& text);
+
+}  // namespace turbodyn::app

@@ -1,0 +1,677 @@
+#include "model/model_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "model/units.h"
+
+namespace turbodyn {
+namespace {
+
+constexpr const char* kOverridePrefix = "--set ";
+
+// Where values came from: the file, or the --set override that put a node into the tree.
+struct Sources {
+  std::string file;
+  std::map<const toml::node*, std::string> overrides;
+};
+
+// "file:line:column" of a node, or the override that created it.
+std::string where(const toml::node& n, const Sources& sources, const std::string& fallback) {
+  if (const auto it = sources.overrides.find(&n); it != sources.overrides.end()) return it->second;
+  const toml::source_region& src = n.source();
+  if (!src.path || src.begin.line == 0) return fallback;
+  std::ostringstream os;
+  os << *src.path << ':' << src.begin.line << ':' << src.begin.column;
+  return os.str();
+}
+
+std::string describe_node(const toml::node& n) {
+  std::ostringstream os;
+  switch (n.type()) {
+    case toml::node_type::string: os << "'" << *n.value<std::string>() << "'"; break;
+    case toml::node_type::table: os << "a table"; break;
+    case toml::node_type::array: os << "an array"; break;
+    case toml::node_type::boolean: os << (*n.value<bool>() ? "true" : "false"); break;
+    default: n.visit([&](auto&& v) { os << v; }); break;
+  }
+  return os.str();
+}
+
+enum class Bound { Any, Positive, NonNegative };
+
+// Reads the keys of one table, remembers which keys the program knows, and rejects all others in finish().
+class Reader {
+ public:
+  Reader(const toml::table& table, std::string path, const Sources& sources)
+      : table_(table), path_(std::move(path)), sources_(sources) {}
+
+  const std::string& path() const { return path_; }
+  std::string key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  std::string location(std::string_view key) const {
+    const toml::node* n = table_.get(key);
+    const std::string table_loc = where(table_, sources_, sources_.file);
+    return n ? where(*n, sources_, table_loc) : table_loc;
+  }
+
+  const toml::node* get(std::string_view key) {
+    known_.emplace(key);
+    return table_.get(key);
+  }
+  bool has(std::string_view key) { return get(key) != nullptr; }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
+    throw ModelError(location(key) + ": " + key_path(key) + ": " + message);
+  }
+  // A required key is absent: if an unknown key looks like a misspelling of it, that is the better message.
+  [[noreturn]] void fail_missing(std::string_view key, const std::string& expected) const {
+    for (auto&& [k, v] : table_) {
+      const std::string other(k.str());
+      if (known_.count(other)) continue;
+      if (closest_match(other, {std::string(key)}) == key)
+        throw ModelError(where(v, sources_, sources_.file) + ": " + key_path(other) + ": unknown key; did you mean '" +
+                         std::string(key) + "'?");
+    }
+    fail(key, "missing required key (" + expected + ")");
+  }
+  [[noreturn]] void fail_table(const std::string& message) const {
+    throw ModelError(where(table_, sources_, sources_.file) + ": " + (path_.empty() ? "(top level)" : path_) +
+                     ": " + message);
+  }
+
+  double quantity(std::string_view key, const Dimension& d, Bound bound = Bound::Any) {
+    const toml::node* n = get(key);
+    if (!n) fail_missing(key, "expected " + describe(d));
+    return convert(key, *n, d, bound);
+  }
+  double quantity_or(std::string_view key, const Dimension& d, double fallback, Bound bound = Bound::Any) {
+    const toml::node* n = get(key);
+    return n ? convert(key, *n, d, bound) : fallback;
+  }
+  // An array of quantities (a single value is taken as a list of one).
+  std::vector<double> quantity_list(std::string_view key, const Dimension& d, Bound bound = Bound::Any) {
+    std::vector<double> out;
+    const toml::node* n = get(key);
+    if (!n) return out;
+    if (const toml::array* a = n->as_array()) {
+      if (a->empty()) fail(key, "the list is empty");
+      for (const toml::node& e : *a) out.push_back(convert(key, e, d, bound));
+    } else {
+      out.push_back(convert(key, *n, d, bound));
+    }
+    return out;
+  }
+  std::string text_or(std::string_view key, const std::string& fallback) {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    if (!n->is_string()) fail(key, "expected a string, got " + describe_node(*n));
+    return *n->value<std::string>();
+  }
+  std::string choice(std::string_view key, const std::vector<std::string>& options, const std::string& fallback) {
+    const std::string value = text_or(key, fallback);
+    if (std::find(options.begin(), options.end(), value) != options.end()) return value;
+    std::string list;
+    for (const auto& o : options) list += (list.empty() ? "'" : ", '") + o + "'";
+    std::string hint = closest_match(value, options);
+    fail(key, "unknown value '" + value + "' (expected one of " + list + ")" +
+                  (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+  }
+  bool flag_or(std::string_view key, bool fallback) {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "expected true or false, got " + describe_node(*n));
+    return *n->value<bool>();
+  }
+  long integer_or(std::string_view key, long fallback, long minimum) {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    if (!n->is_integer()) fail(key, "expected a whole number, got " + describe_node(*n));
+    const long v = static_cast<long>(*n->value<int64_t>());
+    if (v < minimum) fail(key, "must be at least " + std::to_string(minimum) + ", got " + std::to_string(v));
+    return v;
+  }
+  const toml::table* table(std::string_view key) {
+    const toml::node* n = get(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "expected a table ([" + key_path(key) + "]), got " + describe_node(*n));
+    return n->as_table();
+  }
+  const toml::array* array(std::string_view key) {
+    const toml::node* n = get(key);
+    if (!n) return nullptr;
+    if (!n->is_array()) fail(key, "expected an array, got " + describe_node(*n));
+    return n->as_array();
+  }
+
+  // Every key of the table must have been asked for.
+  void finish() const {
+    std::vector<std::string> known(known_.begin(), known_.end());
+    for (auto&& [k, v] : table_) {
+      const std::string key(k.str());
+      if (known_.count(key)) continue;
+      const std::string hint = closest_match(key, known);
+      std::string message = "unknown key";
+      if (!hint.empty()) message += "; did you mean '" + hint + "'?";
+      else if (!known.empty()) {
+        message += " (known here: ";
+        for (std::size_t i = 0; i < known.size(); ++i) message += (i ? ", " : "") + known[i];
+        message += ")";
+      }
+      throw ModelError(where(v, sources_, where(table_, sources_, sources_.file)) + ": " + key_path(key) + ": " +
+                       message);
+    }
+  }
+
+ private:
+  double convert(std::string_view key, const toml::node& n, const Dimension& d, Bound bound) const {
+    double v = 0.0;
+    if (n.is_integer()) {
+      v = static_cast<double>(*n.value<int64_t>());
+    } else if (n.is_floating_point()) {
+      v = *n.value<double>();
+    } else if (n.is_string()) {
+      try {
+        v = parse_quantity(*n.value<std::string>(), d);
+      } catch (const UnitError& e) {
+        throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": " + e.what());
+      }
+    } else {
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": expected " + describe(d) +
+                       " (a number in SI units or a string such as \"" + example_for(d) + "\"), got " +
+                       describe_node(n));
+    }
+    if (!std::isfinite(v))
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": value is not finite");
+    if (bound == Bound::Positive && !(v > 0.0))
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": must be positive, got " +
+                       describe_node(n));
+    if (bound == Bound::NonNegative && v < 0.0)
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": must not be negative, got " +
+                       describe_node(n));
+    return v;
+  }
+  static std::string example_for(const Dimension& d) {
+    if (d == dim::length) return "15 um";
+    if (d == dim::angular_speed) return "150000 rpm";
+    if (d == dim::unbalance) return "390 mg*mm";
+    if (d == dim::temperature) return "90 degC";
+    if (d == dim::mass) return "0.119 kg";
+    return "1 " + d.si_unit();
+  }
+
+  const toml::table& table_;
+  std::string path_;
+  const Sources& sources_;
+  std::set<std::string> known_;
+};
+
+// ----------------------------------------------------------------------------------------------- overrides
+
+struct PathSegment {
+  std::string key;
+  long index = -1;  // >= 0 for key[index]
+};
+
+std::vector<PathSegment> split_path(const std::string& path) {
+  std::vector<PathSegment> segments;
+  std::size_t pos = 0;
+  while (pos <= path.size()) {
+    const std::size_t dot = path.find('.', pos);
+    std::string part = path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
+    PathSegment seg;
+    const std::size_t bracket = part.find('[');
+    if (bracket != std::string::npos) {
+      if (part.back() != ']') throw ModelError("--set " + path + ": malformed index in '" + part + "'");
+      const std::string idx = part.substr(bracket + 1, part.size() - bracket - 2);
+      if (idx.empty() || idx.find_first_not_of("0123456789") != std::string::npos)
+        throw ModelError("--set " + path + ": index '" + idx + "' is not a whole number");
+      seg.index = std::stol(idx);
+      part = part.substr(0, bracket);
+    }
+    if (part.empty()) throw ModelError("--set " + path + ": empty key in the path");
+    seg.key = part;
+    segments.push_back(seg);
+    if (dot == std::string::npos) break;
+    pos = dot + 1;
+  }
+  return segments;
+}
+
+// Parses VALUE as TOML, falling back to a plain string; the node's source names the override.
+toml::table parse_override_value(const Override& o) {
+  const std::string source = std::string(kOverridePrefix) + o.path + "=" + o.value;
+  try {
+    return toml::parse("v = " + o.value, std::string_view(source));
+  } catch (const toml::parse_error&) {
+    std::string escaped;
+    for (char ch : o.value) {
+      if (ch == '"' || ch == '\\') escaped += '\\';
+      escaped += ch;
+    }
+    try {
+      return toml::parse("v = \"" + escaped + "\"", std::string_view(source));
+    } catch (const toml::parse_error& e) {
+      throw ModelError(source + ": cannot read the value: " + std::string(e.description()));
+    }
+  }
+}
+
+void apply_override(toml::table& root, const Override& o, Sources& sources) {
+  const std::vector<PathSegment> segments = split_path(o.path);
+  toml::table parsed = parse_override_value(o);
+  const toml::node& value = *parsed.get("v");
+  const std::string context = std::string(kOverridePrefix) + o.path + "=" + o.value;
+
+  toml::table* table = &root;
+  std::string walked;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const PathSegment& seg = segments[i];
+    const bool last = i + 1 == segments.size();
+    walked += (walked.empty() ? "" : ".") + seg.key;
+    toml::node* n = table->get(seg.key);
+    if (seg.index >= 0) {
+      if (!n || !n->is_array())
+        throw ModelError(context + ": '" + walked + "' is not an array in the model file");
+      toml::array& arr = *n->as_array();
+      if (static_cast<std::size_t>(seg.index) >= arr.size())
+        throw ModelError(context + ": index " + std::to_string(seg.index) + " is out of range ('" + walked +
+                         "' has " + std::to_string(arr.size()) + " entries, counted from 0)");
+      toml::node& elem = arr[static_cast<std::size_t>(seg.index)];
+      if (last) {
+        value.visit([&](auto&& v) { arr.replace(arr.cbegin() + seg.index, v); });
+        sources.overrides[arr.get(static_cast<std::size_t>(seg.index))] = context;
+        return;
+      }
+      if (!elem.is_table()) throw ModelError(context + ": '" + walked + "[...]' is not a table");
+      table = elem.as_table();
+    } else if (last) {
+      value.visit([&](auto&& v) { table->insert_or_assign(seg.key, v); });
+      sources.overrides[table->get(seg.key)] = context;
+      return;
+    } else {
+      if (!n) {
+        n = table->insert_or_assign(seg.key, toml::table{}).first->second.as_table();
+        sources.overrides[n] = context;
+      }
+      if (!n->is_table())
+        throw ModelError(context + ": '" + walked + "' is a value, not a table, so it has no key '" +
+                         segments[i + 1].key + "'");
+      table = n->as_table();
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------------------- sections
+
+Material read_material(Reader& r) {
+  Material m;
+  m.name = r.path().substr(r.path().find('.') + 1);
+  m.youngs_modulus = r.quantity("E", dim::pressure, Bound::Positive);
+  m.density = r.quantity("rho", dim::density, Bound::Positive);
+  const bool has_g = r.has("G"), has_nu = r.has("nu");
+  if (has_g == has_nu) r.fail_table("give exactly one of G (shear modulus) and nu (Poisson's ratio)");
+  if (has_g) {
+    m.shear_modulus = r.quantity("G", dim::pressure, Bound::Positive);
+    m.poisson_ratio = m.youngs_modulus / (2.0 * m.shear_modulus) - 1.0;
+  } else {
+    m.poisson_ratio = r.quantity("nu", dim::dimensionless);
+    m.shear_modulus = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+  }
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
+    r.fail(has_g ? "G" : "nu", "Poisson's ratio must lie in (-1, 0.5), got " + std::to_string(m.poisson_ratio));
+  r.finish();
+  return m;
+}
+
+void read_disk(Reader& r, const MachineSpec& spec, DiskSpec& d) {
+  d.z = r.quantity("z", dim::length);
+  const bool by_mass = r.has("mass");
+  const bool by_geometry = r.has("width") || r.has("outer_diameter");
+  if (by_mass == by_geometry)
+    r.fail_table("give either mass (with polar_inertia and diametral_inertia) or the geometry "
+                 "(width, outer_diameter, inner_diameter, material)");
+  if (by_mass) {
+    d.mass = r.quantity("mass", dim::mass, Bound::Positive);
+    d.polar_inertia = r.quantity_or("polar_inertia", dim::inertia, 0.0, Bound::NonNegative);
+    d.diametral_inertia = r.quantity_or("diametral_inertia", dim::inertia, 0.0, Bound::NonNegative);
+  } else {
+    // Thin cylinder formulas as in Friswell et al. (2010), Example 5.9.1.
+    const double w = r.quantity("width", dim::length, Bound::Positive);
+    const double dout = r.quantity("outer_diameter", dim::length, Bound::Positive);
+    const double din = r.quantity_or("inner_diameter", dim::length, 0.0, Bound::NonNegative);
+    if (din >= dout) r.fail("inner_diameter", "must be smaller than outer_diameter");
+    const std::string mat = r.text_or("material", "");
+    if (mat.empty()) r.fail("material", "missing required key (the material of the disk, e.g. \"steel\")");
+    const auto it = spec.materials.find(mat);
+    if (it == spec.materials.end()) r.fail("material", "no material '" + mat + "' in [materials]");
+    const double rho = it->second.density;
+    d.mass = rho * M_PI * w * (dout * dout - din * din) / 4.0;
+    d.polar_inertia = d.mass * (dout * dout + din * din) / 8.0;
+    d.diametral_inertia = d.polar_inertia / 2.0 + d.mass * w * w / 12.0;
+  }
+  d.unbalance = r.quantity_or("unbalance", dim::unbalance, 0.0, Bound::NonNegative);
+  d.unbalance_phase = r.quantity_or("unbalance_phase", dim::angle, 0.0);
+  r.finish();
+}
+
+void read_linear_bearing(Reader& r, BearingSpec& b) {
+  LinearBearingSpec& lin = b.linear;
+  lin.speeds = r.quantity_list("speeds", dim::angular_speed, Bound::NonNegative);
+  for (std::size_t i = 1; i < lin.speeds.size(); ++i)
+    if (!(lin.speeds[i] > lin.speeds[i - 1])) r.fail("speeds", "speeds must be strictly increasing");
+  const std::size_t n = lin.speeds.empty() ? 1 : lin.speeds.size();
+
+  auto read_set = [&](const char* iso, const char* const names[4], const Dimension& d,
+                      std::array<std::vector<double>, 4>& out) {
+    const bool has_iso = r.has(iso);
+    bool has_any = false;
+    for (int i = 0; i < 4; ++i) has_any = has_any || r.has(names[i]);
+    if (has_iso && has_any)
+      r.fail(iso, std::string("give either ") + iso + " (isotropic) or the four " + names[0] + "... keys, not both");
+    for (int i = 0; i < 4; ++i) {
+      const bool diagonal = i == 0 || i == 3;
+      const char* key = has_iso && diagonal ? iso : names[i];
+      out[i] = (has_iso && !diagonal) ? std::vector<double>{} : r.quantity_list(key, d);
+      if (out[i].empty()) out[i].assign(n, 0.0);
+      if (out[i].size() == 1 && n > 1) out[i].assign(n, out[i][0]);
+      if (out[i].size() != n)
+        r.fail(key, "has " + std::to_string(out[i].size()) + " values but 'speeds' has " + std::to_string(n));
+    }
+  };
+  static const char* const k_names[4] = {"kxx", "kxy", "kyx", "kyy"};
+  static const char* const c_names[4] = {"cxx", "cxy", "cyx", "cyy"};
+  read_set("k", k_names, dim::stiffness, lin.k);
+  read_set("c", c_names, dim::damping, lin.c);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (lin.k[0][j] < 0 || lin.k[3][j] < 0)
+      r.fail(lin.k[0][j] < 0 ? "kxx" : "kyy", "direct stiffness must not be negative");
+    if (lin.c[0][j] < 0 || lin.c[3][j] < 0)
+      r.fail(lin.c[0][j] < 0 ? "cxx" : "cyy", "direct damping must not be negative");
+  }
+}
+
+void read_bearing(Reader& r, BearingSpec& b) {
+  b.type = r.choice("type", {"linear"}, "");
+  b.z = r.quantity("z", dim::length);
+  if (b.type == "linear") read_linear_bearing(r, b);
+  b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
+  b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
+  b.pedestal_damping = r.quantity_or("pedestal_damping", dim::damping, 0.0, Bound::NonNegative);
+  if (b.pedestal_mass > 0.0 && b.pedestal_stiffness <= 0.0)
+    r.fail("pedestal_stiffness", "a pedestal mass needs a positive pedestal_stiffness to ground");
+  if (b.pedestal_mass == 0.0 && (r.has("pedestal_stiffness") || r.has("pedestal_damping")))
+    r.fail("pedestal_mass", "missing: pedestal_stiffness/pedestal_damping need a pedestal_mass");
+  r.finish();
+}
+
+void read_speed(Reader& r, SpeedProfile& s) {
+  const std::string profile = r.choice("profile", {"ramp", "table"}, "ramp");
+  if (profile == "ramp") {
+    s.kind = SpeedProfile::Kind::Ramp;
+    s.start = r.quantity_or("start", dim::angular_speed, 0.0, Bound::NonNegative);
+    s.end = r.quantity("end", dim::angular_speed, Bound::NonNegative);
+    s.duration = r.quantity("duration", dim::time, Bound::Positive);
+  } else {
+    s.kind = SpeedProfile::Kind::Table;
+    s.times = r.quantity_list("times", dim::time, Bound::NonNegative);
+    s.speeds = r.quantity_list("speeds", dim::angular_speed, Bound::NonNegative);
+    if (s.times.size() < 2) r.fail("times", "a speed table needs at least two points");
+    if (s.times.size() != s.speeds.size())
+      r.fail("speeds", "has " + std::to_string(s.speeds.size()) + " values but 'times' has " +
+                           std::to_string(s.times.size()));
+    for (std::size_t i = 1; i < s.times.size(); ++i)
+      if (!(s.times[i] > s.times[i - 1])) r.fail("times", "times must be strictly increasing");
+    s.start = s.speeds.front();
+    s.end = s.speeds.back();
+    s.duration = s.times.back();
+  }
+  r.finish();
+}
+
+void read_mesh(Reader& r, MeshSpec& m) {
+  m.max_element_length = r.quantity_or("max_element_length", dim::length, m.max_element_length, Bound::Positive);
+  m.shear_deformation = r.flag_or("shear_deformation", m.shear_deformation);
+  m.rotary_inertia = r.flag_or("rotary_inertia", m.rotary_inertia);
+  m.gyroscopic = r.flag_or("gyroscopic", m.gyroscopic);
+  if (const toml::node* n = r.get("shear_factor")) {
+    if (n->is_number()) {
+      m.shear_factor_formula = ShearFactorFormula::Given;
+      m.shear_factor = r.quantity("shear_factor", dim::dimensionless, Bound::Positive);
+      if (m.shear_factor > 1.0) r.fail("shear_factor", "a shear factor lies in (0, 1]");
+    } else {
+      const std::string f = r.choice("shear_factor", {"cowper", "hutchinson"}, "cowper");
+      m.shear_factor_formula = f == "cowper" ? ShearFactorFormula::Cowper : ShearFactorFormula::Hutchinson;
+    }
+  }
+  r.finish();
+}
+
+void read_modal(Reader& r, ModalSpec& m) {
+  m.speed_min = r.quantity_or("speed_min", dim::angular_speed, m.speed_min, Bound::NonNegative);
+  m.speed_max = r.quantity_or("speed_max", dim::angular_speed, m.speed_max, Bound::NonNegative);
+  m.n_speeds = static_cast<int>(r.integer_or("n_speeds", m.n_speeds, 2));
+  m.n_modes = static_cast<int>(r.integer_or("n_modes", m.n_modes, 1));
+  if (r.has("orders")) m.orders = r.quantity_list("orders", dim::dimensionless, Bound::Positive);
+  m.frequency_max = r.quantity_or("frequency_max", dim::frequency, m.frequency_max, Bound::NonNegative);
+  m.mode_shape_speeds = r.quantity_list("mode_shape_speeds", dim::angular_speed, Bound::NonNegative);
+  m.torsion = r.flag_or("torsion", m.torsion);
+  if (r.has("speed_max") && m.speed_max <= m.speed_min) r.fail("speed_max", "must be larger than speed_min");
+  r.finish();
+}
+
+MachineSpec read_machine(const toml::table& root, const Sources& src) {
+  const std::string& file = src.file;
+  MachineSpec spec;
+  spec.source = file;
+  Reader top(root, "", src);
+  spec.name = top.text_or("name", std::filesystem::path(file).stem().string());
+  spec.description = top.text_or("description", "");
+  spec.gravity = top.quantity_or("gravity", dim::acceleration, 9.81, Bound::NonNegative);
+
+  // Materials first: sections and disks refer to them.
+  if (const toml::table* mats = top.table("materials")) {
+    for (auto&& [k, v] : *mats) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": materials." + key + ": expected a table [materials." + key + "]");
+      Reader r(*v.as_table(), "materials." + key, src);
+      spec.materials[key] = read_material(r);
+    }
+  }
+  if (spec.materials.empty()) top.fail("materials", "missing: at least one [materials.NAME] table is needed");
+
+  const toml::array* shaft = top.array("shaft");
+  if (!shaft || shaft->empty())
+    top.fail("shaft", "missing: the shaft is given as [[shaft]] sections (length, outer_diameter, material)");
+  double z = 0.0;
+  for (std::size_t i = 0; i < shaft->size(); ++i) {
+    const std::string path = "shaft[" + std::to_string(i) + "]";
+    const toml::node& node = (*shaft)[i];
+    if (!node.is_table()) throw ModelError(where(node, src, file) + ": " + path + ": expected a table");
+    Reader r(*node.as_table(), path, src);
+    ShaftSection s;
+    s.length = r.quantity("length", dim::length, Bound::Positive);
+    s.outer_diameter = r.quantity("outer_diameter", dim::length, Bound::Positive);
+    s.inner_diameter = r.quantity_or("inner_diameter", dim::length, 0.0, Bound::NonNegative);
+    if (s.inner_diameter >= s.outer_diameter) r.fail("inner_diameter", "must be smaller than outer_diameter");
+    s.material = r.text_or("material", spec.materials.size() == 1 ? spec.materials.begin()->first : "");
+    if (s.material.empty()) r.fail("material", "missing (several materials are defined, say which)");
+    if (!spec.materials.count(s.material)) {
+      std::vector<std::string> names;
+      for (const auto& [n, m] : spec.materials) names.push_back(n);
+      const std::string hint = closest_match(s.material, names);
+      r.fail("material", "no material '" + s.material + "' in [materials]" +
+                             (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+    }
+    s.z_start = z;
+    z += s.length;
+    r.finish();
+    spec.shaft.push_back(s);
+  }
+  const double length = z;
+  constexpr double kPositionTolerance = 1e-9;  // m; positions this close to the shaft ends count as on the shaft
+  auto check_on_shaft = [&](Reader& r, double zpos, const std::string& what) {
+    if (zpos < -kPositionTolerance || zpos > length + kPositionTolerance) {
+      std::ostringstream os;
+      os << what << " at z = " << zpos * 1e3 << " mm lies outside the shaft (0 to " << length * 1e3 << " mm)";
+      r.fail("z", os.str());
+    }
+  };
+
+  if (const toml::table* mesh = top.table("mesh")) {
+    Reader r(*mesh, "mesh", src);
+    read_mesh(r, spec.mesh);
+  }
+  if (const toml::table* damping = top.table("damping")) {
+    Reader r(*damping, "damping", src);
+    spec.damping.alpha = r.quantity_or("alpha", dim::frequency, 0.0, Bound::NonNegative);
+    spec.damping.beta = r.quantity_or("beta", dim::time, 0.0, Bound::NonNegative);
+    r.finish();
+  }
+  if (const toml::table* disks = top.table("disks")) {
+    for (auto&& [k, v] : *disks) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": disks." + key + ": expected a table [disks." + key + "]");
+      Reader r(*v.as_table(), "disks." + key, src);
+      DiskSpec d;
+      d.name = key;
+      read_disk(r, spec, d);
+      check_on_shaft(r, d.z, "disk '" + key + "'");
+      spec.disks.push_back(d);
+    }
+  }
+  if (const toml::table* bearings = top.table("bearings")) {
+    for (auto&& [k, v] : *bearings) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": bearings." + key + ": expected a table [bearings." + key +
+                         "]");
+      Reader r(*v.as_table(), "bearings." + key, src);
+      BearingSpec b;
+      b.name = key;
+      read_bearing(r, b);
+      check_on_shaft(r, b.z, "bearing '" + key + "'");
+      spec.bearings.push_back(b);
+    }
+  }
+  if (const toml::table* speed = top.table("speed")) {
+    Reader r(*speed, "speed", src);
+    read_speed(r, spec.speed);
+  }
+  if (const toml::table* solver = top.table("solver")) {
+    Reader r(*solver, "solver", src);
+    spec.solver.integrator = r.choice("integrator", {"cvode-bdf", "arkode-erk"}, spec.solver.integrator);
+    spec.solver.rtol = r.quantity_or("rtol", dim::dimensionless, spec.solver.rtol, Bound::Positive);
+    spec.solver.atol = r.quantity_or("atol", dim::dimensionless, spec.solver.atol, Bound::Positive);
+    spec.solver.max_step = r.quantity_or("max_step", dim::time, spec.solver.max_step, Bound::NonNegative);
+    spec.solver.static_start = r.flag_or("static_start", spec.solver.static_start);
+    if (spec.solver.rtol >= 1.0) r.fail("rtol", "a relative tolerance must be below 1");
+    r.finish();
+  }
+  if (const toml::table* output = top.table("output")) {
+    Reader r(*output, "output", src);
+    OutputSpec& o = spec.output;
+    o.sample_rate = r.quantity_or("sample_rate", dim::frequency, o.sample_rate, Bound::Positive);
+    o.csv = r.flag_or("csv", o.csv);
+    o.spectrogram_segment = static_cast<int>(r.integer_or("spectrogram_segment", o.spectrogram_segment, 8));
+    o.spectrogram_overlap = r.quantity_or("spectrogram_overlap", dim::dimensionless, o.spectrogram_overlap,
+                                          Bound::NonNegative);
+    if (o.spectrogram_overlap >= 1.0) r.fail("spectrogram_overlap", "must be below 1");
+    o.spectrogram_window =
+        r.choice("spectrogram_window", {"hann", "hamming", "blackman", "flattop", "rectangular"}, o.spectrogram_window);
+    o.frequency_max = r.quantity_or("frequency_max", dim::frequency, o.frequency_max, Bound::NonNegative);
+    o.orbit_speeds = r.quantity_list("orbit_speeds", dim::angular_speed, Bound::NonNegative);
+    r.finish();
+  }
+  if (const toml::table* modal = top.table("modal")) {
+    Reader r(*modal, "modal", src);
+    read_modal(r, spec.modal);
+  }
+  top.finish();
+  return spec;
+}
+
+MachineSpec load_parsed(toml::table root, const std::string& source_name, const std::vector<Override>& overrides) {
+  Sources sources{source_name, {}};
+  for (const Override& o : overrides) apply_override(root, o, sources);
+  return read_machine(root, sources);
+}
+
+}  // namespace
+
+Override parse_override(const std::string& assignment) {
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos)
+    throw ModelError("--set " + assignment + ": expected PATH=VALUE, e.g. --set bearings.compressor.kxx=2e7");
+  Override o{assignment.substr(0, eq), assignment.substr(eq + 1)};
+  auto trim = [](std::string& s) {
+    s.erase(0, s.find_first_not_of(" \t"));
+    s.erase(s.find_last_not_of(" \t") + 1);
+  };
+  trim(o.path);
+  trim(o.value);
+  if (o.path.empty()) throw ModelError("--set " + assignment + ": the path before '=' is empty");
+  if (o.value.empty()) throw ModelError("--set " + assignment + ": the value after '=' is empty");
+  return o;
+}
+
+MachineSpec load_model(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ModelError(file.string() + ": cannot open the model file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_model_from_string(text.str(), file.string(), overrides);
+}
+
+MachineSpec load_model_from_string(const std::string& toml_text, const std::string& source_name,
+                                   const std::vector<Override>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, std::string_view(source_name));
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << source_name << ':' << e.source().begin.line << ':' << e.source().begin.column
+       << ": TOML syntax error: " << e.description();
+    throw ModelError(os.str());
+  }
+  return load_parsed(std::move(root), source_name, overrides);
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t sub = prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const std::string& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  // A plausible typo: at most a third of the word changed (at least one edit allowed).
+  const std::size_t allowed = std::max<std::size_t>(1, word.size() / 3);
+  return best_d <= allowed ? best : std::string();
+}
+
+}  // namespace turbodyn

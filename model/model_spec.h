@@ -1,0 +1,140 @@
+// The machine as the model file describes it: plain data, SI units, validated by the loader (model_file.h).
+// Nothing here is derived; the finite-element model is built from it by build_rotor() (rotor.h).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace turbodyn {
+
+/// Isotropic linear-elastic material.
+struct Material {
+  std::string name;
+  double youngs_modulus = 0.0;  ///< E in Pa.
+  double shear_modulus = 0.0;   ///< G in Pa (given, or E / (2(1 + nu))).
+  double poisson_ratio = 0.0;   ///< nu [-] (given, or E / (2G) - 1).
+  double density = 0.0;         ///< rho in kg/m^3.
+};
+
+/// A cylindrical (possibly hollow) length of shaft; sections follow each other along z from z = 0.
+struct ShaftSection {
+  double length = 0.0;          ///< m
+  double outer_diameter = 0.0;  ///< m
+  double inner_diameter = 0.0;  ///< m (0 = solid)
+  std::string material;         ///< key into MachineSpec::materials
+  double z_start = 0.0;         ///< m, derived from the lengths of the preceding sections
+};
+
+/// How the shaft is discretised and which beam effects are kept.
+enum class ShearFactorFormula { Cowper, Hutchinson, Given };
+struct MeshSpec {
+  double max_element_length = 0.01;  ///< m; nodes are added so that no element is longer
+  bool shear_deformation = true;     ///< Timoshenko (true) or Euler-Bernoulli (false)
+  bool rotary_inertia = true;        ///< cross-section rotary inertia in M and the gyroscopic matrix
+  bool gyroscopic = true;            ///< gyroscopic coupling of shaft and disks
+  ShearFactorFormula shear_factor_formula = ShearFactorFormula::Cowper;
+  double shear_factor = 0.0;         ///< kappa [-], used when the formula is Given
+};
+
+/// Rigid disk (wheel, collar, added mass) attached at one shaft node.
+struct DiskSpec {
+  std::string name;
+  double z = 0.0;                ///< m, axial position (a node is placed there)
+  double mass = 0.0;             ///< kg
+  double polar_inertia = 0.0;    ///< Ip in kg m^2
+  double diametral_inertia = 0.0;///< Id (transverse, about a diameter through the centre of mass) in kg m^2
+  double unbalance = 0.0;        ///< m_u * e in kg m
+  double unbalance_phase = 0.0;  ///< rad, angle of the unbalance in the rotor frame at spin angle 0
+};
+
+/// Linear bearing: force on the shaft F = -K u - C du/dt in the (x, y) plane; coefficients constant or tabulated
+/// against rotor speed (linear interpolation, held constant outside the table).
+struct LinearBearingSpec {
+  std::vector<double> speeds;              ///< rad/s; empty for constant coefficients
+  std::array<std::vector<double>, 4> k;    ///< kxx, kxy, kyx, kyy in N/m (one value, or one per speed)
+  std::array<std::vector<double>, 4> c;    ///< cxx, cxy, cyx, cyy in N s/m
+};
+
+struct BearingSpec {
+  std::string name;
+  std::string type;  ///< "linear" (the nonlinear bearing types come with their own issues)
+  double z = 0.0;    ///< m
+  LinearBearingSpec linear;
+  double pedestal_mass = 0.0;       ///< kg; > 0 puts the bearing housing on a pedestal mass (run-up only)
+  double pedestal_stiffness = 0.0;  ///< N/m, pedestal to ground
+  double pedestal_damping = 0.0;    ///< N s/m, pedestal to ground
+};
+
+/// Prescribed rotor spin speed against time.
+struct SpeedProfile {
+  enum class Kind { Ramp, Table } kind = Kind::Ramp;
+  double start = 0.0;     ///< rad/s (ramp)
+  double end = 0.0;       ///< rad/s (ramp)
+  double duration = 0.0;  ///< s (ramp)
+  std::vector<double> times;   ///< s (table), strictly increasing
+  std::vector<double> speeds;  ///< rad/s (table)
+};
+
+/// Time-integration settings (used by `turbodyn run`).
+struct SolverSpec {
+  std::string integrator = "cvode-bdf";  ///< "cvode-bdf" or "arkode-erk"
+  double rtol = 1e-6;                    ///< relative tolerance [-]
+  double atol = 1e-9;                    ///< absolute tolerance (SI units of each state)
+  double max_step = 0.0;                 ///< s; 0 = no limit
+  bool static_start = true;              ///< start from the static equilibrium under gravity
+};
+
+/// Output settings (used by `turbodyn run`).
+struct OutputSpec {
+  double sample_rate = 20000.0;      ///< samples per second of the written time series [1/s]
+  bool csv = false;                  ///< also write timeseries.csv
+  int spectrogram_segment = 2048;    ///< samples per STFT segment
+  double spectrogram_overlap = 0.75; ///< fraction of a segment shared with the next
+  std::string spectrogram_window = "hann";
+  double frequency_max = 0.0;        ///< Hz, upper frequency of the spectrograms (0 = automatic)
+  std::vector<double> orbit_speeds;  ///< rad/s; speeds at which orbits are drawn (empty = 4 evenly spaced)
+};
+
+/// Settings of the linear analyses (`turbodyn modal`).
+struct ModalSpec {
+  double speed_min = 0.0;               ///< rad/s
+  double speed_max = 0.0;               ///< rad/s (0 = the end speed of the speed profile)
+  int n_speeds = 31;                    ///< speeds in the Campbell diagram
+  int n_modes = 8;                      ///< modes kept per speed
+  std::vector<double> orders{1.0, 0.5}; ///< excitation orders drawn and intersected (1 = synchronous)
+  double frequency_max = 0.0;           ///< Hz; upper frequency of the Campbell diagram (0 = automatic)
+  std::vector<double> mode_shape_speeds;///< rad/s; speeds at which mode-shape pictures are drawn
+  bool torsion = false;                 ///< include the free-free torsional modes
+};
+
+/// Rayleigh structural damping of the shaft and disks: D = alpha M + beta K.
+struct DampingSpec {
+  double alpha = 0.0;  ///< 1/s
+  double beta = 0.0;   ///< s
+};
+
+struct MachineSpec {
+  std::filesystem::path source;  ///< file the spec was read from
+  std::string name;
+  std::string description;
+  std::map<std::string, Material> materials;
+  std::vector<ShaftSection> shaft;
+  MeshSpec mesh;
+  DampingSpec damping;
+  std::vector<DiskSpec> disks;
+  std::vector<BearingSpec> bearings;
+  double gravity = 9.81;  ///< m/s^2, acting in -y
+  SpeedProfile speed;
+  SolverSpec solver;
+  OutputSpec output;
+  ModalSpec modal;
+
+  double shaft_length() const {
+    return shaft.empty() ? 0.0 : shaft.back().z_start + shaft.back().length;
+  }
+};
+
+}  // namespace turbodyn

@@ -1,0 +1,137 @@
+// Model files: values, units, overrides, and the errors a new user meets.
+#include "model/model_file.h"
+
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/model/test_support.h"
+
+namespace turbodyn {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using testing::source_dir;
+
+std::string example(const std::string& name) { return source_dir() + "/examples/" + name; }
+std::string bad(const std::string& name) { return source_dir() + "/tests/data/bad_models/" + name; }
+
+// The message of the ModelError thrown by loading `file` with `overrides` ("" if none is thrown).
+std::string error_of(const std::string& file, const std::vector<Override>& overrides = {}) {
+  try {
+    load_model(file, overrides);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ModelFile, ReferenceExampleValuesInSI) {
+  const MachineSpec s = load_model(example("reference_linear.toml"));
+  EXPECT_EQ(s.shaft.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.shaft_length(), 0.140);
+  ASSERT_EQ(s.disks.size(), 2u);
+  const DiskSpec& c = s.disks[0].name == "compressor" ? s.disks[0] : s.disks[1];
+  EXPECT_NEAR(c.unbalance, 3.9e-7, 1e-20);
+  EXPECT_NEAR(c.unbalance_phase, M_PI / 2, 1e-15);
+  EXPECT_NEAR(c.z, 0.012, 1e-15);
+  EXPECT_NEAR(s.speed.end, 150000 * 2 * M_PI / 60, 1e-9);
+  EXPECT_DOUBLE_EQ(s.speed.duration, 4.0);
+  EXPECT_DOUBLE_EQ(s.output.sample_rate, 20000.0);
+  ASSERT_EQ(s.bearings.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.bearings[0].linear.k[0][0], 3e7);
+  EXPECT_DOUBLE_EQ(s.bearings[0].linear.k[3][0], 3e7);
+  EXPECT_DOUBLE_EQ(s.bearings[0].linear.k[1][0], 0.0);
+}
+
+TEST(ModelFile, DiskInertiaFromGeometry) {
+  // Friswell Ex. 5.9.1 disk 1: rho pi w (do^2 - di^2) / 4 with rho 7810, w 0.07, do 0.28, di 0.05.
+  const MachineSpec s = load_model(example("friswell_5_9_1.toml"));
+  const double m = 7810 * M_PI * 0.07 * (0.28 * 0.28 - 0.05 * 0.05) / 4;
+  EXPECT_NEAR(s.disks[0].mass, m, 1e-12);
+  EXPECT_NEAR(s.disks[0].polar_inertia, m * (0.28 * 0.28 + 0.05 * 0.05) / 8, 1e-14);
+  EXPECT_NEAR(s.materials.at("steel").poisson_ratio, 211.0 / (2 * 81.2) - 1, 1e-14);
+}
+
+TEST(ModelFile, OverridesUseTheFileSyntax) {
+  const MachineSpec s = load_model(example("reference_linear.toml"),
+                                   {parse_override("bearings.compressor.k=1e7"),
+                                    parse_override("disks.turbine.unbalance = 1 g*mm"),
+                                    parse_override("shaft[0].outer_diameter=12 mm"),
+                                    parse_override("damping.beta=1e-6"),
+                                    parse_override("modal.orders=[1.0, 2.0]")});
+  const BearingSpec& b = s.bearings[0].name == "compressor" ? s.bearings[0] : s.bearings[1];
+  EXPECT_DOUBLE_EQ(b.linear.k[0][0], 1e7);
+  const DiskSpec& t = s.disks[0].name == "turbine" ? s.disks[0] : s.disks[1];
+  EXPECT_NEAR(t.unbalance, 1e-6, 1e-20);
+  EXPECT_DOUBLE_EQ(s.shaft[0].outer_diameter, 0.012);
+  EXPECT_DOUBLE_EQ(s.damping.beta, 1e-6);
+  EXPECT_EQ(s.modal.orders, (std::vector<double>{1.0, 2.0}));
+}
+
+TEST(ModelFile, OverrideErrorsNameTheOverride) {
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("bearings.compressor.kxz=1")}),
+              AllOf(HasSubstr("--set bearings.compressor.kxz=1"), HasSubstr("unknown key"), HasSubstr("kxx")));
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("shaft[3].length=1")}),
+              HasSubstr("out of range"));
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("disks.compressor.mass=3 m")}),
+              AllOf(HasSubstr("--set disks.compressor.mass=3 m"), HasSubstr("mass (kg)")));
+  EXPECT_THROW(parse_override("no-equals-sign"), ModelError);
+}
+
+TEST(ModelFile, ExamplesLoad) {
+  EXPECT_NO_THROW(load_model(example("reference_linear.toml")));
+  EXPECT_NO_THROW(load_model(example("friswell_5_9_1.toml")));
+}
+
+TEST(ModelFile, MissingFile) {
+  EXPECT_THAT(error_of(bad("does_not_exist.toml")), HasSubstr("cannot open"));
+}
+
+// One case per mistake a new user makes. Each message names the file and line, the key and the cause.
+struct BadCase {
+  const char* file;
+  int line;
+  std::vector<const char*> must_contain;
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.file; }
+
+class BadModel : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadModel, ClearError) {
+  const BadCase& c = GetParam();
+  const std::string msg = error_of(bad(c.file));
+  ASSERT_FALSE(msg.empty()) << c.file << " was accepted";
+  EXPECT_THAT(msg, HasSubstr(std::string(c.file) + ":" + std::to_string(c.line) + ":"));
+  for (const char* s : c.must_contain) EXPECT_THAT(msg, HasSubstr(s));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadModel,
+    ::testing::Values(
+        BadCase{"missing_key.toml", 6, {"shaft[0].length", "missing required key", "length (m)"}},
+        BadCase{"typo_key.toml", 8, {"shaft[0].outer_diamter", "unknown key", "did you mean 'outer_diameter'"}},
+        BadCase{"negative_length.toml", 7, {"shaft[0].length", "must be positive", "-140 mm"}},
+        BadCase{"wrong_unit.toml", 7, {"shaft[0].length", "'140 kg'", "mass (kg)", "expected a length (m)"}},
+        BadCase{"unknown_unit.toml", 8, {"shaft[0].outer_diameter", "unknown unit 'mmm'"}},
+        BadCase{"disk_outside_shaft.toml", 11, {"disks.turbine.z", "outside the shaft", "200 mm", "140 mm"}},
+        BadCase{"bearing_type_typo.toml", 11, {"bearings.compressor.type", "'lineer'", "did you mean 'linear'"}},
+        BadCase{"negative_stiffness.toml", 13, {"bearings.compressor.kxx", "must not be negative"}},
+        BadCase{"syntax_error.toml", 8, {"TOML syntax error"}},
+        BadCase{"wrong_type.toml", 7, {"shaft[0].length", "expected a length (m)", "got true"}}),
+    [](const ::testing::TestParamInfo<BadCase>& info) {
+      std::string n = info.param.file;
+      return n.substr(0, n.find('.'));
+    });
+
+TEST(ModelFile, DidYouMean) {
+  EXPECT_EQ(closest_match("outer_diamter", {"length", "outer_diameter", "inner_diameter"}), "outer_diameter");
+  EXPECT_EQ(closest_match("zzzzzz", {"length", "outer_diameter"}), "");
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+}
+
+}  // namespace
+}  // namespace turbodyn
