@@ -1,6 +1,13 @@
-// Engineering pictures (PNG) drawn with gnuplot: line charts (Campbell diagrams, mode shapes, order tracking,
-// orbits) and heat maps (spectrograms). Data and script go to a private temporary directory; gnuplot renders
-// with the pngcairo terminal.
+// Engineering pictures (PNG) drawn with gnuplot: line charts (Campbell diagrams, mode shapes, amplitude against
+// speed, orbits) and heat maps (spectrograms: frequency against rotor speed, colour = amplitude).
+//
+// Data and script go to a private temporary directory; gnuplot (pngcairo terminal, sans font, grid lines)
+// renders there and the PNG is then moved to its destination. Rendering is safe from several threads at once.
+//
+// All user text (titles, axis labels, legend entries, annotations) is printed literally: no gnuplot
+// "enhanced text" markup, so "f_d [Hz]" shows an underscore, and quotes, backquotes, '@', '$' are harmless.
+// A '\n' in a title, axis label or annotation starts a new line (in legend entries it becomes a space).
+// UTF-8 is fine ("ω [rad/s]", "µm").
 #pragma once
 
 #include <filesystem>
@@ -20,6 +27,7 @@ struct Series {
   double width = 1.5;           ///< line width / point size scale
 };
 
+/// Text centred at a data point (x, y), on an opaque background so lines behind it do not cross it.
 struct Annotation {
   double x = 0.0, y = 0.0;
   std::string text;
@@ -28,22 +36,29 @@ struct Annotation {
 struct LineChart {
   std::string title, xlabel, ylabel;  ///< labels include units, e.g. "rotor speed f_d [Hz]"
   std::vector<Series> series;
-  std::optional<std::pair<double, double>> xrange, yrange;
+  std::optional<std::pair<double, double>> xrange, yrange;  ///< unset = automatic
+  /// Logarithmic y axis; y <= 0 then breaks the line like a non-finite value.
   bool logy = false;
   std::vector<Annotation> annotations;
-  std::vector<double> vertical_lines;      ///< thin grey dashed markers
-  std::string legend_position = "top left";  ///< gnuplot 'set key' position words
-  bool equal_axes = false;                 ///< 'set size ratio -1' (orbits)
+  /// Thin grey dashed markers (e.g. bearing positions, critical speeds); with an automatic x range the
+  /// range is widened to include them, with a given x range markers outside it are not drawn.
+  std::vector<double> vertical_lines;
+  std::string legend_position = "top left";  ///< gnuplot 'set key' position words ("below", "outside right top", ...)
+  bool equal_axes = false;                   ///< 'set size ratio -1' (orbits)
 };
 
 struct Heatmap {
   std::string title, xlabel, ylabel, zlabel;  ///< zlabel: colour-bar label with unit
-  std::vector<double> x;   ///< nx column centres, strictly ascending
-  std::vector<double> y;   ///< ny row centres, strictly ascending
-  std::vector<double> z;   ///< ny * nx values, row-major: z[j * nx + i] at (x[i], y[j])
-  bool logz = false;       ///< logarithmic colour scale (values <= 0 drawn at the bottom of the scale)
-  std::optional<std::pair<double, double>> zrange;
-  std::vector<Series> overlays;  ///< lines on top (e.g. order lines), with legend
+  std::vector<double> x;   ///< nx column centres, finite and strictly ascending (need not be evenly spaced)
+  std::vector<double> y;   ///< ny row centres, finite and strictly ascending (need not be evenly spaced)
+  std::vector<double> z;   ///< ny * nx values, row-major: z[j * nx + i] at (x[i], y[j]); non-finite = blank cell
+  /// Logarithmic colour scale. Without zrange the colour range is [floor, max] with
+  /// floor = max(smallest positive value, 1e-3 * max) (at most 60 dB); values below the lower end of the
+  /// colour range (including values <= 0) are drawn in its bottom colour.
+  bool logz = false;
+  std::optional<std::pair<double, double>> zrange;  ///< colour range; unset = [min, max] of the finite values
+  std::vector<Series> overlays;  ///< lines on top (e.g. the 1x and 0.5x order lines), with legend
+  std::string legend_position = "top left";  ///< gnuplot 'set key' position words for the overlay legend
 };
 
 struct Size {
@@ -55,12 +70,23 @@ class PlotError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// gnuplot (or $TURBODYN_GNUPLOT) can be started.
+/// gnuplot on PATH (or $TURBODYN_GNUPLOT) and it runs ('gnuplot --version' succeeds).
 bool gnuplot_available();
 
-/// Renders to a PNG file. Throws PlotError naming the file and the problem for inconsistent data, a missing
-/// gnuplot, or a gnuplot failure (with gnuplot's messages). Non-finite y values in a line chart break the line.
+/// The gnuplot executable render_png uses: $TURBODYN_GNUPLOT if set and non-empty (a path, or a bare name
+/// looked up on PATH), otherwise "gnuplot" looked up on PATH. Throws PlotError if there is none.
+std::filesystem::path gnuplot_executable();
+
+/// Renders to a PNG file (missing parent directories are created; an existing file is replaced).
+/// Throws PlotError naming the file and the problem for inconsistent data (size mismatch, empty data,
+/// non-finite or non-ascending heat-map axes, bad ranges), a missing gnuplot, or a gnuplot failure (with
+/// gnuplot's messages). Non-finite x or y values in a line chart break the line; they do not fail.
 void render_png(const LineChart& chart, const std::filesystem::path& png, Size size = {});
 void render_png(const Heatmap& map, const std::filesystem::path& png, Size size = {});
+
+/// The complete gnuplot script (data inline) that draws the picture into 'png'. Validates like render_png
+/// (throws PlotError) but does not need gnuplot. Useful for debugging or for re-rendering by hand.
+std::string gnuplot_script(const LineChart& chart, const std::filesystem::path& png, Size size = {});
+std::string gnuplot_script(const Heatmap& map, const std::filesystem::path& png, Size size = {});
 
 }  // namespace turbodyn::plot
