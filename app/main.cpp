@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 
 #include "app/modal_command.h"
+#include "app/response_command.h"
+#include "app/run_command.h"
 #include "model/model_file.h"
 #include "model/rotor.h"
 
@@ -65,12 +67,37 @@ int main(int argc, char** argv) {
   modal->add_flag("!--no-plots", modal_options.plots, "Do not draw PNG pictures");
   add_sets(modal);
 
+  turbodyn::app::RunCommandOptions run_options;
+  CLI::App* run = app.add_subcommand("run", "Run-up simulation: time series, summary, spectrograms, orbits");
+  run->add_option("MODEL", run_options.model_file, "Model file (TOML)")->required();
+  run->add_option("-o,--output", run_options.output_dir, "Output directory")->capture_default_str();
+  run->add_flag("!--no-plots", run_options.plots, "Do not draw PNG pictures");
+  add_sets(run);
+
+  turbodyn::app::ResponseCommandOptions response_options;
+  CLI::App* response =
+      app.add_subcommand("response", "Steady-state synchronous unbalance response of the linear rotor");
+  response->add_option("MODEL", response_options.model_file, "Model file (TOML)")->required();
+  response->add_option("-o,--output", response_options.output_dir, "Output directory")->capture_default_str();
+  response->add_option("--speeds", response_options.speeds,
+                       "Speeds: START:END:COUNT or a comma list, units allowed; default from [modal]");
+  response->add_flag("!--no-plots", response_options.plots, "Do not draw PNG pictures");
+  add_sets(response);
+
   CLI11_PARSE(app, argc, argv);
 
   try {
     std::vector<turbodyn::Override> overrides;
     for (const std::string& s : sets) overrides.push_back(turbodyn::parse_override(s));
     if (check->parsed()) return run_check(check_file, overrides);
+    if (run->parsed()) {
+      run_options.overrides = overrides;
+      return turbodyn::app::run_run_command(run_options);
+    }
+    if (response->parsed()) {
+      response_options.overrides = overrides;
+      return turbodyn::app::run_response_command(response_options);
+    }
     if (modal->parsed()) {
       modal_options.overrides = overrides;
       modal_options.frame = frame == "rotating" ? turbodyn::Frame::Rotating : turbodyn::Frame::Inertial;

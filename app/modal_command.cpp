@@ -193,24 +193,24 @@ std::vector<double> parse_speed_list(const std::string& text) {
   return out;
 }
 
+std::vector<double> analysis_speeds(const MachineSpec& spec, const std::string& option, int count) {
+  if (!option.empty()) return parse_speed_list(option);
+  const double smax = spec.modal.speed_max > 0 ? spec.modal.speed_max : spec.speed.end;
+  if (!(smax > spec.modal.speed_min))
+    throw ModelError(spec.source.string() +
+                     ": no speed range: set modal.speed_max (or speed.end) in the model file, or pass --speeds");
+  std::vector<double> speeds;
+  for (int i = 0; i < count; ++i) speeds.push_back(spec.modal.speed_min + (smax - spec.modal.speed_min) * i / (count - 1));
+  return speeds;
+}
+
 int run_modal_command(const ModalCommandOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const MachineSpec spec = load_model(options.model_file, options.overrides);
   require_linear_supports(spec);
   const Rotor rotor = build_rotor(spec);
 
-  std::vector<double> speeds;
-  if (!options.speeds.empty()) {
-    speeds = parse_speed_list(options.speeds);
-  } else {
-    const double smax = spec.modal.speed_max > 0 ? spec.modal.speed_max : spec.speed.end;
-    if (!(smax > spec.modal.speed_min))
-      throw ModelError(options.model_file.string() +
-                       ": no speed range for the Campbell diagram: set modal.speed_max (or speed.end), or pass "
-                       "--speeds");
-    for (int i = 0; i < spec.modal.n_speeds; ++i)
-      speeds.push_back(spec.modal.speed_min + (smax - spec.modal.speed_min) * i / (spec.modal.n_speeds - 1));
-  }
+  const std::vector<double> speeds = analysis_speeds(spec, options.speeds, spec.modal.n_speeds);
   ModalOptions mo;
   mo.n_modes = options.n_modes > 0 ? options.n_modes : spec.modal.n_modes;
   mo.frame = options.frame;

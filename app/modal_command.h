@@ -24,6 +24,10 @@ struct ModalCommandOptions {
 /// Returns the process exit code.
 int run_modal_command(const ModalCommandOptions& options);
 
+/// Speeds of a linear analysis: the --speeds option if given, else `count` speeds over [modal] speed_min to
+/// speed_max (default: the speed profile's end). Throws ModelError when neither gives a range.
+std::vector<double> analysis_speeds(const MachineSpec& spec, const std::string& option, int count);
+
 /// Throws ModelError if the machine has supports the linear analyses do not model (pedestal masses).
 void require_linear_supports(const MachineSpec& spec);
 

@@ -21,14 +21,23 @@ struct Sources {
   std::map<const toml::node*, std::string> overrides;
 };
 
-// "file:line:column" of a node, or the override that created it.
-std::string where(const toml::node& n, const Sources& sources, const std::string& fallback) {
-  if (const auto it = sources.overrides.find(&n); it != sources.overrides.end()) return it->second;
-  const toml::source_region& src = n.source();
+std::string where(const toml::source_region& src, const std::string& fallback) {
   if (!src.path || src.begin.line == 0) return fallback;
   std::ostringstream os;
   os << *src.path << ':' << src.begin.line << ':' << src.begin.column;
   return os.str();
+}
+
+// "file:line:column" of a node, or the override that created it.
+std::string where(const toml::node& n, const Sources& sources, const std::string& fallback) {
+  if (const auto it = sources.overrides.find(&n); it != sources.overrides.end()) return it->second;
+  return where(n.source(), fallback);
+}
+
+// Position of a key (where a user looks for a misspelt name), else of its value.
+std::string where_key(const toml::key& k, const toml::node& v, const Sources& sources, const std::string& fallback) {
+  if (sources.overrides.count(&v)) return where(v, sources, fallback);
+  return where(k.source(), where(v, sources, fallback));
 }
 
 std::string describe_node(const toml::node& n) {
@@ -76,8 +85,8 @@ class Reader {
       const std::string other(k.str());
       if (known_.count(other)) continue;
       if (closest_match(other, {std::string(key)}) == key)
-        throw ModelError(where(v, sources_, sources_.file) + ": " + key_path(other) + ": unknown key; did you mean '" +
-                         std::string(key) + "'?");
+        throw ModelError(where_key(k, v, sources_, sources_.file) + ": " + key_path(other) +
+                         ": unknown key; did you mean '" + std::string(key) + "'?");
     }
     fail(key, "missing required key (" + expected + ")");
   }
@@ -164,8 +173,8 @@ class Reader {
         for (std::size_t i = 0; i < known.size(); ++i) message += (i ? ", " : "") + known[i];
         message += ")";
       }
-      throw ModelError(where(v, sources_, where(table_, sources_, sources_.file)) + ": " + key_path(key) + ": " +
-                       message);
+      throw ModelError(where_key(k, v, sources_, where(table_, sources_, sources_.file)) + ": " + key_path(key) +
+                       ": " + message);
     }
   }
 
@@ -568,11 +577,19 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
   }
   if (const toml::table* solver = top.table("solver")) {
     Reader r(*solver, "solver", src);
-    spec.solver.integrator = r.choice("integrator", {"cvode-bdf", "arkode-erk"}, spec.solver.integrator);
+    spec.solver.integrator = r.choice("integrator", {"auto", "cvode-bdf", "arkode-erk"}, spec.solver.integrator);
     spec.solver.rtol = r.quantity_or("rtol", dim::dimensionless, spec.solver.rtol, Bound::Positive);
     spec.solver.atol = r.quantity_or("atol", dim::dimensionless, spec.solver.atol, Bound::Positive);
     spec.solver.max_step = r.quantity_or("max_step", dim::time, spec.solver.max_step, Bound::NonNegative);
     spec.solver.static_start = r.flag_or("static_start", spec.solver.static_start);
+    spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1);
+    spec.solver.max_order = static_cast<int>(r.integer_or("max_order", spec.solver.max_order, 1));
+    if (spec.solver.max_order > 5) r.fail("max_order", "BDF orders go from 1 to 5");
+    if (const toml::node* n = r.get("reduction_cutoff"); n && n->is_string() && *n->value<std::string>() == "auto")
+      spec.solver.reduction_cutoff = -1.0;
+    else
+      spec.solver.reduction_cutoff =
+          r.quantity_or("reduction_cutoff", dim::frequency, spec.solver.reduction_cutoff, Bound::NonNegative);
     if (spec.solver.rtol >= 1.0) r.fail("rtol", "a relative tolerance must be below 1");
     r.finish();
   }

@@ -80,11 +80,18 @@ struct SpeedProfile {
 
 /// Time-integration settings (used by `turbodyn run`).
 struct SolverSpec {
-  std::string integrator = "cvode-bdf";  ///< "cvode-bdf" or "arkode-erk"
+  /// "auto", "cvode-bdf" or "arkode-erk". auto: the integrator measured fastest for the model's bearing types
+  /// (BDF for linear bearings; see bench/README.md and resolve_integrator()).
+  std::string integrator = "auto";
   double rtol = 1e-6;                    ///< relative tolerance [-]
   double atol = 1e-9;                    ///< absolute tolerance (SI units of each state)
   double max_step = 0.0;                 ///< s; 0 = no limit
+  long max_steps = 50'000'000;           ///< integrator steps before the run is declared failed
+  int max_order = 5;                     ///< BDF: highest order (1..5)
   bool static_start = true;              ///< start from the static equilibrium under gravity
+  /// Hz; Craig-Bampton reduction of the shaft keeping fixed-interface modes below this frequency;
+  /// 0 = no reduction, < 0 = automatic (3 x the highest rotor speed frequency, at least 5 kHz).
+  double reduction_cutoff = -1.0;
 };
 
 /// Output settings (used by `turbodyn run`).

@@ -9,6 +9,8 @@ packages=(
   libtomlplusplus-dev    # model files (TOML, with line/column of every value for error messages)
   nlohmann-json3-dev     # JSON results
   libcli11-dev           # command line
+  libsundials-dev        # time integration (CVODE, ARKODE)
+  libhdf5-dev            # time-series results (HDF5)
   gnuplot-nox            # PNG pictures (pngcairo terminal)
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # micro-benchmarks

@@ -1,0 +1,86 @@
+#include "app/response_command.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/modal_command.h"
+#include "model/plot.h"
+#include "model/response.h"
+#include "model/rotor.h"
+
+namespace turbodyn::app {
+
+int run_response_command(const ResponseCommandOptions& options) {
+  const MachineSpec spec = load_model(options.model_file, options.overrides);
+  require_linear_supports(spec);
+  const Rotor rotor = build_rotor(spec);
+  const std::vector<double> speeds = analysis_speeds(spec, options.speeds, std::max(spec.modal.n_speeds, 201));
+  std::filesystem::create_directories(options.output_dir);
+
+  // Columns: speed, then per disk |x|, |y|, major semi-axis, phase of x; per bearing |Fx|, |Fy|.
+  std::vector<std::string> names{"speed_rad_s", "speed_hz"};
+  for (const RigidDisk& d : rotor.disks)
+    for (const char* s : {".x_amplitude_m", ".y_amplitude_m", ".major_semi_axis_m", ".x_phase_rad"})
+      names.push_back("disk." + d.name + s);
+  for (const LinearBearing& b : rotor.bearings)
+    for (const char* s : {".fx_amplitude_n", ".fy_amplitude_n"}) names.push_back("bearing." + b.name + s);
+  std::vector<std::vector<double>> cols(names.size());
+  for (double w : speeds) {
+    const SteadyResponse r = unbalance_response(rotor, w);
+    std::size_t c = 0;
+    cols[c++].push_back(w);
+    cols[c++].push_back(w / (2 * M_PI));
+    for (const RigidDisk& d : rotor.disks) {
+      const std::complex<double> x = r.q(rotor.dof(d.node, kX)), y = r.q(rotor.dof(d.node, kY));
+      cols[c++].push_back(std::abs(x));
+      cols[c++].push_back(std::abs(y));
+      cols[c++].push_back(major_semi_axis(x, y));
+      cols[c++].push_back(std::arg(x));
+    }
+    for (std::size_t b = 0; b < rotor.bearings.size(); ++b) {
+      cols[c++].push_back(std::abs(r.bearing_fx[b]));
+      cols[c++].push_back(std::abs(r.bearing_fy[b]));
+    }
+  }
+  {
+    std::ofstream csv(options.output_dir / "response.csv");
+    csv << std::setprecision(12);
+    for (std::size_t c = 0; c < names.size(); ++c) csv << (c ? "," : "") << names[c];
+    csv << "\n";
+    for (std::size_t i = 0; i < speeds.size(); ++i) {
+      for (std::size_t c = 0; c < names.size(); ++c) csv << (c ? "," : "") << cols[c][i];
+      csv << "\n";
+    }
+  }
+  nlohmann::json j;
+  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
+  for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
+  {
+    std::ofstream out(options.output_dir / "response.json");
+    out << std::setw(1) << j << "\n";
+  }
+  if (options.plots) {
+    plot::LineChart chart;
+    chart.title = "Steady-state unbalance response: " + spec.name;
+    chart.xlabel = "rotor speed f_d [Hz]";
+    chart.ylabel = "1x orbit major semi-axis [um]";
+    chart.logy = true;
+    std::size_t c = 2;
+    for (const RigidDisk& d : rotor.disks) {
+      std::vector<double> um = cols[c + 2];
+      for (double& v : um) v *= 1e6;
+      chart.series.push_back({"disk " + d.name, cols[1], um, plot::Series::Style::Lines, "", 1.5});
+      c += 4;
+    }
+    plot::render_png(chart, options.output_dir / "response.png");
+  }
+  std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json"
+            << (options.plots ? ", response.png" : "") << " (" << speeds.size() << " speeds)\n";
+  return 0;
+}
+
+}  // namespace turbodyn::app

@@ -1,0 +1,115 @@
+// Force elements: everything that acts on the rotor besides its own linear beam and disk terms (bearings first).
+//
+// Modelled on Drake's ForceElement (public non-virtual entry that checks, protected virtual that adds into
+// preallocated arrays) and Chrono's elements with internal states: an element reads the rotor displacements and
+// velocities at the DOFs it is attached to, plus its own states (ring or ball positions and velocities, a pedestal
+// mass...), adds forces on those rotor DOFs and writes the time derivatives of its own states.
+//
+// An element is immutable after construction and shared by all threads; everything it needs to scribble on
+// lives in its ElementWorkspace, created once per simulation. Evaluations allocate nothing.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace turbodyn {
+
+/// Rotor spin at the time of the call.
+struct SpinState {
+  double time = 0.0;          ///< s
+  double speed = 0.0;         ///< Omega in rad/s
+  double acceleration = 0.0;  ///< dOmega/dt in rad/s^2
+  double angle = 0.0;         ///< phi in rad
+};
+
+/// Scratch space of one element for one simulation (derive from it for element-specific buffers).
+struct ElementWorkspace {
+  virtual ~ElementWorkspace() = default;
+};
+
+/// A named scalar output of an element (e.g. the force it transmits to the housing).
+struct ProbeInfo {
+  std::string name;         ///< unique within the element, e.g. "force_x"
+  std::string unit;         ///< e.g. "N"
+  std::string description;  ///< e.g. "force on the housing, horizontal"
+};
+
+class ForceElement {
+ public:
+  virtual ~ForceElement() = default;
+
+  const std::string& name() const { return name_; }
+  /// Global rotor DOF indices (into q) the element is attached to, in the element's local order.
+  const std::vector<int>& dofs() const { return dofs_; }
+  /// Number of internal first-order states (e.g. 4 for a pedestal mass: x, y, vx, vy).
+  int n_states() const { return n_states_; }
+
+  virtual std::unique_ptr<ElementWorkspace> make_workspace() const { return std::make_unique<ElementWorkspace>(); }
+  /// Initial internal states (n_states values).
+  virtual void initial_states(double* z) const { (void)z; }
+
+  /// Adds the element's generalised forces on its rotor DOFs into f (local order, dofs().size() values) and writes
+  /// the derivatives of its internal states into zdot. q and v are the rotor displacements and velocities at
+  /// dofs(); z the internal states.
+  void CalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                        double* f, double* zdot) const {
+    DoCalcAndAddForces(s, q, v, z, ws, f, zdot);
+  }
+
+  /// Typical magnitude of internal state i (SI), used as the smallest step scale when the engine differentiates
+  /// the element numerically.
+  virtual double state_scale(int i) const {
+    (void)i;
+    return 1e-6;
+  }
+
+  /// True if AddJacobian() is implemented; otherwise the engine differentiates numerically.
+  virtual bool has_jacobian() const { return false; }
+  /// Jacobian of [f; zdot] with respect to [q; v; z] (local numbering), column-major, of size
+  /// (d + m) x (2d + m) with d = dofs().size(), m = n_states(); added into J.
+  virtual void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                           double* J) const {
+    (void)s, (void)q, (void)v, (void)z, (void)ws, (void)J;
+  }
+
+  /// Outputs of the element.
+  virtual std::vector<ProbeInfo> probes() const { return {}; }
+  virtual void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                          double* out) const {
+    (void)s, (void)q, (void)v, (void)z, (void)ws, (void)out;
+  }
+
+  /// Power the element puts into the rotor and its own states from outside minus what it dissipates is not
+  /// needed separately: the engine's energy balance uses these two.
+  /// Potential energy stored in the element (J).
+  virtual double PotentialEnergy(const double* q, const double* z) const {
+    (void)q, (void)z;
+    return 0.0;
+  }
+  /// Kinetic energy of the element's own bodies (J).
+  virtual double KineticEnergy(const double* z) const {
+    (void)z;
+    return 0.0;
+  }
+  /// Power dissipated in the element (W, >= 0).
+  virtual double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                                 ElementWorkspace& ws) const {
+    (void)s, (void)q, (void)v, (void)z, (void)ws;
+    return 0.0;
+  }
+
+ protected:
+  ForceElement(std::string name, std::vector<int> dofs, int n_states)
+      : name_(std::move(name)), dofs_(std::move(dofs)), n_states_(n_states) {}
+
+  virtual void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+                                  ElementWorkspace& ws, double* f, double* zdot) const = 0;
+
+ private:
+  std::string name_;
+  std::vector<int> dofs_;
+  int n_states_ = 0;
+};
+
+}  // namespace turbodyn

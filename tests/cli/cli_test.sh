@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Command-line cases run by CTest: cli_test.sh TURBODYN SOURCE_DIR WORK_DIR CASE
+# Each case runs the program as a user would and checks exit code, files and messages.
+set -u
+exe=$1 src=$2 work=$3 case=$4
+out="$work/$case"
+rm -rf "$out" && mkdir -p "$out"
+fail() { echo "FAIL ($case): $*"; exit 1; }
+
+case $case in
+  check_example)
+    "$exe" check "$src/examples/reference_linear.toml" > "$out/log" 2>&1 || fail "exit $?"
+    grep -q "rotor mass      0.45" "$out/log" || fail "no summary: $(cat "$out/log")"
+    ;;
+  bad_model_file)
+    "$exe" check "$src/tests/data/bad_models/typo_key.toml" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || fail "exit $rc, expected 2"
+    grep -q "typo_key.toml:8:1: shaft\[0\].outer_diamter: unknown key; did you mean 'outer_diameter'?" "$out/log" \
+      || fail "message: $(cat "$out/log")"
+    ;;
+  bad_override)
+    "$exe" modal "$src/examples/reference_linear.toml" --set bearings.compressor.kxz=1 -o "$out" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || fail "exit $rc, expected 2"
+    grep -q "did you mean 'kxx'" "$out/log" || fail "message: $(cat "$out/log")"
+    ;;
+  modal_friswell)
+    "$exe" modal "$src/examples/friswell_5_9_1.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    for f in modal.json campbell.csv campbell.png modes_0rpm.png; do [ -s "$out/$f" ] || fail "missing $f"; done
+    ;;
+  modal_reference)
+    "$exe" modal "$src/examples/reference_linear.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    grep -q "1x  forward branch 1" "$out/log" || fail "no critical speeds: $(cat "$out/log")"
+    ;;
+  response_reference)
+    "$exe" response "$src/examples/reference_linear.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    for f in response.csv response.json response.png; do [ -s "$out/$f" ] || fail "missing $f"; done
+    ;;
+  run_short)
+    "$exe" run "$src/examples/reference_linear.toml" --set "speed.end=40000 rpm" --set speed.duration=0.5 \
+      -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    grep -q '"complete": true' "$out/summary.json" || fail "summary not complete"
+    for f in timeseries.h5 spectrogram_disk.compressor.x.png order1x_disk.compressor.png orbits_disk.compressor.png; do
+      [ -s "$out/$f" ] || fail "missing $f"
+    done
+    ;;
+  run_integrator_gives_up)
+    # BDF takes few steps per output interval at low speed and more at high speed: a step limit of 30 per
+    # 0.5 ms interval makes it give up part-way through the run.
+    "$exe" run "$src/examples/reference_linear.toml" --set solver.integrator=cvode-bdf --set solver.max_steps=30 \
+      --set "output.sample_rate=2 kHz" --set output.csv=true -o "$out" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 3 ] || fail "exit $rc, expected 3: $(cat "$out/log")"
+    grep -q '"complete": false' "$out/summary.json" || fail "summary not marked incomplete"
+    grep -q "stopped at t = " "$out/log" || fail "no time in the message: $(cat "$out/log")"
+    grep -q "TOO_MUCH_WORK" "$out/log" || fail "no cause in the message"
+    [ -s "$out/timeseries.h5" ] && [ -s "$out/timeseries.csv" ] || fail "partial results not written"
+    [ "$(wc -l < "$out/timeseries.csv")" -gt 2 ] || fail "no rows in the partial CSV"
+    ;;
+  run_interrupted)
+    # Ctrl-C (SIGINT) ends a long run with everything so far written and marked incomplete, exit code 130.
+    "$exe" run "$src/examples/reference_linear.toml" --set speed.duration=400 --no-plots -o "$out" > "$out/log" 2>&1 &
+    pid=$!
+    sleep 2
+    kill -INT $pid
+    wait $pid
+    rc=$?
+    [ $rc -eq 130 ] || fail "exit $rc, expected 130: $(cat "$out/log")"
+    grep -q '"complete": false' "$out/summary.json" || fail "summary not marked incomplete"
+    grep -q "interrupted" "$out/log" || fail "no reason given: $(cat "$out/log")"
+    [ -s "$out/timeseries.h5" ] || fail "partial results not written"
+    ;;
+  *) fail "unknown case" ;;
+esac
+echo "PASS ($case)"

@@ -1,0 +1,52 @@
+// The right-hand side of the equations of motion allocates nothing (STYLE.md; Drake's LimitMalloc idea): this
+// executable replaces the global operator new with a counting one and evaluates Rhs() in steady use.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "model/model_file.h"
+#include "model/runup.h"
+#include "tests/model/test_support.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace turbodyn {
+namespace {
+
+TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
+  for (bool pedestal : {false, true}) {
+    std::vector<Override> overrides;
+    if (pedestal)
+      overrides = {{"bearings.turbine.pedestal_mass", "0.5"}, {"bearings.turbine.pedestal_stiffness", "2e7"}};
+    const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_linear.toml", overrides);
+    const auto model = make_runup_model(spec);
+    auto ws = model->make_workspace();
+    std::vector<double> y(model->n_states(), 1e-6), ydot(model->n_states());
+    model->Rhs(0.5, y.data(), ydot.data(), *ws);  // warm-up
+    const long before = g_allocations.load();
+    for (int i = 0; i < 100; ++i) model->Rhs(0.5 + 1e-4 * i, y.data(), ydot.data(), *ws);
+    EXPECT_EQ(g_allocations.load() - before, 0) << (pedestal ? "with" : "without") << " pedestal";
+  }
+  // The counter works: a vector allocates.
+  const long before = g_allocations.load();
+  std::vector<double> v(10);
+  EXPECT_GT(g_allocations.load() - before, 0);
+}
+
+}  // namespace
+}  // namespace turbodyn

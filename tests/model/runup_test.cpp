@@ -1,0 +1,353 @@
+// The run-up engine against the frequency-domain solution, run-up theory, exact Jacobians, the energy balance and
+// statics.
+#include "model/runup.h"
+
+#include <cmath>
+#include <iostream>
+
+#include <Eigen/Eigenvalues>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "model/linear_bearing_element.h"
+#include "model/model_file.h"
+#include "model/response.h"
+#include "model/signal.h"
+#include "tests/model/test_support.h"
+
+namespace turbodyn {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kRpm = 2.0 * M_PI / 60.0;  // rad/s per rpm
+
+MachineSpec reference(std::vector<Override> overrides = {}) {
+  return load_model(testing::source_dir() + "/examples/reference_linear.toml", overrides);
+}
+
+int channel(const RunupResult& r, const std::string& name) {
+  for (std::size_t c = 0; c < r.channels.size(); ++c)
+    if (r.channels[c].name == name) return static_cast<int>(c);
+  ADD_FAILURE() << "no channel " << name;
+  return 0;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+RunupOptions options_for(const MachineSpec& spec) {
+  RunupOptions o;
+  o.rtol = spec.solver.rtol;
+  o.atol = spec.solver.atol;
+  o.sample_rate = spec.output.sample_rate;
+  return o;
+}
+
+TEST(SpeedFunction, RampAngleIsTheExactIntegral) {
+  SpeedProfile p;
+  p.start = 100.0;
+  p.end = 1100.0;
+  p.duration = 2.0;
+  const SpeedFunction f(p);
+  EXPECT_DOUBLE_EQ(f.speed(1.0), 600.0);
+  EXPECT_DOUBLE_EQ(f.acceleration(1.0), 500.0);
+  EXPECT_NEAR(f.angle(1.5), 100.0 * 1.5 + 0.5 * 500.0 * 1.5 * 1.5, 1e-12);
+  EXPECT_NEAR(f.angle(3.0), f.angle(2.0) + 1100.0, 1e-9);  // constant speed after the ramp
+  EXPECT_DOUBLE_EQ(f.acceleration(2.5), 0.0);
+}
+
+TEST(SpeedFunction, TableIsPiecewiseLinear) {
+  SpeedProfile p;
+  p.kind = SpeedProfile::Kind::Table;
+  p.times = {0.0, 1.0, 3.0};
+  p.speeds = {0.0, 100.0, 100.0};
+  const SpeedFunction f(p);
+  EXPECT_DOUBLE_EQ(f.speed(0.5), 50.0);
+  EXPECT_NEAR(f.angle(2.0), 50.0 + 100.0, 1e-12);
+}
+
+TEST(Reduction, KeepsTheLowModesOfTheFullModel) {
+  // Craig-Bampton reduction against the unreduced FE model (both with the bearings): the modes below the rotor's
+  // highest speed move by less than 0.1 %.
+  constexpr double kModeTolerance = 1e-3;
+  const MachineSpec spec = reference();
+  const auto model = make_runup_model(spec);
+  ASSERT_LT(model->n_dof(), model->n_physical_dof());
+  const Rotor& rotor = model->rotor();
+  Eigen::MatrixXd K = rotor.K, C = rotor.D;
+  rotor.add_bearings(0.0, K, C);
+  const Eigen::MatrixXd& T = model->reduction_basis();
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> full(K, rotor.M), red(T.transpose() * K * T, model->mass());
+  for (int i = 0; i < 8; ++i) {
+    const double f_full = std::sqrt(full.eigenvalues()(i)) / (2 * M_PI);
+    const double f_red = std::sqrt(red.eigenvalues()(i)) / (2 * M_PI);
+    if (f_full > 3000.0) break;
+    EXPECT_NEAR(f_red / f_full, 1.0, kModeTolerance) << f_full << " Hz";
+  }
+}
+
+TEST(Jacobian, AssembledJacobianMatchesFiniteDifferencesOfTheRhs) {
+  // Pedestal bearings add internal states; the exact rotor part, the analytic element Jacobian and the
+  // scattering into the blocks are all checked against forward differences of the full right-hand side.
+  MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
+                                {"bearings.compressor.pedestal_stiffness", "2e7"},
+                                {"bearings.compressor.pedestal_damping", "300"}});
+  spec.speed.end = 60000 * kRpm;
+  const auto model = make_runup_model(spec);
+  auto ws = model->make_workspace();
+  const int ny = model->n_states();
+  Eigen::VectorXd y = Eigen::VectorXd::Random(ny) * 1e-5;
+  const double t = 1.3;
+  const Eigen::MatrixXd J = model->JacobianMatrix(t, y.data(), *ws);
+  Eigen::VectorXd f0(ny), f1(ny);
+  model->Rhs(t, y.data(), f0.data(), *ws);
+  const int checked = ny - 2;  // the energy-accounting rows/columns are not part of the Newton system
+  // The system is linear in y (linear bearings), so a difference quotient is exact up to round-off whatever the
+  // step; the tolerance adds the round-off of the quotient, eps |F| / h.
+  const double h = 1e-3;
+  const double roundoff = 10 * std::numeric_limits<double>::epsilon() * f0.cwiseAbs().maxCoeff() / h;
+  for (int j = 0; j < checked; ++j) {
+    Eigen::VectorXd yp = y;
+    yp(j) += h;
+    model->Rhs(t, yp.data(), f1.data(), *ws);
+    const Eigen::VectorXd fd = (f1 - f0) / h;
+    for (int i = 0; i < checked; ++i) {
+      const double scale = std::max(std::abs(J(i, j)), 1e-3 * J.col(j).head(checked).cwiseAbs().maxCoeff());
+      ASSERT_NEAR(fd(i), J(i, j), 1e-6 * scale + roundoff) << "row " << i << " column " << j;
+    }
+  }
+}
+
+// Forwards an element but hides its analytic Jacobian, so the engine differentiates it numerically.
+class WithoutJacobian final : public ForceElement {
+ public:
+  explicit WithoutJacobian(std::unique_ptr<ForceElement> inner)
+      : ForceElement(inner->name(), inner->dofs(), inner->n_states()), inner_(std::move(inner)) {}
+  void initial_states(double* z) const override { inner_->initial_states(z); }
+  double state_scale(int i) const override { return inner_->state_scale(i); }
+
+ protected:
+  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                          double* f, double* zdot) const override {
+    inner_->CalcAndAddForces(s, q, v, z, ws, f, zdot);
+  }
+
+ private:
+  std::unique_ptr<ForceElement> inner_;
+};
+
+TEST(Jacobian, NumericalElementJacobianMatchesTheAnalyticOne) {
+  MachineSpec spec = reference({{"bearings.turbine.pedestal_mass", "0.5"},
+                                {"bearings.turbine.pedestal_stiffness", "2e7"},
+                                {"bearings.turbine.pedestal_damping", "300"}});
+  auto build = [&](bool numeric) {
+    Rotor rotor = build_rotor(spec);
+    std::vector<std::unique_ptr<ForceElement>> elements;
+    for (std::size_t i = 0; i < rotor.bearings.size(); ++i) {
+      const LinearBearing& b = rotor.bearings[i];
+      const Pedestal p = b.name == "turbine" ? Pedestal{0.5, 2e7, 300} : Pedestal{};
+      std::unique_ptr<ForceElement> e = std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), p, 9.81);
+      if (numeric) e = std::make_unique<WithoutJacobian>(std::move(e));
+      elements.push_back(std::move(e));
+    }
+    return std::make_unique<RunupModel>(spec, std::move(rotor), std::move(elements), 7500.0);
+  };
+  const auto analytic = build(false), numeric = build(true);
+  auto wa = analytic->make_workspace(), wn = numeric->make_workspace();
+  Eigen::VectorXd y = Eigen::VectorXd::Random(analytic->n_states()) * 1e-5;
+  const Eigen::MatrixXd Ja = analytic->JacobianMatrix(0.7, y.data(), *wa);
+  const Eigen::MatrixXd Jn = numeric->JacobianMatrix(0.7, y.data(), *wn);
+  // Forward differences with step sqrt(eps) * typical size on a linear element: no truncation error, round-off
+  // of order eps |f| / h, here below 1e-4 of each column's scale (Pinocchio/Ceres check Jacobians at ~sqrt(h)).
+  constexpr double kFiniteDifferenceTolerance = 1e-4;
+  for (int j = 0; j < Ja.cols(); ++j) {
+    const double scale = Ja.col(j).cwiseAbs().maxCoeff();
+    EXPECT_LT((Ja.col(j) - Jn.col(j)).cwiseAbs().maxCoeff(), kFiniteDifferenceTolerance * scale + 1e-12)
+        << "column " << j;
+  }
+}
+
+TEST(Statics, GravityIsCarriedByTheSupports) {
+  // Static equilibrium: the pedestal supports carry the rotor's weight plus their own (force balance). The rotor
+  // stands still without angular acceleration (which would add tangential unbalance forces U Omega').
+  const MachineSpec spec = reference({{"speed.end", "0"},
+                                      {"bearings.compressor.pedestal_mass", "0.5"},
+                                      {"bearings.compressor.pedestal_stiffness", "2e7"},
+                                      {"bearings.turbine.pedestal_mass", "0.7"},
+                                      {"bearings.turbine.pedestal_stiffness", "3e7"}});
+  const auto model = make_runup_model(spec);
+  auto ws = model->make_workspace();
+  std::vector<double> y(model->n_states()), out(model->channels().size());
+  model->InitialState(0.0, true, y.data(), *ws);
+  model->Probes(0.0, y.data(), *ws, out.data());
+  double fy = 0.0;
+  for (std::size_t c = 0; c < out.size(); ++c)
+    if (model->channels()[c].name.find(".fy") != std::string::npos) fy += out[c];
+  const double weight = (model->rotor().total_mass + 0.5 + 0.7) * spec.gravity;
+  EXPECT_NEAR(fy / -weight, 1.0, 1e-9);  // the housing pulls up: the force on the housing points down
+}
+
+// A slow ramp through a speed window with no critical speed: the order-tracked 1x amplitude equals the
+// frequency-domain steady-state response (issue acceptance: within 2 %).
+TEST(Runup, SlowRampMatchesSteadyStateResponse) {
+  constexpr double kSteadyTolerance = 0.02;
+  MachineSpec spec = reference({{"bearings.compressor.c", "500"}, {"bearings.turbine.c", "500"}});
+  spec.speed.kind = SpeedProfile::Kind::Table;
+  spec.speed.times = {0.0, 0.3, 3.3};
+  spec.speed.speeds = {0.0, 55000 * kRpm, 100000 * kRpm};
+  spec.speed.end = spec.speed.speeds.back();
+  spec.speed.duration = spec.speed.times.back();
+  const auto model = make_runup_model(spec);
+  const RunupResult r = simulate_runup(*model, options_for(spec));
+  ASSERT_TRUE(r.complete) << r.message;
+  const int cx = channel(r, "disk.compressor.x"), cs = channel(r, "speed"), ca = channel(r, "spin_angle");
+  signal::OrderTrackOptions oo;
+  oo.points = 100;
+  oo.revolutions = 40;
+  const signal::OrderTrack track =
+      signal::track_order(r.columns[cx], r.columns[ca], r.columns[cs], spec.output.sample_rate, oo);
+  const Rotor& rotor = model->rotor();
+  int compared = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < track.speeds.size(); ++i) {
+    const double rpm = track.speeds[i] * 60.0;
+    if (rpm < 62000 || rpm > 97000) continue;  // after the start-up transient has decayed
+    const SteadyResponse s = unbalance_response(rotor, track.speeds[i] * 2 * M_PI);
+    const double expected = std::abs(s.q(rotor.dof(rotor.disks[0].name == "compressor" ? rotor.disks[0].node
+                                                                                         : rotor.disks[1].node,
+                                                    kX)));
+    EXPECT_NEAR(track.amplitude[i] / expected, 1.0, kSteadyTolerance) << rpm << " rpm";
+    worst = std::max(worst, std::abs(track.amplitude[i] / expected - 1.0));
+    ++compared;
+  }
+  EXPECT_GT(compared, 30);
+  std::cout << "[ validation ] slow ramp vs steady state: largest deviation " << 100 * worst << " % over " << compared
+            << " points\n";
+}
+
+// Passing a critical speed at the paper's acceleration: the 1x peak comes later and lower than the steady-state
+// peak (Lewis 1932, "Vibration during acceleration through a critical speed", Trans. ASME 54; Markert & Seidler
+// 2001, Meccanica 36).
+TEST(Runup, FastRampShiftsAndShrinksThePeak) {
+  MachineSpec spec = reference();
+  spec.speed.end = 60000 * kRpm;
+  spec.speed.duration = 4.0 * 60000.0 / 150000.0;  // the paper's 37,500 rpm/s
+  const auto model = make_runup_model(spec);
+  const RunupResult r = simulate_runup(*model, options_for(spec));
+  ASSERT_TRUE(r.complete) << r.message;
+  const int ct = channel(r, "disk.turbine.x"), cs = channel(r, "speed"), ca = channel(r, "spin_angle");
+  signal::OrderTrackOptions oo;
+  oo.points = 400;
+  oo.revolutions = 4;
+  const signal::OrderTrack tr = signal::track_order(r.columns[ct], r.columns[ca], r.columns[cs], 20000, oo);
+  // The first forward critical (turbine-side mode) is near 30,700 rpm; look at 20,000 - 38,000 rpm.
+  double run_peak = 0, run_speed = 0;
+  for (std::size_t i = 0; i < tr.speeds.size(); ++i)
+    if (tr.speeds[i] * 60 > 20000 && tr.speeds[i] * 60 < 38000 && tr.amplitude[i] > run_peak) {
+      run_peak = tr.amplitude[i];
+      run_speed = tr.speeds[i] * 60;
+    }
+  const Rotor& rotor = model->rotor();
+  const int node = rotor.disks[0].name == "turbine" ? rotor.disks[0].node : rotor.disks[1].node;
+  double steady_peak = 0, steady_speed = 0;
+  for (double rpm = 20000; rpm < 38000; rpm += 10) {
+    const double a = std::abs(unbalance_response(rotor, rpm * kRpm).q(rotor.dof(node, kX)));
+    if (a > steady_peak) {
+      steady_peak = a;
+      steady_speed = rpm;
+    }
+  }
+  EXPECT_GT(run_speed, steady_speed);
+  EXPECT_LT(run_peak, steady_peak);
+  std::cout << "[ validation ] steady peak " << steady_peak * 1e6 << " um at " << steady_speed << " rpm; run-up peak "
+            << run_peak * 1e6 << " um at " << run_speed << " rpm\n";
+}
+
+TEST(Runup, TighterToleranceChangesMaximaByLessThanOnePercent) {
+  constexpr double kMaximaChange = 0.01;
+  MachineSpec spec = reference();
+  spec.speed.end = 60000 * kRpm;
+  spec.speed.duration = 1.6;
+  const auto model = make_runup_model(spec);
+  RunupOptions o = options_for(spec);
+  const RunupResult a = simulate_runup(*model, o);
+  o.rtol /= 10;
+  o.atol /= 10;
+  const RunupResult b = simulate_runup(*model, o);
+  ASSERT_TRUE(a.complete && b.complete);
+  for (const char* name : {"disk.compressor.x", "disk.turbine.y", "bearing.compressor.fx"}) {
+    const double ratio = max_abs(a.columns[channel(a, name)]) / max_abs(b.columns[channel(b, name)]);
+    EXPECT_NEAR(ratio, 1.0, kMaximaChange) << name;
+    std::cout << "[ validation ] rtol 1e-6 vs 1e-7, max |" << name << "| changes by " << 100 * (ratio - 1) << " %\n";
+  }
+}
+
+TEST(Runup, EnergyBalanceCloses) {
+  // Work of the unbalance and of the spin acceleration on the gyroscopic term = change of kinetic + potential
+  // energy + energy dissipated in the bearings (with a damped pedestal as an internal-state element).
+  MachineSpec spec = reference({{"bearings.turbine.pedestal_mass", "0.5"},
+                                {"bearings.turbine.pedestal_stiffness", "2e7"},
+                                {"bearings.turbine.pedestal_damping", "200"}});
+  spec.speed.end = 60000 * kRpm;
+  spec.speed.duration = 1.6;
+  const auto model = make_runup_model(spec);
+  const RunupResult r = simulate_runup(*model, options_for(spec));
+  ASSERT_TRUE(r.complete) << r.message;
+  ASSERT_GT(r.work_in, 0.0);
+  const double error = r.energy_final - r.energy_initial - r.work_in + r.dissipated;
+  EXPECT_LT(std::abs(error), 1e-3 * r.work_in);
+  std::cout << "[ validation ] energy balance error " << error << " J of " << r.work_in << " J work in\n";
+}
+
+TEST(Runup, ExplicitAndImplicitIntegratorsAgree) {
+  MachineSpec spec = reference();
+  spec.speed.end = 40000 * kRpm;
+  spec.speed.duration = 0.4;
+  const auto model = make_runup_model(spec);
+  RunupOptions o = options_for(spec);
+  o.integrator = "cvode-bdf";
+  const RunupResult bdf = simulate_runup(*model, o);
+  o.integrator = "arkode-erk";
+  const RunupResult erk = simulate_runup(*model, o);
+  ASSERT_TRUE(bdf.complete && erk.complete) << bdf.message << erk.message;
+  const int c = channel(bdf, "disk.compressor.x");
+  EXPECT_NEAR(max_abs(bdf.columns[c]) / max_abs(erk.columns[c]), 1.0, 0.01);
+}
+
+TEST(Runup, IntegratorFailureKeepsTheSamplesAndSaysWhenAndWhy) {
+  MachineSpec spec = reference();
+  const auto model = make_runup_model(spec);
+  RunupOptions o = options_for(spec);
+  o.max_steps = 200;  // the integrator gives up after 200 steps between two output samples
+  o.sample_rate = 200;
+  for (const char* integrator : {"cvode-bdf", "arkode-erk"}) {
+    o.integrator = integrator;
+    const RunupResult r = simulate_runup(*model, o);
+    EXPECT_FALSE(r.complete);
+    EXPECT_THAT(r.message, HasSubstr("stopped at t = "));
+    EXPECT_THAT(r.message, HasSubstr("rpm"));
+    EXPECT_THAT(r.message, HasSubstr("TOO_MUCH_WORK"));
+    EXPECT_GT(r.time.size(), 1u);
+    EXPECT_EQ(r.columns[0].size(), r.time.size());
+    EXPECT_LT(r.t_reached, spec.speed.duration);
+  }
+}
+
+TEST(Runup, CancellationStopsEarly) {
+  const MachineSpec spec = reference();
+  const auto model = make_runup_model(spec);
+  RunupOptions o = options_for(spec);
+  std::atomic<bool> cancel{true};
+  o.cancel = &cancel;
+  const RunupResult r = simulate_runup(*model, o);
+  EXPECT_FALSE(r.complete);
+  EXPECT_THAT(r.message, HasSubstr("interrupted"));
+  EXPECT_EQ(r.time.size(), 2u);
+}
+
+}  // namespace
+}  // namespace turbodyn
