@@ -8,6 +8,7 @@
 #include "app/modal_command.h"
 #include "app/response_command.h"
 #include "app/run_command.h"
+#include "app/sweep_command.h"
 #include "model/model_file.h"
 #include "model/rotor.h"
 
@@ -84,12 +85,33 @@ int main(int argc, char** argv) {
   response->add_flag("!--no-plots", response_options.plots, "Do not draw PNG pictures");
   add_sets(response);
 
+  turbodyn::app::SweepCommandOptions sweep_options;
+  CLI::App* sweep = app.add_subcommand("sweep", "Parameter study: runs of a design in parallel, table and pictures");
+  sweep->add_option("STUDY", sweep_options.study_file, "Study file (TOML)")->required();
+  sweep->add_option("-o,--output", sweep_options.output_dir, "Output directory (resumes the runs found there)")
+      ->capture_default_str();
+  sweep->add_option("-j,--threads", sweep_options.threads, "Parallel runs (default: the study's, else all cores)")
+      ->check(CLI::NonNegativeNumber);
+  sweep->add_option("--shard", sweep_options.shard, "Run only the slice K/N of the design (runs i with i % N == K)");
+  sweep->add_flag("!--no-plots", sweep_options.plots, "Do not draw PNG pictures");
+
+  std::filesystem::path merge_study, merge_output = "out/merged";
+  std::vector<std::filesystem::path> merge_dirs;
+  bool merge_plots = true;
+  CLI::App* merge = app.add_subcommand("merge", "Join the runs of several sweep shards into one results set");
+  merge->add_option("STUDY", merge_study, "Study file (TOML)")->required();
+  merge->add_option("DIRS", merge_dirs, "Shard output directories")->required();
+  merge->add_option("-o,--output", merge_output, "Output directory")->capture_default_str();
+  merge->add_flag("!--no-plots", merge_plots, "Do not draw PNG pictures");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
     std::vector<turbodyn::Override> overrides;
     for (const std::string& s : sets) overrides.push_back(turbodyn::parse_override(s));
     if (check->parsed()) return run_check(check_file, overrides);
+    if (sweep->parsed()) return turbodyn::app::run_sweep_command(sweep_options);
+    if (merge->parsed()) return turbodyn::app::run_merge_command(merge_study, merge_dirs, merge_output, merge_plots);
     if (run->parsed()) {
       run_options.overrides = overrides;
       return turbodyn::app::run_run_command(run_options);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/plot.h"
+#include "model/run_summary.h"
 #include "model/runup.h"
 #include "model/signal.h"
 #include "model/timeseries_file.h"
@@ -63,22 +64,6 @@ std::size_t sample_at_speed(const std::vector<double>& speed_hz, double target) 
   for (std::size_t i = 0; i < speed_hz.size(); ++i)
     if (speed_hz[i] >= target) return i;
   return speed_hz.empty() ? 0 : speed_hz.size() - 1;
-}
-
-struct ChannelSummary {
-  double max_abs = 0.0, time = 0.0, speed_hz = 0.0;
-};
-
-ChannelSummary summarise(const std::vector<double>& v, const std::vector<double>& time, const std::vector<double>& f) {
-  ChannelSummary s;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (std::abs(v[i]) > s.max_abs) {
-      s.max_abs = std::abs(v[i]);
-      s.time = time[i];
-      s.speed_hz = f[i];
-    }
-  }
-  return s;
 }
 
 void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
@@ -239,15 +224,7 @@ int run_run_command(const RunCommandOptions& options) {
   const std::unique_ptr<RunupModel> model = make_runup_model(spec);
   std::filesystem::create_directories(options.output_dir);
 
-  RunupOptions ro;
-  ro.integrator = spec.solver.integrator;
-  ro.rtol = spec.solver.rtol;
-  ro.atol = spec.solver.atol;
-  ro.max_step = spec.solver.max_step;
-  ro.sample_rate = spec.output.sample_rate;
-  ro.static_start = spec.solver.static_start;
-  ro.max_steps = spec.solver.max_steps;
-  ro.max_order = spec.solver.max_order;
+  RunupOptions ro = runup_options(spec);
   ro.cancel = &g_interrupted;
 
   std::vector<Channel> channels;
@@ -283,43 +260,8 @@ int run_run_command(const RunCommandOptions& options) {
   }
 
   // summary.json (docs/output-format.md).
-  nlohmann::json j;
-  j["turbodyn_version"] = "0.1.0";
-  j["complete"] = r.complete;
-  j["message"] = r.message;
-  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}, {"n_dof", model->n_dof()},
-                {"n_states", model->n_states()}, {"n_force_elements", model->elements().size()}};
-  nlohmann::json ov = nlohmann::json::array();
-  for (const Override& o : options.overrides) ov.push_back(o.path + "=" + o.value);
-  j["overrides"] = ov;
-  j["options"] = {{"integrator", resolve_integrator(*model, ro.integrator)}, {"rtol", ro.rtol}, {"atol", ro.atol},
-                  {"max_step_s", ro.max_step}, {"max_steps", ro.max_steps}, {"max_order", ro.max_order},
-                  {"sample_rate_hz", ro.sample_rate}, {"static_start", ro.static_start}, {"t_end_s", t_end},
-                  {"rotor_coordinates", model->n_dof()}, {"rotor_fe_dof", model->n_physical_dof()},
-                  {"reduction_lowest_dropped_mode_hz", model->reduction_cutoff()}};
-  j["t_reached_s"] = r.t_reached;
-  j["stats"] = {{"wall_time_s", r.stats.wall_time}, {"steps", r.stats.steps}, {"rhs_calls", r.stats.rhs_calls},
-                {"force_element_calls", r.stats.element_calls},
-                {"jacobian_evaluations", r.stats.jacobian_evaluations},
-                {"newton_matrix_factorisations", r.stats.linear_setups},
-                {"error_test_failures", r.stats.error_test_failures},
-                {"nonlinear_solver_failures", r.stats.nonlinear_failures}};
-  j["energy"] = {{"initial_j", r.energy_initial}, {"final_j", r.energy_final}, {"work_in_j", r.work_in},
-                 {"dissipated_j", r.dissipated},
-                 {"balance_error_j", r.energy_final - r.energy_initial - r.work_in + r.dissipated}};
-  int speed_col = 0;
-  for (std::size_t c = 0; c < r.channels.size(); ++c)
-    if (r.channels[c].kind == ProbeChannel::Kind::Speed) speed_col = static_cast<int>(c);
-  nlohmann::json probes = nlohmann::json::object();
-  for (std::size_t c = 0; c < r.channels.size(); ++c) {
-    const ProbeChannel& ch = r.channels[c];
-    if (ch.kind == ProbeChannel::Kind::Speed || ch.kind == ProbeChannel::Kind::Angle) continue;
-    const ChannelSummary s = summarise(r.columns[c], r.time, r.columns[speed_col]);
-    probes[ch.name] = {{"unit", ch.unit}, {"description", ch.description}, {"max_abs", s.max_abs},
-                       {"time_at_max_s", s.time}, {"speed_at_max_hz", s.speed_hz},
-                       {"speed_at_max_rpm", s.speed_hz * 60.0}};
-  }
-  j["probes"] = probes;
+  nlohmann::json j = run_summary(spec, *model, ro, r, options.overrides);
+  const nlohmann::json& probes = j["probes"];
 
   std::vector<std::string> pictures, warnings;
   if (options.plots && r.time.size() > 1) {

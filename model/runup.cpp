@@ -533,6 +533,19 @@ std::string describe_stop(double t, double speed, const std::string& cause) {
 
 }  // namespace
 
+RunupOptions runup_options(const MachineSpec& spec) {
+  RunupOptions ro;
+  ro.integrator = spec.solver.integrator;
+  ro.rtol = spec.solver.rtol;
+  ro.atol = spec.solver.atol;
+  ro.max_step = spec.solver.max_step;
+  ro.max_steps = spec.solver.max_steps;
+  ro.max_order = spec.solver.max_order;
+  ro.sample_rate = spec.output.sample_rate;
+  ro.static_start = spec.solver.static_start;
+  return ro;
+}
+
 std::string resolve_integrator(const RunupModel& model, const std::string& requested) {
   if (requested != "auto") return requested;
   // Measured (bench/README.md): with linear bearings BDF with the structured Newton solver beats the explicit

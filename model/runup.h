@@ -138,6 +138,9 @@ struct RunupOptions {
   const std::atomic<bool>* cancel = nullptr;  ///< set to stop the run early (Ctrl-C)
 };
 
+/// The options a model file's [solver] and [output] tables ask for.
+RunupOptions runup_options(const MachineSpec& spec);
+
 /// The integrator "auto" stands for with this model.
 std::string resolve_integrator(const RunupModel& model, const std::string& requested);
 

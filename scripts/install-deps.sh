@@ -11,6 +11,7 @@ packages=(
   libcli11-dev           # command line
   libsundials-dev        # time integration (CVODE, ARKODE)
   libhdf5-dev            # time-series results (HDF5)
+  libtbb-dev             # parallel parameter studies
   gnuplot-nox            # PNG pictures (pngcairo terminal)
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # micro-benchmarks

@@ -71,6 +71,34 @@ case $case in
     grep -q "interrupted" "$out/log" || fail "no reason given: $(cat "$out/log")"
     [ -s "$out/timeseries.h5" ] || fail "partial results not written"
     ;;
+  sweep_kill_and_resume)
+    # A study killed hard (SIGKILL) part-way resumes where it stopped, without redoing finished runs.
+    study="$src/examples/study_reference_linear.toml"
+    "$exe" sweep "$study" -o "$out" -j 1 --no-plots > "$out/log1" 2>&1 &
+    pid=$!
+    for _ in $(seq 1 600); do
+      [ -f "$out/runs.jsonl" ] && [ "$(wc -l < "$out/runs.jsonl")" -ge 4 ] && break
+      sleep 0.1
+    done
+    kill -KILL $pid; wait $pid 2>/dev/null
+    done_before=$(($(wc -l < "$out/runs.jsonl") - 1))
+    [ "$done_before" -ge 3 ] && [ "$done_before" -lt 16 ] || fail "expected a partial study, found $done_before runs"
+    "$exe" sweep "$study" -o "$out" --no-plots > "$out/log2" 2>&1 || fail "resume failed: $(cat "$out/log2")"
+    grep -q "16 of 16 runs recorded ($done_before resumed" "$out/log2" || fail "not resumed: $(cat "$out/log2")"
+    [ "$(wc -l < "$out/runs.jsonl")" -eq 17 ] || fail "runs were redone or lost: $(wc -l < "$out/runs.jsonl") lines"
+    [ "$(wc -l < "$out/results.csv")" -eq 17 ] || fail "results table incomplete"
+    ;;
+  sweep_shards_merge)
+    study="$src/examples/study_reference_linear.toml"
+    for k in 0 1 2; do
+      "$exe" sweep "$study" --shard $k/3 -o "$out/shard_$k" --no-plots > "$out/log_$k" 2>&1 || fail "shard $k: $(cat "$out/log_$k")"
+    done
+    "$exe" merge "$study" "$out"/shard_* -o "$out/merged" --no-plots > "$out/log_merge" 2>&1 || fail "merge: $(cat "$out/log_merge")"
+    grep -q "merged 16 of 16 runs" "$out/log_merge" || fail "merge: $(cat "$out/log_merge")"
+    [ "$(wc -l < "$out/merged/results.csv")" -eq 17 ] || fail "merged table incomplete"
+    "$exe" sweep "$study" --shard 3/3 -o "$out/bad" > "$out/log_bad" 2>&1
+    [ $? -eq 2 ] || fail "--shard 3/3 accepted"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS ($case)"

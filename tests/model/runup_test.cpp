@@ -39,13 +39,7 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-RunupOptions options_for(const MachineSpec& spec) {
-  RunupOptions o;
-  o.rtol = spec.solver.rtol;
-  o.atol = spec.solver.atol;
-  o.sample_rate = spec.output.sample_rate;
-  return o;
-}
+RunupOptions options_for(const MachineSpec& spec) { return runup_options(spec); }
 
 TEST(SpeedFunction, RampAngleIsTheExactIntegral) {
   SpeedProfile p;

@@ -1,0 +1,193 @@
+#include "studies/metrics.h"
+
+#include <cmath>
+#include <limits>
+
+#include "model/signal.h"
+
+namespace turbodyn::studies {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kHzToRpm = 60.0;
+
+int find_channel(const std::vector<ProbeChannel>& channels, const std::string& name) {
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    if (channels[c].name == name) return static_cast<int>(c);
+  return -1;
+}
+
+int kind_channel(const std::vector<ProbeChannel>& channels, ProbeChannel::Kind k) {
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    if (channels[c].kind == k) return static_cast<int>(c);
+  return -1;
+}
+
+// x and y channels of a pair stem: "disk.compressor" -> .x/.y, "bearing.turbine" -> .fx/.fy.
+std::pair<int, int> pair_channels(const std::vector<ProbeChannel>& channels, const std::string& stem) {
+  for (const auto& [sx, sy] : {std::pair<const char*, const char*>{".x", ".y"}, {".fx", ".fy"}}) {
+    const int a = find_channel(channels, stem + sx), b = find_channel(channels, stem + sy);
+    if (a >= 0 && b >= 0) return {a, b};
+  }
+  return {-1, -1};
+}
+
+bool in_window(const MetricSpec& m, double speed_hz) {
+  const double w = 2.0 * M_PI * speed_hz;
+  return w >= m.speed_min && (m.speed_max <= 0.0 || w <= m.speed_max);
+}
+
+// Sub-synchronous content per STFT segment: band [max(5 Hz, 0.05 f_d), 0.9 f_d]; synchronous: +-2 bins at f_d.
+struct SubsyncTrack {
+  std::vector<double> speed_hz, sync, sub, sub_frequency;
+};
+
+SubsyncTrack subsync_track(const std::vector<double>& signal, const std::vector<double>& speed, double fs) {
+  SubsyncTrack t;
+  signal::StftOptions so;
+  so.segment_length = std::min<std::size_t>(2048, signal.size());
+  if (so.segment_length < 8) return t;
+  const signal::Spectrogram sg = signal::stft(signal, fs, so);
+  const std::vector<double> fd = signal::values_at_segment_centres(sg, speed, fs);
+  const double df = sg.frequencies.size() > 1 ? sg.frequencies[1] - sg.frequencies[0] : 1.0;
+  for (std::size_t s = 0; s < sg.n_segments(); ++s) {
+    double sync = 0.0, sub = 0.0, fsub = kNaN;
+    for (std::size_t k = 0; k < sg.n_bins(); ++k) {
+      const double f = sg.frequencies[k], a = sg.at(s, k);
+      if (std::abs(f - fd[s]) <= 2.0 * df) sync = std::max(sync, a);
+      if (f >= std::max(5.0, 0.05 * fd[s]) && f <= 0.9 * fd[s] && a > sub) {
+        sub = a;
+        fsub = f;
+      }
+    }
+    t.speed_hz.push_back(fd[s]);
+    t.sync.push_back(sync);
+    t.sub.push_back(sub);
+    t.sub_frequency.push_back(fsub);
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string metric_unit(const MetricSpec& m, const std::vector<ProbeChannel>& channels) {
+  if (m.kind == "peak_1x_speed" || m.kind == "subsync_onset_speed") return "rpm";
+  if (m.kind == "subsync_frequency") return "Hz";
+  if (m.kind == "subsync_ratio") return "1";
+  if (m.kind == "summary") return "";
+  if (m.kind == "max_radius") {
+    const auto [a, b] = pair_channels(channels, m.probe);
+    (void)b;
+    return a >= 0 ? channels[a].unit : "";
+  }
+  const int c = find_channel(channels, m.probe);
+  return c >= 0 ? channels[c].unit : "";
+}
+
+void check_metrics(const StudySpec& study, const std::vector<ProbeChannel>& channels) {
+  std::vector<std::string> names;
+  for (const ProbeChannel& c : channels) names.push_back(c.name);
+  for (std::size_t i = 0; i < study.metrics.size(); ++i) {
+    const MetricSpec& m = study.metrics[i];
+    if (m.kind == "summary") continue;
+    const bool ok = m.kind == "max_radius" ? pair_channels(channels, m.probe).first >= 0
+                                            : find_channel(channels, m.probe) >= 0;
+    if (ok) continue;
+    std::string msg = study.source.string() + ": metrics[" + std::to_string(i) + "].probe: the model has no probe '" +
+                      m.probe + "'";
+    const std::string hint = closest_match(m.probe, names);
+    if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
+    else {
+      msg += " (probes:";
+      for (const std::string& n : names) msg += " " + n;
+      msg += ")";
+    }
+    throw ModelError(msg);
+  }
+}
+
+double evaluate_metric(const MetricSpec& m, const RunupResult& r, const nlohmann::json& summary, double fs) {
+  if (m.kind == "summary") {
+    const nlohmann::json* node = &summary;
+    if (!m.probe.empty() && m.probe[0] == '/') {
+      const nlohmann::json::json_pointer ptr(m.probe);
+      if (!summary.contains(ptr)) return kNaN;
+      node = &summary.at(ptr);
+    } else {
+      std::size_t pos = 0;
+      while (pos <= m.probe.size()) {
+        const std::size_t dot = m.probe.find('.', pos);
+        const std::string key = m.probe.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
+        if (!node->is_object() || !node->contains(key)) return kNaN;
+        node = &(*node)[key];
+        if (dot == std::string::npos) break;
+        pos = dot + 1;
+      }
+    }
+    if (node->is_boolean()) return node->get<bool>() ? 1.0 : 0.0;
+    return node->is_number() ? node->get<double>() : kNaN;
+  }
+  const int sc = kind_channel(r.channels, ProbeChannel::Kind::Speed);
+  const int ac = kind_channel(r.channels, ProbeChannel::Kind::Angle);
+  const std::vector<double>& speed = r.columns[sc];
+  if (m.kind == "max_radius") {
+    const auto [a, b] = pair_channels(r.channels, m.probe);
+    double best = kNaN;
+    for (std::size_t i = 0; i < r.time.size(); ++i)
+      if (in_window(m, speed[i])) {
+        const double v = std::hypot(r.columns[a][i], r.columns[b][i]);
+        best = std::isnan(best) ? v : std::max(best, v);
+      }
+    return best;
+  }
+  const int c = find_channel(r.channels, m.probe);
+  const std::vector<double>& x = r.columns[c];
+  if (m.kind == "max" || m.kind == "rms" || m.kind == "mean") {
+    double acc = 0.0, best = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (!in_window(m, speed[i])) continue;
+      best = std::max(best, std::abs(x[i]));
+      acc += m.kind == "rms" ? x[i] * x[i] : x[i];
+      ++n;
+    }
+    if (n == 0) return kNaN;
+    if (m.kind == "max") return best;
+    return m.kind == "rms" ? std::sqrt(acc / n) : acc / n;
+  }
+  if (m.kind == "peak_1x" || m.kind == "peak_1x_speed") {
+    signal::OrderTrackOptions oo;
+    oo.points = 300;
+    signal::OrderTrack t;
+    try {
+      t = signal::track_order(x, r.columns[ac], speed, fs, oo);
+    } catch (const std::invalid_argument&) {
+      return kNaN;
+    }
+    double best = kNaN, at = kNaN;
+    for (std::size_t i = 0; i < t.amplitude.size(); ++i)
+      if (in_window(m, t.speeds[i]) && (std::isnan(best) || t.amplitude[i] > best)) {
+        best = t.amplitude[i];
+        at = t.speeds[i] * kHzToRpm;
+      }
+    return m.kind == "peak_1x" ? best : at;
+  }
+  // Sub-synchronous metrics.
+  const SubsyncTrack t = subsync_track(x, speed, fs);
+  double best = kNaN, ratio = kNaN, freq = kNaN, onset = kNaN;
+  for (std::size_t s = 0; s < t.speed_hz.size(); ++s) {
+    if (!in_window(m, t.speed_hz[s])) continue;
+    if (std::isnan(best) || t.sub[s] > best) {
+      best = t.sub[s];
+      freq = t.sub_frequency[s];
+    }
+    if (t.sync[s] > 0.0) ratio = std::isnan(ratio) ? t.sub[s] / t.sync[s] : std::max(ratio, t.sub[s] / t.sync[s]);
+    if (std::isnan(onset) && t.sub[s] > m.threshold) onset = t.speed_hz[s] * kHzToRpm;
+  }
+  if (m.kind == "subsync_max") return best;
+  if (m.kind == "subsync_ratio") return ratio;
+  if (m.kind == "subsync_frequency") return freq;
+  return onset;  // subsync_onset_speed
+}
+
+}  // namespace turbodyn::studies

@@ -1,0 +1,238 @@
+#include "studies/study.h"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "model/toml_reader.h"
+
+namespace turbodyn::studies {
+namespace {
+
+using input::Bound;
+using input::Reader;
+using input::Sources;
+
+std::string trim(std::string s) {
+  s.erase(0, s.find_first_not_of(" \t"));
+  s.erase(s.find_last_not_of(" \t") + 1);
+  return s;
+}
+
+// A number or "<number> <unit>" from a TOML node; the unit is checked later by the model loader.
+UnitValue node_value(const toml::node& n, const std::string& context) {
+  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
+  if (n.is_floating_point()) return {*n.value<double>(), ""};
+  if (n.is_string()) return split_value(*n.value<std::string>(), context);
+  throw ModelError(context + ": expected a number or a string such as \"580 mg*mm\"");
+}
+
+std::string location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
+
+// Reads one [[parameters]] entry into a Parameter and the unit it is written in.
+Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
+  Parameter p;
+  p.path = r.text_or("path", "");
+  if (p.path.empty()) r.fail("path", "missing required key (the model-file path of the parameter, e.g. \"disks.turbine.unbalance\")");
+  Distribution& d = p.distribution;
+  unit.clear();
+  bool unit_set = false;
+  auto take = [&](const toml::node& n, const std::string& key) {
+    const UnitValue v = node_value(n, location(r, key));
+    if (unit_set && v.unit != unit)
+      r.fail(key, "is written in '" + v.unit + "' but the parameter's other values in '" + unit +
+                      "'; write all values of a parameter in one unit");
+    unit = v.unit;
+    unit_set = true;
+    return v.value;
+  };
+  if (const toml::array* levels = r.array("levels")) {
+    if (levels->empty()) r.fail("levels", "the list is empty");
+    d.kind = Distribution::Kind::Levels;
+    for (const toml::node& n : *levels) d.levels.push_back(take(n, "levels"));
+  }
+  const std::string dist = r.choice("distribution", {"uniform", "normal", "log-uniform"}, "uniform");
+  if (const toml::node* n = r.get("low")) d.low = take(*n, "low");
+  if (const toml::node* n = r.get("high")) d.high = take(*n, "high");
+  if (const toml::node* n = r.get("mean")) d.mean = take(*n, "mean");
+  if (const toml::node* n = r.get("std")) d.std = take(*n, "std");
+  d.n_levels = static_cast<int>(r.integer_or("n_levels", 0, 2));
+  if (d.kind != Distribution::Kind::Levels) {
+    if (dist == "normal") {
+      d.kind = Distribution::Kind::Normal;
+      if (!r.has("mean") || !r.has("std")) r.fail_table("a normal distribution needs mean and std");
+    } else {
+      d.kind = dist == "log-uniform" ? Distribution::Kind::LogUniform : Distribution::Kind::Uniform;
+      if (!r.has("low") || !r.has("high")) r.fail_table("give levels = [...], or low and high (and n_levels for a full factorial)");
+    }
+    if (kind == DesignKind::FullFactorial && d.kind != Distribution::Kind::Levels && d.n_levels < 2)
+      r.fail_table("a full-factorial design of a range needs n_levels >= 2 (or give levels = [...])");
+  }
+  r.finish();
+  return p;
+}
+
+MetricSpec read_metric(Reader& r) {
+  MetricSpec m;
+  m.kind = r.choice("kind",
+                    {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed", "subsync_max", "subsync_ratio",
+                     "subsync_onset_speed", "subsync_frequency", "summary"},
+                    "");
+  if (m.kind.empty()) r.fail("kind", "missing required key (max, max_radius, rms, mean, peak_1x, ...)");
+  m.probe = r.text_or("probe", "");
+  if (m.probe.empty()) r.fail("probe", "missing required key (a probe name such as \"disk.compressor.x\")");
+  m.name = r.text_or("name", m.kind + "(" + m.probe + ")");
+  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
+  if (!window.empty()) {
+    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
+    m.speed_min = window[0];
+    m.speed_max = window[1];
+  }
+  if (const toml::node* n = r.get("threshold")) {
+    // The unit follows the probe (m or N): read either.
+    const UnitValue v = node_value(*n, location(r, "threshold"));
+    m.threshold = v.value;
+    if (!v.unit.empty()) {
+      const std::string text = n->value<std::string>().value_or("");
+      try {
+        m.threshold = parse_quantity(text, dim::length);
+      } catch (const UnitError&) {
+        try {
+          m.threshold = parse_quantity(text, dim::force);
+        } catch (const UnitError& e) {
+          r.fail("threshold", std::string("expected a length or a force: ") + e.what());
+        }
+      }
+    }
+  }
+  if (m.kind == "subsync_onset_speed" && !(m.threshold > 0.0))
+    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+  r.finish();
+  return m;
+}
+
+}  // namespace
+
+UnitValue split_value(const std::string& text, const std::string& context) {
+  const std::string s = trim(text);
+  double v = 0.0;
+  const char* begin = s.data() + (s.size() > 0 && s[0] == '+' ? 1 : 0);
+  const auto res = std::from_chars(begin, s.data() + s.size(), v);
+  if (res.ec != std::errc() || !std::isfinite(v))
+    throw ModelError(context + ": '" + text + "' does not start with a number");
+  return {v, trim(std::string(res.ptr, s.data() + s.size()))};
+}
+
+StudySpec load_study(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ModelError(file.string() + ": cannot open the study file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  toml::table root;
+  try {
+    root = toml::parse(text.str(), std::string_view(file.string()));
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << file.string() << ':' << e.source().begin.line << ':' << e.source().begin.column
+       << ": TOML syntax error: " << e.description();
+    throw ModelError(os.str());
+  }
+  const Sources src{file.string(), {}};
+  StudySpec s;
+  s.source = file;
+  Reader top(root, "", src);
+  const toml::table* study = top.table("study");
+  if (!study) top.fail("study", "missing: a [study] table with at least model = \"...\"");
+  {
+    Reader r(*study, "study", src);
+    s.name = r.text_or("name", file.stem().string());
+    const std::string model = r.text_or("model", "");
+    if (model.empty()) r.fail("model", "missing required key (the base model file)");
+    s.model = std::filesystem::path(model).is_absolute() ? std::filesystem::path(model) : file.parent_path() / model;
+    if (!std::filesystem::exists(s.model)) r.fail("model", "no such file: " + s.model.string());
+    s.threads = static_cast<int>(r.integer_or("threads", 0, 0));
+    const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
+    if (!window.empty()) {
+      if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
+      s.speed_window_min = window[0];
+      s.speed_window_max = window[1];
+    }
+    if (const toml::array* fixed = r.array("fixed"))
+      for (const toml::node& n : *fixed) {
+        if (!n.is_string()) r.fail("fixed", "expected strings \"PATH=VALUE\"");
+        s.base_overrides.push_back(parse_override(*n.value<std::string>()));
+      }
+    r.finish();
+  }
+  const toml::table* design = top.table("design");
+  if (!design) top.fail("design", "missing: a [design] table with kind = \"...\"");
+  {
+    Reader r(*design, "design", src);
+    const std::string kind = r.choice(
+        "kind", {"full-factorial", "latin-hypercube", "sobol", "halton", "monte-carlo", "table"}, "full-factorial");
+    s.design.kind = kind == "full-factorial"    ? DesignKind::FullFactorial
+                    : kind == "latin-hypercube" ? DesignKind::LatinHypercube
+                    : kind == "sobol"           ? DesignKind::Sobol
+                    : kind == "halton"          ? DesignKind::Halton
+                    : kind == "monte-carlo"     ? DesignKind::MonteCarlo
+                                                : DesignKind::Table;
+    const long runs = r.integer_or("runs", 0, 0);
+    s.design.runs = static_cast<std::size_t>(runs);
+    s.design.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0));
+    s.design.scramble = r.flag_or("scramble", false);
+    if (const toml::array* table = r.array("table")) {
+      for (const toml::node& row : *table) {
+        if (!row.is_array()) r.fail("table", "expected rows [[v1, v2, ...], ...]");
+        std::vector<double> values;
+        for (const toml::node& v : *row.as_array()) values.push_back(node_value(v, location(r, "table")).value);
+        s.design.table.push_back(values);
+      }
+    }
+    const bool sampled = s.design.kind != DesignKind::FullFactorial && s.design.kind != DesignKind::Table;
+    if (sampled && runs < 1) r.fail("runs", "missing: this design needs the number of runs (runs = 16)");
+    if (s.design.kind == DesignKind::Table && s.design.table.empty()) r.fail("table", "missing: the rows of the table");
+    r.finish();
+  }
+  const toml::array* params = top.array("parameters");
+  if (!params || params->empty()) top.fail("parameters", "missing: at least one [[parameters]] entry (path = ...)");
+  for (std::size_t i = 0; i < params->size(); ++i) {
+    const toml::node& n = (*params)[i];
+    const std::string path = "parameters[" + std::to_string(i) + "]";
+    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
+    Reader r(*n.as_table(), path, src);
+    std::string unit;
+    Parameter p = read_parameter(r, s.design.kind, unit);
+    s.design.parameters.push_back(p);
+    s.parameter_units.push_back(unit);
+  }
+  if (const toml::array* metrics = top.array("metrics")) {
+    for (std::size_t i = 0; i < metrics->size(); ++i) {
+      const toml::node& n = (*metrics)[i];
+      if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": metrics[" + std::to_string(i) + "]: expected a table");
+      Reader r(*n.as_table(), "metrics[" + std::to_string(i) + "]", src);
+      s.metrics.push_back(read_metric(r));
+    }
+  }
+  if (s.metrics.empty()) top.fail("metrics", "missing: at least one [[metrics]] entry (kind, probe)");
+  top.finish();
+  try {
+    (void)make_design(s.design);
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(file.string() + ": [design]: " + e.what());
+  }
+  return s;
+}
+
+std::vector<Override> run_overrides(const StudySpec& study, const Design& design, std::size_t i) {
+  std::vector<Override> o = study.base_overrides;
+  for (std::size_t p = 0; p < design.paths.size(); ++p) {
+    char buf[64];
+    const auto res = std::to_chars(buf, buf + sizeof buf, design.values[i][p]);
+    std::string v(buf, res.ptr);
+    if (!study.parameter_units[p].empty()) v += " " + study.parameter_units[p];
+    o.push_back({design.paths[p], v});
+  }
+  return o;
+}
+
+}  // namespace turbodyn::studies

@@ -1,0 +1,56 @@
+// Parameter studies (design of experiments) on the run-up model: the study file and what it asks for.
+//
+// A study names a base model file, the parameters to vary (model-file key paths, as for --set), a design that
+// turns their ranges into runs, and the metrics to extract from every run. See docs/studies.md.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/model_file.h"
+#include "studies/design.h"
+
+namespace turbodyn::studies {
+
+/// A value as written in the study file: a number and the unit it was written in ("580 mg*mm" -> 580, "mg*mm").
+/// Sampling happens in that unit; the model loader converts and checks the unit when the run's override is applied.
+struct UnitValue {
+  double value = 0.0;
+  std::string unit;  ///< "" for plain (SI) numbers
+};
+
+/// One metric computed from every run (docs/studies.md lists the kinds).
+struct MetricSpec {
+  std::string name;   ///< column name in the results
+  std::string kind;   ///< max, max_radius, rms, mean, peak_1x, peak_1x_speed, subsync_max, subsync_ratio,
+                      ///< subsync_onset_speed, subsync_frequency, summary
+  std::string probe;  ///< channel name ("disk.compressor.x"), a pair stem for max_radius ("disk.compressor"), or
+                      ///< for kind = summary a dotted path into summary-like values ("stats.steps")
+  double speed_min = 0.0, speed_max = 0.0;  ///< rad/s window; speed_max = 0 means no upper limit
+  double threshold = 0.0;                   ///< subsync_onset_speed: amplitude in the probe's SI unit
+};
+
+struct StudySpec {
+  std::filesystem::path source;            ///< the study file
+  std::string name;
+  std::filesystem::path model;             ///< base model file (relative paths are relative to the study file)
+  std::vector<Override> base_overrides;    ///< fixed overrides applied to every run ([fixed] table)
+  std::vector<std::string> parameter_units;///< unit each parameter is written and sampled in ("" = SI)
+  DesignSpec design;
+  std::vector<MetricSpec> metrics;
+  double speed_window_min = 0.0;           ///< rad/s: a run starts where the ramp reaches this speed (0 = start)
+  double speed_window_max = 0.0;           ///< rad/s: a run stops where the ramp reaches this speed (0 = end)
+  int threads = 0;                         ///< 0 = all cores
+};
+
+/// Reads and checks a study file; errors (ModelError) name file, line, key and cause.
+StudySpec load_study(const std::filesystem::path& file);
+
+/// "580 mg*mm" -> {580, "mg*mm"}; a bare number -> {value, ""}. Throws ModelError naming `context` otherwise.
+UnitValue split_value(const std::string& text, const std::string& context);
+
+/// The --set overrides of run `i` of `design` (parameter values written with their units).
+std::vector<Override> run_overrides(const StudySpec& study, const Design& design, std::size_t i);
+
+}  // namespace turbodyn::studies

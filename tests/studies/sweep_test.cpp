@@ -1,0 +1,244 @@
+// Parameter studies: analytic trends, thread-count invariance, failing runs, resume and shards.
+#include "studies/sweep.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/model/test_support.h"
+
+namespace turbodyn::studies {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::filesystem::path temp_dir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("turbodyn_sweep_test_" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+// A study file next to the examples (so that model = "..." resolves), written for the test.
+std::filesystem::path write_study(const std::string& name, const std::string& body) {
+  const auto dir = temp_dir("files_" + name);
+  std::filesystem::copy_file(testing::source_dir() + "/examples/reference_linear.toml", dir / "reference_linear.toml");
+  const auto f = dir / (name + ".toml");
+  std::ofstream(f) << body;
+  return f;
+}
+
+// Cheap runs: up to 40,000 rpm (past the first forward critical), output at 5 kHz.
+const char* kCheap = R"(
+[study]
+model = "reference_linear.toml"
+speed_window = ["0 rpm", "40000 rpm"]
+fixed = ["output.sample_rate=5 kHz", "disks.compressor.unbalance=0"]
+)";
+
+TEST(Sweep, ResponseIsLinearInTheUnbalance) {
+  // A linear rotor: every response scales exactly with the single unbalance (superposition), so max |x| / U is
+  // the same for every level.
+  const auto f = write_study("linear", std::string(kCheap) + R"(
+[design]
+kind = "full-factorial"
+[[parameters]]
+path = "disks.turbine.unbalance"
+levels = ["100 mg*mm", "300 mg*mm", "900 mg*mm"]
+[[metrics]]
+name = "max_x"
+kind = "max"
+probe = "disk.turbine.x"
+)");
+  const StudySpec s = load_study(f);
+  SweepOptions o;
+  o.output_dir = temp_dir("linear_out");
+  const SweepResult r = run_sweep(s, o);
+  ASSERT_TRUE(r.complete);
+  ASSERT_EQ(r.runs.size(), 3u);
+  const double per_unit = r.runs[0].metrics[0] / r.runs[0].parameters[0];
+  for (const RunRecord& run : r.runs) {
+    EXPECT_EQ(run.status, "ok") << run.error;
+    EXPECT_NEAR(run.metrics[0] / run.parameters[0] / per_unit, 1.0, 1e-4);
+  }
+}
+
+const char* kSmallLhs = R"(
+[design]
+kind = "latin-hypercube"
+runs = 4
+seed = 7
+[[parameters]]
+path = "bearings.compressor.k"
+low = "2e7 N/m"
+high = "4e7 N/m"
+[[parameters]]
+path = "disks.turbine.unbalance"
+low = "300 mg*mm"
+high = "900 mg*mm"
+[[metrics]]
+kind = "max_radius"
+probe = "disk.compressor"
+[[metrics]]
+kind = "peak_1x"
+probe = "disk.turbine.x"
+)";
+
+TEST(Sweep, ResultsDoNotDependOnTheThreadCount) {
+  const StudySpec s = load_study(write_study("threads", std::string(kCheap) + kSmallLhs));
+  SweepOptions one, two;
+  one.output_dir = temp_dir("threads_1");
+  one.threads = 1;
+  two.output_dir = temp_dir("threads_2");
+  two.threads = 2;
+  const SweepResult a = run_sweep(s, one), b = run_sweep(s, two);
+  ASSERT_EQ(a.runs.size(), b.runs.size());
+  for (std::size_t i = 0; i < a.runs.size(); ++i) {
+    EXPECT_EQ(a.runs[i].index, b.runs[i].index);
+    EXPECT_EQ(a.runs[i].parameters, b.runs[i].parameters);
+    for (std::size_t m = 0; m < a.runs[i].metrics.size(); ++m) EXPECT_EQ(a.runs[i].metrics[m], b.runs[i].metrics[m]);
+  }
+}
+
+TEST(Sweep, AFailingRunIsRecordedAndTheStudyGoesOn) {
+  const StudySpec s = load_study(write_study("failing", std::string(kCheap) + R"(
+[design]
+kind = "full-factorial"
+[[parameters]]
+path = "bearings.compressor.k"
+levels = ["3e7 N/m", "-1e7 N/m", "2e7 N/m"]
+[[metrics]]
+kind = "max"
+probe = "disk.compressor.x"
+)"));
+  SweepOptions o;
+  o.output_dir = temp_dir("failing_out");
+  const SweepResult r = run_sweep(s, o);
+  ASSERT_EQ(r.runs.size(), 3u);
+  EXPECT_EQ(r.runs[0].status, "ok");
+  EXPECT_EQ(r.runs[1].status, "failed");
+  EXPECT_THAT(r.runs[1].error, HasSubstr("must not be negative"));
+  EXPECT_TRUE(std::isnan(r.runs[1].metrics[0]));
+  EXPECT_EQ(r.runs[2].status, "ok");
+}
+
+TEST(Sweep, ResumesWithoutRedoingFinishedRuns) {
+  const StudySpec s = load_study(write_study("resume", std::string(kCheap) + kSmallLhs));
+  SweepOptions o;
+  o.output_dir = temp_dir("resume_out");
+  const SweepResult full = run_sweep(s, o);
+  ASSERT_TRUE(full.complete);
+  // A killed study: the last two runs never got recorded and the last line was cut in half.
+  const auto log = o.output_dir / "runs.jsonl";
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(log);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  ASSERT_EQ(lines.size(), 5u);  // header + 4 runs
+  {
+    std::ofstream out(log, std::ios::trunc);
+    for (int i = 0; i < 3; ++i) out << lines[i] << "\n";
+    out << lines[3].substr(0, lines[3].size() / 2);  // no newline: cut by the kill
+  }
+  const SweepResult again = run_sweep(s, o);
+  EXPECT_EQ(again.resumed, 2u);
+  ASSERT_TRUE(again.complete);
+  ASSERT_EQ(again.runs.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(again.runs[i].metrics, full.runs[i].metrics);
+}
+
+TEST(Sweep, ShardsCoverTheDesignAndMergeToTheSameTable) {
+  const StudySpec s = load_study(write_study("shards", std::string(kCheap) + kSmallLhs));
+  SweepOptions a, b;
+  a.output_dir = temp_dir("shard0");
+  a.shard_k = 0;
+  a.shard_n = 2;
+  b.output_dir = temp_dir("shard1");
+  b.shard_k = 1;
+  b.shard_n = 2;
+  const SweepResult ra = run_sweep(s, a), rb = run_sweep(s, b);
+  EXPECT_EQ(ra.runs.size() + rb.runs.size(), 4u);
+  for (const RunRecord& r : ra.runs) EXPECT_EQ(r.index % 2, 0u);
+  std::vector<RunRecord> merged = read_runs(s, a.output_dir);
+  for (RunRecord& r : read_runs(s, b.output_dir)) merged.push_back(r);
+  EXPECT_EQ(merged.size(), 4u);
+  const auto files = write_results(s, ra.design, merged, temp_dir("merged"), false);
+  EXPECT_THAT(files, ::testing::Contains("results.csv"));
+}
+
+TEST(Sweep, AnotherStudysDirectoryIsRefused) {
+  const StudySpec s1 = load_study(write_study("first", std::string(kCheap) + kSmallLhs));
+  std::string other = std::string(kCheap) + kSmallLhs;
+  other.replace(other.find("seed = 7"), 8, "seed = 8");
+  const StudySpec s2 = load_study(write_study("second", other));
+  SweepOptions o;
+  o.output_dir = temp_dir("refuse");
+  o.shard_k = 0;
+  o.shard_n = 4;  // one run only
+  run_sweep(s1, o);
+  EXPECT_THROW(run_sweep(s2, o), ModelError);
+}
+
+TEST(StudyFile, ClearErrors) {
+  auto error_of = [](const std::string& body) {
+    try {
+      load_study(write_study("errors", body));
+    } catch (const ModelError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(error_of(std::string(kCheap) + R"(
+[design]
+kind = "latin-hypercub"
+runs = 4
+)"), HasSubstr("did you mean 'latin-hypercube'"));
+  EXPECT_THAT(error_of(std::string(kCheap) + R"(
+[design]
+kind = "latin-hypercube"
+[[parameters]]
+path = "disks.turbine.unbalance"
+low = "1 mg*mm"
+high = "2 mg*mm"
+[[metrics]]
+kind = "max"
+probe = "disk.turbine.x"
+)"), HasSubstr("design.runs"));
+  EXPECT_THAT(error_of(std::string(kCheap) + R"(
+[design]
+kind = "full-factorial"
+[[parameters]]
+path = "disks.turbine.unbalance"
+low = "1 mg*mm"
+high = "2 g*mm"
+n_levels = 2
+[[metrics]]
+kind = "max"
+probe = "disk.turbine.x"
+)"), HasSubstr("one unit"));
+  // A probe the model does not have is found before any run starts.
+  const StudySpec s = load_study(write_study("probe", std::string(kCheap) + R"(
+[design]
+kind = "full-factorial"
+[[parameters]]
+path = "disks.turbine.unbalance"
+levels = ["1 mg*mm"]
+[[metrics]]
+kind = "max"
+probe = "disk.turbine.z"
+)"));
+  SweepOptions o;
+  o.output_dir = temp_dir("probe_out");
+  try {
+    run_sweep(s, o);
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("did you mean 'disk.turbine.x'"));
+  }
+}
+
+}  // namespace
+}  // namespace turbodyn::studies
