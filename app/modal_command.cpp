@@ -161,6 +161,11 @@ void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const
 
 void require_linear_supports(const MachineSpec& spec) {
   for (const BearingSpec& b : spec.bearings)
+    if (b.type != "linear")
+      throw ModelError(spec.source.string() + ": bearings." + b.name + ": a " + b.type +
+                       " bearing is nonlinear; the linear analyses (modal, response) need linear bearings "
+                       "(linearised coefficients, e.g. from `turbodyn journal`, as type = \"linear\")");
+  for (const BearingSpec& b : spec.bearings)
     if (b.pedestal_mass > 0.0)
       throw ModelError(spec.source.string() + ": bearings." + b.name +
                        ".pedestal_mass: pedestal masses are part of the run-up model only; the linear analyses "

@@ -64,6 +64,10 @@ class ForceElement {
     return 1e-6;
   }
 
+  /// Relative step of the engine's forward differences; elements computed by iterative solvers need more than
+  /// sqrt(eps) to stay above their solver tolerance.
+  virtual double fd_relative_step() const { return 1.4901161193847656e-08; }
+
   /// True if AddJacobian() is implemented; otherwise the engine differentiates numerically.
   virtual bool has_jacobian() const { return false; }
   /// Jacobian of [f; zdot] with respect to [q; v; z] (local numbering), column-major, of size

@@ -201,10 +201,33 @@ void read_linear_bearing(Reader& r, BearingSpec& b) {
   }
 }
 
+void read_journal_bearing(Reader& r, BearingSpec& b) {
+  JournalBearingSpec& j = b.journal;
+  j.diameter = r.quantity("diameter", dim::length, Bound::Positive);
+  j.length = r.quantity("length", dim::length, Bound::Positive);
+  j.clearance = r.quantity("clearance", dim::length, Bound::Positive);
+  if (j.clearance >= 0.05 * j.diameter)
+    r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
+  j.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, j.cavitation);
+  j.n_circ = static_cast<int>(r.integer_or("n_circ", j.n_circ, 8));
+  j.n_axial = static_cast<int>(r.integer_or("n_axial", j.n_axial, 4));
+  j.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  j.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
+  j.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  j.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, j.feed_hole_angle);
+  if (j.feed_hole_diameter >= j.length) r.fail("feed_hole_diameter", "must be smaller than the bearing length");
+  if (j.supply_pressure > 0.0 && j.feed_hole_diameter == 0.0)
+    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
+  if (j.cavitation == "mass-conserving" && !(j.feed_hole_diameter > 0.0 && j.supply_pressure > 0.0))
+    r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) with "
+                         "supply_pressure > 0");
+}
+
 void read_bearing(Reader& r, BearingSpec& b) {
-  b.type = r.choice("type", {"linear"}, "");
+  b.type = r.choice("type", {"linear", "journal"}, "");
   b.z = r.quantity("z", dim::length);
   if (b.type == "linear") read_linear_bearing(r, b);
+  if (b.type == "journal") read_journal_bearing(r, b);
   b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
   b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
   b.pedestal_damping = r.quantity_or("pedestal_damping", dim::damping, 0.0, Bound::NonNegative);
@@ -365,6 +388,21 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
       check_on_shaft(r, b.z, "bearing '" + key + "'");
       spec.bearings.push_back(b);
     }
+  }
+  if (const toml::table* oil = top.table("oil")) {
+    Reader r(*oil, "oil", src);
+    OilSpec& o = spec.oil;
+    o.vogel_a = r.quantity_or("vogel_a", dim::viscosity, o.vogel_a, Bound::Positive);
+    o.vogel_b = r.quantity_or("vogel_b", dim::temperature, o.vogel_b, Bound::Positive);
+    o.vogel_c = r.quantity_or("vogel_c", dim::temperature, o.vogel_c);
+    o.viscosity = r.quantity_or("viscosity", dim::viscosity, 0.0, Bound::NonNegative);
+    o.density = r.quantity_or("density", dim::density, o.density, Bound::Positive);
+    o.temperature = r.quantity_or("temperature", dim::temperature, o.temperature, Bound::Positive);
+    for (const char* key : {"vogel_b", "vogel_c"})
+      if (r.has(key) && r.get(key)->is_string() && r.get(key)->value<std::string>()->find("degC") != std::string::npos)
+        r.fail(key, "is a temperature difference: write it in K (or as a plain number)");
+    if (o.temperature - 273.15 + o.vogel_c <= 0.0) r.fail("temperature", "lies below the Vogel pole T = -C");
+    r.finish();
   }
   if (const toml::table* speed = top.table("speed")) {
     Reader r(*speed, "speed", src);

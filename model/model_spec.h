@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -58,11 +59,39 @@ struct LinearBearingSpec {
   std::array<std::vector<double>, 4> c;    ///< cxx, cxy, cyx, cyy in N s/m
 };
 
+/// Lubricant: dynamic viscosity from the Vogel equation eta(T) = A exp(B / (T + C)), T in degC (Vogel 1921;
+/// constants of an SAE 30 fit in reference-turbocharger.md), or a fixed viscosity.
+struct OilSpec {
+  double vogel_a = 9.722e-5;     ///< Pa s
+  double vogel_b = 755.6;        ///< K (a temperature difference)
+  double vogel_c = 70.56;        ///< K (a temperature difference)
+  double viscosity = 0.0;        ///< Pa s; > 0 overrides the Vogel equation
+  double density = 850.0;        ///< kg/m^3
+  double temperature = 363.15;   ///< K
+  /// Dynamic viscosity at temperature T (K), Pa s.
+  double viscosity_at(double T) const;
+};
+
+/// Plain hydrodynamic journal bearing: a journal (the shaft) in a fixed bush, Reynolds equation solved at every
+/// call (model/reynolds.h).
+struct JournalBearingSpec {
+  double diameter = 0.0;        ///< m, journal diameter
+  double length = 0.0;          ///< m, bush width
+  double clearance = 0.0;       ///< m, radial clearance
+  std::string cavitation = "gumbel";  ///< "gumbel", "mass-conserving", "none"
+  int n_circ = 60, n_axial = 12;
+  double oil_temperature = 0.0; ///< K; 0 = the [oil] temperature
+  double supply_pressure = 0.0; ///< Pa gauge at the feed hole
+  double feed_hole_diameter = 0.0;  ///< m; 0 = no feed hole
+  double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
+};
+
 struct BearingSpec {
   std::string name;
-  std::string type;  ///< "linear" (the nonlinear bearing types come with their own issues)
+  std::string type;  ///< "linear" or "journal" (further bearing types come with their own issues)
   double z = 0.0;    ///< m
   LinearBearingSpec linear;
+  JournalBearingSpec journal;
   double pedestal_mass = 0.0;       ///< kg; > 0 puts the bearing housing on a pedestal mass (run-up only)
   double pedestal_stiffness = 0.0;  ///< N/m, pedestal to ground
   double pedestal_damping = 0.0;    ///< N s/m, pedestal to ground
@@ -134,6 +163,7 @@ struct MachineSpec {
   std::vector<DiskSpec> disks;
   std::vector<BearingSpec> bearings;
   double gravity = 9.81;  ///< m/s^2, acting in -y
+  OilSpec oil;
   SpeedProfile speed;
   SolverSpec solver;
   OutputSpec output;

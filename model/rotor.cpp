@@ -168,3 +168,12 @@ Rotor build_rotor(const MachineSpec& spec) {
 }
 
 }  // namespace turbodyn
+
+namespace turbodyn {
+
+double OilSpec::viscosity_at(double T) const {
+  if (viscosity > 0.0) return viscosity;
+  return vogel_a * std::exp(vogel_b / ((T - 273.15) + vogel_c));
+}
+
+}  // namespace turbodyn

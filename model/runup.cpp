@@ -12,6 +12,7 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 
+#include "model/journal_bearing_element.h"
 #include "model/linear_bearing_element.h"
 
 namespace turbodyn {
@@ -305,11 +306,11 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
       // Typical magnitudes below which an input is perturbed as if it had that size: rotor displacements 1 um,
       // velocities 1 mm/s (1 um at 1000 rad/s), element states as the element says.
       constexpr double kDisplacementScale = 1e-6, kVelocityScale = 1e-3;
-      const double sqrt_eps = std::sqrt(std::numeric_limits<double>::epsilon());
+      const double rel = e.fd_relative_step();
       for (int j = 0; j < 2 * d + m; ++j) {
         const double saved = in(j);
         const double typical = j < d ? kDisplacementScale : j < 2 * d ? kVelocityScale : e.state_scale(j - 2 * d);
-        const double h = sqrt_eps * std::max(std::abs(saved), typical);
+        const double h = rel * std::max(std::abs(saved), typical);
         in(j) = saved + h;
         eval(ws.eout1[k]);
         in(j) = saved;
@@ -411,6 +412,10 @@ std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
       if (bs.name == b.name) pedestal = Pedestal{bs.pedestal_mass, bs.pedestal_stiffness, bs.pedestal_damping};
     elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
   }
+  for (const BearingSpec& b : spec.bearings)
+    if (b.type == "journal")
+      elements.push_back(
+          std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, rotor.dof(rotor.node_at(b.z), kX)));
   // The bearings act through the elements; the rotor's own matrices stay bearing-free.
   double cutoff = spec.solver.reduction_cutoff;
   if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz
@@ -434,7 +439,14 @@ struct Integration {
 
 int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto* in = static_cast<Integration*>(user);
-  in->model->Rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), *in->ws);
+  try {
+    in->model->Rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), *in->ws);
+  } catch (const std::exception& e) {
+    // A force element cannot be evaluated here (e.g. a film closes): recoverable, the integrator retries with a
+    // smaller step; the message explains the failure if it persists.
+    in->last_error = e.what();
+    return 1;
+  }
   for (sunindextype i = 0, n = N_VGetLength(ydot); i < n; ++i)
     if (!std::isfinite(NV_Ith_S(ydot, i))) return 1;  // recoverable: the integrator retries with a smaller step
   return 0;
@@ -471,7 +483,12 @@ int ls_setup(SUNLinearSolver S, SUNMatrix) {
   void* user = nullptr;
   if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
     return -1;
-  in->model->Jacobian(tcur, N_VGetArrayPointer(ypred), *in->ws);
+  try {
+    in->model->Jacobian(tcur, N_VGetArrayPointer(ypred), *in->ws);
+  } catch (const std::exception& e) {
+    in->last_error = e.what();
+    return 1;
+  }
   factor_newton_matrix(*in->model, *in->ws, gamma);
   in->gamma_factored = gamma;
   return in->ws->lu.rcond() > 0.0 ? 0 : 1;
@@ -492,7 +509,12 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
     return -1;
   const double w = model.speed().speed(tcur), w_jac = ws.jac_spin.speed;
   if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0)) {
-    model.Jacobian(tcur, N_VGetArrayPointer(ypred), ws);
+    try {
+      model.Jacobian(tcur, N_VGetArrayPointer(ypred), ws);
+    } catch (const std::exception& e) {
+      in->last_error = e.what();
+      return 1;
+    }
     in->gamma_factored = -1.0;
   }
   if (gamma != in->gamma_factored) {
@@ -573,7 +595,11 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   N_Vector y = N_VNew_Serial(ny, ctx);
   std::vector<double> values(result.channels.size());
   auto record = [&](double t) {
-    model.Probes(t, N_VGetArrayPointer(y), *ws, values.data());
+    try {
+      model.Probes(t, N_VGetArrayPointer(y), *ws, values.data());
+    } catch (const std::exception&) {
+      std::fill(values.begin(), values.end(), std::nan(""));
+    }
     result.time.push_back(t);
     for (std::size_t c = 0; c < values.size(); ++c) result.columns[c].push_back(values[c]);
     if (options.sink) options.sink(t, values.data());

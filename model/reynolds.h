@@ -1,0 +1,161 @@
+// Hydrodynamic film between an inner cylinder (journal) and an outer cylinder (bush or floating ring): the transient,
+// isoviscous, incompressible Reynolds equation (the paper's Eq. 24, divided by 12):
+//
+//   d/dx (h^3/(12 eta) dp/dx) + d/dz (h^3/(12 eta) dp/dz) = (U1 + U2)/2 dh/dx + dh/dt,
+//
+// x = R theta along the circumference, z axial in [-L/2, L/2], U1 = R omega_inner, U2 = R omega_outer, and the film
+// thickness h(theta, z) = c - (ex + z sx) cos(theta) - (ey + z sy) sin(theta) (journal centre relative to bush
+// centre at axial position z; sx, sy the relative slopes of the journal axis). Periodic in theta; Dirichlet at
+// both ends (ambient pressure) and at the nodes inside supply/coupling holes and grooves.
+//
+// Discretisation: second-order finite volumes on a node-centred grid (n_circ nodes in theta, n_axial interior nodes
+// in z, the ends one axial step beyond the first and last node), h evaluated exactly at nodes and faces.
+// Cavitation: none (full Sommerfeld), the Swift-Stieber/Reynolds condition as a linear complementarity problem
+// (p >= p_cav) solved by a primal-dual active-set method, or the mass-conserving JFO model (Elrod-Adams switch
+// function, film fraction theta in the cavitated zone, quasi-static in theta, needs an oil supply) solved by an
+// active-set (semismooth Newton) iteration.
+// Every linear solve is a direct band LDL^T with unknowns ordered axial-fastest (half-bandwidth n_axial, or
+// n_axial/2 by mid-width symmetry when the film is symmetric), with a dense border block only when no grid
+// column is entirely cavitated. See docs/reynolds.md for the equations, the references and the measured costs.
+//
+// Units: SI throughout; pressures are gauge pressures in Pa.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+namespace turbodyn::reynolds {
+
+enum class Cavitation {
+  None,           ///< full Sommerfeld: p may go below the cavitation pressure (and negative)
+  Gumbel,         ///< p >= p_cav as a complementarity problem (Swift-Stieber / Reynolds conditions), not a clamp
+  MassConserving  ///< JFO (Elrod-Adams): p >= p_cav, film fraction 0 <= theta <= 1, p_cav < p only where theta = 1
+};
+std::string to_string(Cavitation c);
+
+/// Radial hole in the outer surface. Grid nodes inside its circle (on the unrolled surface) get p = pressure; a
+/// hole smaller than the grid spacing fixes its nearest node.
+struct Hole {
+  double theta = 0;     ///< rad, position of the centre in the film frame
+  double z = 0;         ///< m, from mid-width
+  double diameter = 0;  ///< m
+  double pressure = 0;  ///< Pa gauge (can be overridden per call, FilmState::hole_pressure_override)
+};
+
+/// Full circumferential groove: nodes with |z - groove.z| <= width/2 get p = pressure (the nearest row if none).
+struct Groove {
+  double z = 0;         ///< m, from mid-width
+  double width = 0;     ///< m
+  double pressure = 0;  ///< Pa gauge
+};
+
+struct FilmGeometry {
+  double radius = 0;     ///< R, m (journal radius; used for both surfaces, thin-film approximation)
+  double length = 0;     ///< L, m (axial width)
+  double clearance = 0;  ///< c, m (radial)
+  int n_circ = 60;       ///< grid nodes around the circumference (>= 8)
+  int n_axial = 12;      ///< interior grid nodes along the axis (>= 4); the ends are one step beyond
+  double ambient_pressure = 0;     ///< Pa gauge, both ends
+  double cavitation_pressure = 0;  ///< Pa gauge, p_cav of the Gumbel and mass-conserving models
+  std::vector<Hole> holes;         ///< at most 8 (FilmState::hole_pressure_override)
+  std::vector<Groove> grooves;
+};
+
+/// Kinematics of the journal relative to the bush, written in the film frame (x, y perpendicular to the axis,
+/// theta measured from +x towards +y).
+struct FilmState {
+  double ex = 0, ey = 0;    ///< m, journal centre relative to bush centre at mid-width
+  double vx = 0, vy = 0;    ///< m/s, its rate
+  double sx = 0, sy = 0;    ///< relative slopes dx/dz, dy/dz of the journal axis (tilt) [-]
+  double dsx = 0, dsy = 0;  ///< their rates, 1/s
+  double omega_inner = 0;   ///< rad/s, journal spin about the axis
+  double omega_outer = 0;   ///< rad/s, bush spin about the axis
+  std::array<double, 8> hole_pressure_override{};  ///< Pa gauge, per hole in geometry order (coupling)
+  bool use_override = false;
+};
+
+struct FilmResult {
+  double fx = 0, fy = 0;        ///< N, force of the film on the journal
+  double mx = 0, my = 0;        ///< N m, moment of the film on the journal about the film centre (axes x, y)
+  double torque_inner = 0;      ///< N m about +z, friction torque on the journal
+  double torque_outer = 0;      ///< N m about +z, friction torque on the bush
+  double flow_ends = 0;         ///< m^3/s leaving through both ends
+  std::vector<double> hole_flows;  ///< m^3/s into the film through each hole (size = holes)
+  double max_pressure = 0;      ///< Pa gauge
+  double cavitated_fraction = 0;  ///< share of the grid nodes in the cavitated zone (Gumbel, MassConserving)
+  /// MassConserving: nodes where no steady film fraction exists (a cavitated gap closing faster than the Couette
+  /// flow empties it) and the Swift-Stieber condition is used instead (p = p_cav, full film, mass not balanced
+  /// there). Zero in steady operation. See docs/reynolds.md.
+  int fallback_nodes = 0;
+  int iterations = 0;           ///< active-set sweeps (= factorisations)
+  int linear_solves = 0;        ///< back-substitutions (mass-conserving: inner fixed-point sweeps)
+  bool symmetric = false;       ///< the solve used mid-width symmetry (half the axial unknowns)
+};
+
+struct SolverOptions {
+  Cavitation cavitation = Cavitation::Gumbel;
+  double tolerance = 1e-8;  ///< relative: active-set sign tests and the mass-conserving inner iteration
+  int max_iterations = 200;  ///< active-set sweeps (and inner sweeps per active set)
+  bool use_symmetry = true;  ///< solve half the film when tilt, holes and grooves are symmetric about mid-width
+};
+
+/// Short-bearing (Ocvirk) and long-bearing (Sommerfeld) closed forms, half-Sommerfeld (Gumbel) cavitation, steady,
+/// journal speed omega, stationary bush: magnitudes of the force components of the film on the journal,
+/// F = -radial e_r + tangential e_t with e_r along the eccentricity and e_t = e_z x e_r (radial >= 0; tangential has
+/// the sign of omega). validation-references.md section 2.
+struct Closed {
+  double radial, tangential;  ///< N
+};
+Closed short_bearing(double eta, double omega, double R, double L, double c, double eps);
+Closed long_bearing(double eta, double omega, double R, double L, double c, double eps);
+
+/// One solver per film per simulation: holds the grid, the factorisation storage and the warm-start state (last
+/// cavitation zone and film fraction). Not thread-safe; copy it to give each thread its own.
+class FilmSolver {
+ public:
+  /// Throws std::invalid_argument for bad input (non-positive radius, length, clearance or viscosity, grid smaller
+  /// than 8 x 4, more than 8 holes, a hole or groove not inside the film, overlapping holes, bad options).
+  FilmSolver(const FilmGeometry& g, double viscosity, const SolverOptions& o = {});
+  ~FilmSolver();
+  FilmSolver(const FilmSolver&);
+  FilmSolver& operator=(const FilmSolver&);
+  FilmSolver(FilmSolver&&) noexcept;
+  FilmSolver& operator=(FilmSolver&&) noexcept;
+
+  /// Solves the film for the state, warm-started from the previous call; allocation-free (after `r.hole_flows`
+  /// has its size). Returns false, leaves `r` unchanged and sets last_error() when the film closes (h <= 0
+  /// somewhere in the film), the input is not finite, or the solver fails. Never throws.
+  bool solve(const FilmState& s, FilmResult& r);
+  const std::string& last_error() const;
+
+  /// Pressure of the last solve, Pa gauge, n_circ x n_axial, theta-major: p[i * n_axial + j] at theta_nodes()[i],
+  /// z_nodes()[j] (the ends, at z = -+L/2, are at ambient pressure).
+  const std::vector<double>& pressure() const;
+  /// Film fraction of the last solve, same layout: the JFO theta for MassConserving; for the other models 1 in
+  /// the full film and 0 where the Swift-Stieber constraint is active.
+  const std::vector<double>& film_fraction() const;
+  std::vector<double> theta_nodes() const;  ///< rad, i * 2 pi / n_circ
+  std::vector<double> z_nodes() const;      ///< m, -L/2 + (j + 1) L / (n_axial + 1)
+
+  /// Forget the warm-start state (the next solve starts cold).
+  void reset_warm_start();
+
+  const FilmGeometry& geometry() const;
+  double viscosity() const;
+  const SolverOptions& options() const;
+
+  /// The full-film linear system A p = b over all n_circ x n_axial nodes (theta-major order as pressure()),
+  /// Dirichlet nodes as identity rows: the system the None model solves, for tests and the SparseLU baseline.
+  /// Assumes an open film (check with solve first).
+  void assemble_full_film_system(const FilmState& s, Eigen::SparseMatrix<double>& A, Eigen::VectorXd& b) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace turbodyn::reynolds

@@ -1,0 +1,860 @@
+// Reynolds film solver (model/reynolds.h) against published tables, closed forms, independent solvers and exact
+// discrete properties. References are in docs/reynolds.md and shared/reference/validation-references.md.
+//
+// The allocation test replaces the global operator new with a counting one (as tests/model/rhs_alloc_test.cpp):
+// keep this file out of executables that replace operator new themselves.
+#include "model/reynolds.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <Eigen/SparseLU>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// Not inlined: GCC 12 otherwise pairs the inlined malloc/free with new/delete and warns (-Wmismatched-new-delete).
+[[gnu::noinline]] void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+[[gnu::noinline]] void* operator new[](std::size_t n) { return operator new(n); }
+[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
+[[gnu::noinline]] void operator delete[](void* p) noexcept { std::free(p); }
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace turbodyn::reynolds {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The Raimondi-Boyd example bearing: D = 50 mm, c = 50 um, 20 mPa s, 30 rev/s (any consistent set gives the same
+// dimensionless numbers).
+constexpr double kR = 0.025, kC = 50e-6, kEta = 0.02, kRevs = 30.0, kOmega = 2.0 * kPi * kRevs;
+
+FilmGeometry plain(double l_over_d, int n_circ = 60, int n_axial = 12, double R = kR, double c = kC) {
+  FilmGeometry g;
+  g.radius = R;
+  g.length = l_over_d * 2.0 * R;
+  g.clearance = c;
+  g.n_circ = n_circ;
+  g.n_axial = n_axial;
+  return g;
+}
+
+SolverOptions with(Cavitation cav) {
+  SolverOptions o;
+  o.cavitation = cav;
+  return o;
+}
+
+FilmState journal(double eps, double angle = 0.0, double omega = kOmega, double c = kC) {
+  FilmState s;
+  s.ex = eps * c * std::cos(angle);
+  s.ey = eps * c * std::sin(angle);
+  s.omega_inner = omega;
+  return s;
+}
+
+FilmResult solve_ok(FilmSolver& solver, const FilmState& s) {
+  FilmResult r;
+  EXPECT_TRUE(solver.solve(s, r)) << solver.last_error();
+  return r;
+}
+
+// Components of the film force on the journal in the closed forms' convention: F = -radial e_r + tangential e_t,
+// e_r along the eccentricity at `angle`, e_t = e_z x e_r.
+Closed components(const FilmResult& r, double angle = 0.0) {
+  const double ca = std::cos(angle), sa = std::sin(angle);
+  return {-(r.fx * ca + r.fy * sa), -r.fx * sa + r.fy * ca};
+}
+
+double rel(double a, double b) { return std::abs(a / b - 1.0); }
+
+// ---- published tables and closed forms --------------------------------------------------------------------------
+
+TEST(RaimondiBoyd, SommerfeldNumberAndFrictionVariable) {
+  // Raimondi & Boyd (1958), ASLE Trans. 1, full 360-degree bearing with Swift-Stieber (Reynolds) conditions, as
+  // printed in Shigley's Mechanical Engineering Design (validation-references.md section 1).
+  // S = (R/c)^2 eta N / P with P = W / (2 R L); f = (|torque on the journal| / R) / W. The table is reproduced with
+  // the Couette shear taken over the whole circumference (the cavitated zone sheared as a full film) plus the
+  // Poiseuille shear on the journal surface: the convention of the model's Gumbel friction (docs/reynolds.md).
+  // Tolerance 3 %: the 1958 tables come from coarse grids (the brief's acceptance band); we see at most 1.8 %.
+  constexpr double kTol = 0.03;
+  const double eps[] = {0.1, 0.2, 0.4, 0.6, 0.8};
+  const double S_1[] = {1.33, 0.631, 0.264, 0.121, 0.0446}, f_1[] = {26.4, 12.8, 5.79, 3.22, 1.70};
+  const double S_half[] = {4.31, 2.03, 0.779, 0.319, 0.0923}, f_half[] = {85.6, 40.9, 17.0, 8.1, 3.26};
+  for (const double l_over_d : {1.0, 0.5}) {
+    const FilmGeometry g = plain(l_over_d, 120, 24);
+    FilmSolver solver(g, kEta, with(Cavitation::Gumbel));
+    for (int k = 0; k < 5; ++k) {
+      const FilmResult r = solve_ok(solver, journal(eps[k]));
+      const double W = std::hypot(r.fx, r.fy), P = W / (2.0 * kR * g.length);
+      const double S = (kR / kC) * (kR / kC) * kEta * kRevs / P;
+      const double f = std::abs(r.torque_inner) / kR / W;
+      const double S_ref = l_over_d == 1.0 ? S_1[k] : S_half[k], f_ref = l_over_d == 1.0 ? f_1[k] : f_half[k];
+      EXPECT_LT(rel(S, S_ref), kTol) << "L/D " << l_over_d << " eps " << eps[k] << ": S " << S;
+      EXPECT_LT(rel((kR / kC) * f, f_ref), kTol) << "L/D " << l_over_d << " eps " << eps[k] << ": (R/c)f "
+                                                 << (kR / kC) * f;
+      EXPECT_LT(r.torque_inner, 0.0);  // the film brakes the journal
+    }
+  }
+}
+
+TEST(ShortBearing, GumbelApproachesOcvirkAsTheWidthShrinks) {
+  // Ocvirk short-bearing forces with half-Sommerfeld conditions (validation-references.md section 2). For L/D -> 0
+  // the complementarity solution decouples into independent axial lines and equals the clamped one, so the
+  // finite-width error must shrink like (L/D)^2. Tolerance at L/D = 1/8: 3 % (finite-width error, 1.5-2.6 % here).
+  constexpr double kTolEighth = 0.03;
+  for (const double eps : {0.3, 0.6}) {
+    double previous = 1.0;
+    for (const double l_over_d : {0.25, 0.125, 0.0625}) {
+      const FilmGeometry g = plain(l_over_d, 120, 12);
+      FilmSolver solver(g, kEta, with(Cavitation::Gumbel));
+      const Closed num = components(solve_ok(solver, journal(eps, 0.3)), 0.3);
+      const Closed ref = short_bearing(kEta, kOmega, kR, g.length, kC, eps);
+      const double err = rel(std::hypot(num.radial, num.tangential), std::hypot(ref.radial, ref.tangential));
+      EXPECT_LT(err, previous) << "eps " << eps << " L/D " << l_over_d;
+      previous = err;
+      if (l_over_d == 0.125) {
+        EXPECT_LT(rel(num.radial, ref.radial), kTolEighth) << "eps " << eps;
+        EXPECT_LT(rel(num.tangential, ref.tangential), kTolEighth) << "eps " << eps;
+      }
+    }
+  }
+}
+
+TEST(LongBearing, MidPlaneMatchesSommerfeld) {
+  // Long-bearing (Sommerfeld) solution, validation-references.md section 2. The half-Sommerfeld (Guembel) closed
+  // form is the full-Sommerfeld pressure with its negative half set to zero. At L/D = 8 the mid-plane of the
+  // full-film (None) solution is the infinite bearing: force per unit length within 0.5 % (grid error); the full
+  // Sommerfeld force (no clamp) is purely tangential and twice the half-Sommerfeld one.
+  constexpr double kTolMid = 0.005;
+  const double eps = 0.6;
+  const FilmGeometry g = plain(8.0, 120, 64);
+  FilmSolver solver(g, kEta, with(Cavitation::None));
+  solve_ok(solver, journal(eps));
+  const std::vector<double>& p = solver.pressure();
+  const std::vector<double> th = solver.theta_nodes();
+  const int n = g.n_circ, nz = g.n_axial;
+  double fx_half = 0, fy_half = 0, fx_full = 0, fy_full = 0;  // per unit length at z = 0 (between rows 31, 32)
+  for (int i = 0; i < n; ++i) {
+    const double pm = 0.5 * (p[i * nz + nz / 2 - 1] + p[i * nz + nz / 2]);
+    const double w = kR * 2.0 * kPi / n;
+    fx_full -= pm * std::cos(th[i]) * w;
+    fy_full -= pm * std::sin(th[i]) * w;
+    fx_half -= std::max(pm, 0.0) * std::cos(th[i]) * w;
+    fy_half -= std::max(pm, 0.0) * std::sin(th[i]) * w;
+  }
+  const Closed ref = long_bearing(kEta, kOmega, kR, 1.0, kC, eps);  // per metre
+  EXPECT_LT(rel(-fx_half, ref.radial), kTolMid);
+  EXPECT_LT(rel(fy_half, ref.tangential), kTolMid);
+  EXPECT_LT(std::abs(fx_full), 1e-3 * fy_full);
+  EXPECT_LT(rel(fy_full, 2.0 * ref.tangential), kTolMid);
+}
+
+TEST(LongBearing, ClampedFullFilmApproachesHalfSommerfeldLikeDOverL) {
+  // The whole film's half-Sommerfeld force (full-film solution clamped at zero) differs from the long-bearing closed
+  // form by the end leakage, an error proportional to D/L: about halved for each doubling of L/D.
+  const double eps = 0.6;
+  double previous = 0.0;
+  for (const double l_over_d : {4.0, 8.0, 16.0}) {
+    const FilmGeometry g = plain(l_over_d, 90, static_cast<int>(6 * l_over_d));
+    FilmSolver solver(g, kEta, with(Cavitation::None));
+    solve_ok(solver, journal(eps));
+    const std::vector<double>& p = solver.pressure();
+    const std::vector<double> th = solver.theta_nodes();
+    const double dz = g.length / (g.n_axial + 1), w = kR * 2.0 * kPi / g.n_circ * dz;
+    double fy = 0.0;
+    for (int i = 0; i < g.n_circ; ++i)
+      for (int j = 0; j < g.n_axial; ++j) fy -= std::max(p[i * g.n_axial + j], 0.0) * std::sin(th[i]) * w;
+    const double err = 1.0 - fy / long_bearing(kEta, kOmega, kR, g.length, kC, eps).tangential;
+    EXPECT_GT(err, 0.0);  // end leakage lowers the load
+    if (previous > 0.0) {
+      EXPECT_NEAR(previous / err, 2.0, 0.3) << "L/D " << l_over_d;
+    }
+    previous = err;
+  }
+  EXPECT_LT(previous, 0.06);  // L/D = 16
+}
+
+TEST(LongBearing, SwiftStieberWithoutSupplyTendsToShiftedFullSommerfeld) {
+  // Not the half-Sommerfeld limit: on a periodic line without a Dirichlet point (no supply, no ends) the
+  // complementarity problem p >= 0 is solved by the full-Sommerfeld pressure plus the constant that lifts its minimum
+  // to zero (cavitation shrinks to a line). So as L/D grows, the mid-plane pressure of the Gumbel model tends to
+  // p_S - min p_S with p_S = 6 eta omega (R/c)^2 eps sin(th)(2 - eps cos th) / ((2 + eps^2)(1 - eps cos th)^2)
+  // (Sommerfeld 1904, written for h = c (1 - eps cos th)), and its tangential force to twice the half-Sommerfeld
+  // one. See docs/reynolds.md. Checked: the error falls by more than 3x from L/D = 8 to 16 and is below 5 % there.
+  const double eps = 0.6;
+  double previous = 0.0;
+  for (const double l_over_d : {8.0, 16.0}) {
+    const FilmGeometry g = plain(l_over_d, 90, static_cast<int>(6 * l_over_d) + 1);
+    FilmSolver solver(g, kEta, with(Cavitation::Gumbel));
+    solve_ok(solver, journal(eps));
+    const std::vector<double>& p = solver.pressure();
+    const std::vector<double> th = solver.theta_nodes();
+    const int nz = g.n_axial;
+    std::vector<double> ps(g.n_circ);
+    for (int i = 0; i < g.n_circ; ++i) {
+      const double t = th[i];
+      ps[i] = -6.0 * kEta * kOmega * (kR / kC) * (kR / kC) * eps * std::sin(t) * (2.0 - eps * std::cos(t)) /
+              ((2.0 + eps * eps) * std::pow(1.0 - eps * std::cos(t), 2));
+    }
+    const double pmin = *std::min_element(ps.begin(), ps.end());
+    double err = 0.0, pmax = 0.0;
+    for (int i = 0; i < g.n_circ; ++i) {
+      err = std::max(err, std::abs(p[i * nz + nz / 2] - (ps[i] - pmin)));
+      pmax = std::max(pmax, ps[i] - pmin);
+    }
+    err /= pmax;
+    if (previous > 0.0) {
+      EXPECT_LT(err, previous / 3.0);
+      EXPECT_LT(err, 0.05);
+    }
+    previous = err;
+  }
+}
+
+TEST(GridConvergence, SecondOrderUnderRefinement) {
+  // Observed order p = log2((F_h - F_h/2) / (F_h/2 - F_h/4)) with both steps halved (n_circ doubled, n_axial + 1
+  // doubled), L/D = 1, eps = 0.6. Second-order finite volumes: p = 2 within 0.2 for the smooth full-film solution;
+  // the Swift-Stieber free boundary (C^1 contact) still gives about 2 for the load.
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
+    std::vector<double> W;
+    for (const int k : {2, 4, 8}) {
+      FilmSolver solver(plain(1.0, 24 * k, 6 * k - 1), kEta, with(cav));
+      const FilmResult r = solve_ok(solver, journal(0.6));
+      W.push_back(std::hypot(r.fx, r.fy));
+    }
+    const double order = std::log2((W[0] - W[1]) / (W[1] - W[2]));
+    EXPECT_NEAR(order, 2.0, 0.2) << to_string(cav);
+  }
+}
+
+TEST(SqueezeFilmDamper, CircularCentredOrbitMatchesShortFilmTheory) {
+  // Short open-ended damper, non-rotating journal on a circular centred orbit of radius eps c at whirl speed w
+  // (validation-references.md section 3; San Andres, Vance): pi-film (cavitated, here the complementarity model):
+  // C_tt = pi eta R L^3 / (2 c^3 (1 - eps^2)^1.5), K_rr = 2 eta R L^3 w eps / (c^3 (1 - eps^2)^2); 2 pi-film (None):
+  // twice the damping, no radial force. F_t = -C_tt eps c w, F_r = -K_rr eps c. Tolerance 3 % at L/D = 1/8
+  // (finite-length error, up to 2.9 % at eps = 0.6).
+  constexpr double kTol = 0.03;
+  const FilmGeometry g = plain(0.125, 120, 12);
+  const double L = g.length, w = 300.0, t = 0.37;
+  for (const double eps : {0.3, 0.6}) {
+    const double e = eps * kC, q = 1.0 - eps * eps, a = w * t;
+    FilmState s;
+    s.ex = e * std::cos(a);
+    s.ey = e * std::sin(a);
+    s.vx = -e * w * std::sin(a);
+    s.vy = e * w * std::cos(a);
+    for (const Cavitation cav : {Cavitation::Gumbel, Cavitation::None}) {
+      FilmSolver solver(g, kEta, with(cav));
+      const FilmResult r = solve_ok(solver, s);
+      const double fr = r.fx * std::cos(a) + r.fy * std::sin(a), ft = -r.fx * std::sin(a) + r.fy * std::cos(a);
+      const double pi_film = cav == Cavitation::Gumbel ? 1.0 : 2.0;
+      const double Ctt = pi_film * kPi * kEta * kR * L * L * L / (2.0 * kC * kC * kC * std::pow(q, 1.5));
+      const double Krr = 2.0 * kEta * kR * L * L * L * w * eps / (kC * kC * kC * q * q);
+      EXPECT_LT(rel(ft, -Ctt * e * w), kTol) << to_string(cav) << " eps " << eps;
+      if (cav == Cavitation::Gumbel)
+        EXPECT_LT(rel(fr, -Krr * e), kTol) << "eps " << eps;
+      else
+        EXPECT_LT(std::abs(fr), 1e-9 * std::abs(ft)) << "eps " << eps;
+    }
+  }
+}
+
+TEST(ClosedForms, AttitudeAngleAndInputChecks) {
+  // Ocvirk: tan(phi) = pi sqrt(1 - eps^2) / (4 eps) (validation-references.md section 2).
+  for (const double eps : {0.2, 0.5, 0.9}) {
+    const Closed f = short_bearing(kEta, kOmega, kR, 0.01, kC, eps);
+    EXPECT_NEAR(f.tangential / f.radial, kPi * std::sqrt(1 - eps * eps) / (4 * eps), 1e-12);
+    const Closed b = short_bearing(kEta, -kOmega, kR, 0.01, kC, eps);
+    EXPECT_DOUBLE_EQ(b.radial, f.radial);
+    EXPECT_DOUBLE_EQ(b.tangential, -f.tangential);
+  }
+  EXPECT_THROW(short_bearing(kEta, kOmega, kR, 0.01, kC, 1.0), std::invalid_argument);
+  EXPECT_THROW(long_bearing(kEta, kOmega, kR, 0.01, kC, -0.1), std::invalid_argument);
+}
+
+// ---- symmetries and invariances ---------------------------------------------------------------------------------
+
+TEST(Invariance, RotatingTheStateRotatesTheForce) {
+  // By a grid step: exact up to the solver; by any angle: up to the discretisation (1 % on 60 x 12 at eps 0.6).
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
+    FilmSolver solver(plain(0.5), kEta, with(cav));
+    FilmState s0 = journal(0.6, 0.2);
+    s0.vx = 0.3 * kC * kOmega;
+    s0.vy = -0.1 * kC * kOmega;
+    const FilmResult r0 = solve_ok(solver, s0);
+    for (const double a : {2.0 * kPi / 60 * 7, 1.234}) {
+      const double ca = std::cos(a), sa = std::sin(a);
+      FilmState s = s0;
+      s.ex = ca * s0.ex - sa * s0.ey;
+      s.ey = sa * s0.ex + ca * s0.ey;
+      s.vx = ca * s0.vx - sa * s0.vy;
+      s.vy = sa * s0.vx + ca * s0.vy;
+      const FilmResult r = solve_ok(solver, s);
+      const double fx = ca * r0.fx - sa * r0.fy, fy = sa * r0.fx + ca * r0.fy, F = std::hypot(r0.fx, r0.fy);
+      const double tol = a == 1.234 ? 1e-2 : 1e-9;
+      EXPECT_NEAR(r.fx, fx, tol * F) << to_string(cav) << " angle " << a;
+      EXPECT_NEAR(r.fy, fy, tol * F) << to_string(cav) << " angle " << a;
+      EXPECT_NEAR(r.torque_inner, r0.torque_inner, tol * std::abs(r0.torque_inner));
+    }
+  }
+}
+
+TEST(Invariance, SteadyForceDependsOnlyOnTheSumOfTheSpeeds) {
+  // Eq. 24: the surface speeds enter the pressure only as (U1 + U2)/2. The friction torques do depend on the split.
+  FilmSolver solver(plain(1.0), kEta, with(Cavitation::Gumbel));
+  FilmState s = journal(0.5, 0.4);
+  const FilmResult a = solve_ok(solver, s);
+  s.omega_inner = 0.3 * kOmega;
+  s.omega_outer = 0.7 * kOmega;
+  const FilmResult b = solve_ok(solver, s);
+  s.omega_inner = -kOmega;
+  s.omega_outer = 2.0 * kOmega;
+  const FilmResult c = solve_ok(solver, s);
+  for (const FilmResult* r : {&b, &c}) {
+    EXPECT_NEAR(r->fx, a.fx, 1e-12 * std::abs(a.fx));
+    EXPECT_NEAR(r->fy, a.fy, 1e-12 * std::abs(a.fy));
+  }
+  EXPECT_GT(std::abs(b.torque_inner - a.torque_inner), 0.1 * std::abs(a.torque_inner));
+}
+
+TEST(Invariance, ReversedRotationMirrorsTheFilm) {
+  // omega -> -omega with the journal on the x axis mirrors the film about the x axis: fx stays, fy changes sign.
+  // Checks the upwinding of the mass-conserving model in both directions (supply hole on the x axis).
+  FilmGeometry g = plain(1.0, 60, 12);
+  g.holes = {Hole{kPi, 0.0, 0.01, 3e5}};
+  for (const Cavitation cav : {Cavitation::Gumbel, Cavitation::MassConserving}) {
+    FilmSolver solver(g, kEta, with(cav));
+    const FilmResult a = solve_ok(solver, journal(0.7, 0.0, kOmega));
+    const FilmResult b = solve_ok(solver, journal(0.7, 0.0, -kOmega));
+    EXPECT_NEAR(b.fx, a.fx, 1e-9 * std::abs(a.fx)) << to_string(cav);
+    EXPECT_NEAR(b.fy, -a.fy, 1e-9 * std::abs(a.fx)) << to_string(cav);
+    EXPECT_NEAR(b.flow_ends, a.flow_ends, 1e-9 * a.flow_ends) << to_string(cav);
+  }
+}
+
+TEST(Invariance, CentredStaticFilmCarriesNoLoad) {
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
+    FilmSolver solver(plain(1.0), kEta, with(cav));
+    FilmResult r = solve_ok(solver, journal(0.0, 0.0, kOmega));  // centred and spinning: uniform gap, no pressure
+    EXPECT_EQ(r.fx, 0.0);
+    EXPECT_EQ(r.fy, 0.0);
+    EXPECT_EQ(r.max_pressure, 0.0);
+    r = solve_ok(solver, journal(0.5, 1.0, 0.0));  // eccentric, no speeds
+    EXPECT_EQ(r.fx, 0.0);
+    EXPECT_EQ(r.fy, 0.0);
+  }
+}
+
+TEST(Invariance, ShiftingAllPrescribedPressuresShiftsTheField) {
+  // Ambient, cavitation and hole pressures raised by the same P0: the field rises by P0 (the operator only sees
+  // differences), the film fraction, forces and flows stay. Exercises p_cav != 0 and ambient != 0.
+  const double P0 = 0.8e5;
+  FilmGeometry g = plain(0.7, 60, 12, 0.005, 15e-6), h = g;
+  g.holes = {Hole{kPi / 2, 0.0, 0.002, 2e5}};
+  h.holes = {Hole{kPi / 2, 0.0, 0.002, 2e5 + P0}};
+  h.ambient_pressure = h.cavitation_pressure = P0;
+  for (const Cavitation cav : {Cavitation::Gumbel, Cavitation::MassConserving}) {
+    FilmSolver a(g, 0.0108, with(cav)), b(h, 0.0108, with(cav));
+    FilmState s = journal(0.7, 0.3, 10000.0, 15e-6);
+    s.sy = 3e-4;
+    const FilmResult ra = solve_ok(a, s), rb = solve_ok(b, s);
+    const double F = std::hypot(ra.fx, ra.fy);
+    EXPECT_NEAR(rb.fx, ra.fx, 1e-9 * F) << to_string(cav);
+    EXPECT_NEAR(rb.fy, ra.fy, 1e-9 * F) << to_string(cav);
+    EXPECT_NEAR(rb.mx, ra.mx, 1e-9 * F * 0.007) << to_string(cav);
+    EXPECT_NEAR(rb.flow_ends, ra.flow_ends, 1e-9 * ra.flow_ends) << to_string(cav);
+    EXPECT_EQ(rb.cavitated_fraction, ra.cavitated_fraction) << to_string(cav);
+    EXPECT_GT(ra.cavitated_fraction, 0.1);
+    for (std::size_t k = 0; k < a.pressure().size(); ++k)
+      ASSERT_NEAR(b.pressure()[k], a.pressure()[k] + P0, 1e-9 * ra.max_pressure) << k;
+  }
+}
+
+TEST(Moments, VanishWithoutTiltAndResistTilt) {
+  FilmSolver solver(plain(1.0), kEta, with(Cavitation::Gumbel));
+  FilmResult r = solve_ok(solver, journal(0.6, 0.5));
+  EXPECT_EQ(r.mx, 0.0);
+  EXPECT_EQ(r.my, 0.0);
+  // Static tilt of a spinning journal (sx > 0: the journal half at z > 0 is displaced towards +x): the direct moment
+  // turns it back (my < 0), the cross-coupled one (like the tangential force) is larger, and the net force is zero.
+  FilmState s = journal(0.0);
+  s.sx = 0.3 * kC / (2.0 * kR);
+  r = solve_ok(solver, s);
+  EXPECT_LT(r.my, 0.0);
+  EXPECT_LT(r.mx, 0.0);
+  EXPECT_NEAR(r.fx, 0.0, 1e-9 * std::abs(r.mx) / kR);
+  EXPECT_NEAR(r.fy, 0.0, 1e-9 * std::abs(r.mx) / kR);
+  // The same about the other axis, rotated by 90 degrees.
+  FilmState s2 = journal(0.0);
+  s2.sy = s.sx;
+  const FilmResult r2 = solve_ok(solver, s2);
+  EXPECT_NEAR(r2.mx, -r.my, 1e-6 * std::abs(r.mx));
+  EXPECT_NEAR(r2.my, r.mx, 1e-6 * std::abs(r.mx));
+  // Tilting velocity of a non-rotating journal: a pure damping moment against the rate.
+  s = FilmState{};
+  s.dsx = 0.01;
+  r = solve_ok(solver, s);
+  EXPECT_LT(r.my, 0.0);
+  EXPECT_NEAR(r.mx, 0.0, 1e-9 * std::abs(r.my));
+  // Tilting squeeze of a short film (Ocvirk approximation: independent axial lines, h = c): the line at theta sees
+  // the squeeze velocity z dsx cos(theta), so 12 eta/c^3 ... p'' = -a z with a = 12 eta dsx cos(theta) / c^3.
+  // Full film: p = a z (L^2/4 - z^2) / 6 and M_y = -pi eta R L^5 dsx / (60 c^3). Swift-Stieber along each line: the
+  // obstacle problem has its free boundary at z = -L/4 (p = p' = 0 there: 1 - 3u^2 + 2u^3 = 0, u = -1/2), giving
+  // M_y = -(27 pi / 2560) eta R L^5 dsx / c^3, 1.27 times the clamped (pi-film) value (our derivation; the
+  // translational pi-film forms of validation-references.md section 3 assume a velocity uniform along z, where the
+  // clamp and the complementarity solution coincide). Tolerance 3 % at L/D = 1/8 (finite length).
+  const FilmGeometry g = plain(0.125, 120, 24);
+  const double L = g.length, base = kEta * kR * std::pow(L, 5) * s.dsx / (kC * kC * kC);
+  FilmSolver narrow(g, kEta, with(Cavitation::Gumbel)), narrow_full(g, kEta, with(Cavitation::None));
+  EXPECT_LT(rel(solve_ok(narrow, s).my, -27.0 * kPi / 2560.0 * base), 0.03);
+  EXPECT_LT(rel(solve_ok(narrow_full, s).my, -kPi / 60.0 * base), 0.03);
+}
+
+TEST(Torques, BalanceOfTheFilm) {
+  // The film carries no net torque about the bush axis: T_journal + T_bush = -(e x F)_z (pressure couple of the
+  // eccentric journal). Discretisation error well below 0.5 %.
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
+    FilmSolver solver(plain(1.0), kEta, with(cav));
+    const FilmState s = journal(0.5, 0.7);
+    const FilmResult r = solve_ok(solver, s);
+    const double couple = -(s.ex * r.fy - s.ey * r.fx);
+    EXPECT_NEAR(r.torque_inner + r.torque_outer, couple, 5e-3 * std::abs(couple)) << to_string(cav);
+  }
+  // Centred (Petroff): T = -eta (omega_i - omega_o) R^3 2 pi L / c on the journal, the opposite on the bush.
+  FilmSolver solver(plain(1.0), kEta, with(Cavitation::Gumbel));
+  FilmState s = journal(0.0);
+  s.omega_outer = 0.25 * kOmega;
+  const FilmResult r = solve_ok(solver, s);
+  const double petroff = -kEta * 0.75 * kOmega * kR * kR * kR * 2.0 * kPi * (2.0 * kR) / kC;
+  EXPECT_NEAR(r.torque_inner, petroff, 1e-12 * std::abs(petroff));
+  EXPECT_NEAR(r.torque_outer, -petroff, 1e-12 * std::abs(petroff));
+}
+
+// ---- cavitation models ------------------------------------------------------------------------------------------
+
+FilmGeometry supplied(double pressure, double diameter = 0.01, double theta = kPi) {
+  FilmGeometry g = plain(1.0, 60, 12);
+  g.holes = {Hole{theta, 0.0, diameter, pressure}};
+  return g;
+}
+
+TEST(MassConserving, FullFilmAgreesWithGumbel) {
+  // Small eccentricity and a 5-bar supply hole keep the whole film above the cavitation pressure: the three models
+  // solve the same linear problem.
+  const FilmGeometry g = supplied(5e5, 0.01, kPi / 2);
+  FilmSolver none(g, kEta, with(Cavitation::None)), gumbel(g, kEta, with(Cavitation::Gumbel)),
+      jfo(g, kEta, with(Cavitation::MassConserving));
+  const FilmState s = journal(0.02, 0.3);
+  const FilmResult a = solve_ok(none, s), b = solve_ok(gumbel, s), c = solve_ok(jfo, s);
+  EXPECT_EQ(c.cavitated_fraction, 0.0);
+  EXPECT_GT(*std::min_element(none.pressure().begin(), none.pressure().end()), 0.0);
+  for (const FilmResult* r : {&b, &c}) {
+    EXPECT_NEAR(r->fx, a.fx, 1e-9 * std::hypot(a.fx, a.fy));
+    EXPECT_NEAR(r->fy, a.fy, 1e-9 * std::hypot(a.fx, a.fy));
+    EXPECT_NEAR(r->torque_inner, a.torque_inner, 1e-9 * std::abs(a.torque_inner));
+    EXPECT_NEAR(r->hole_flows[0], a.hole_flows[0], 1e-9 * a.hole_flows[0]);
+  }
+  EXPECT_THAT(jfo.film_fraction(), ::testing::Each(1.0));
+}
+
+TEST(MassConserving, HighEccentricityLoadCloseToSwiftStieber) {
+  // For steadily loaded, adequately supplied bearings the Reynolds (Swift-Stieber) condition predicts rupture well
+  // and the load within a few per cent of the mass-conserving JFO theory; the reformation boundary differs
+  // (Dowson & Taylor 1979; Elrod 1981; Brewe 1986). Here: supply hole Ø 10 mm at the largest gap, 3 bar: within
+  // 2 % (0.4 % seen), with a cavitated zone of partial film.
+  constexpr double kTol = 0.02;
+  const FilmGeometry g = supplied(3e5);
+  FilmSolver gumbel(g, kEta, with(Cavitation::Gumbel)), jfo(g, kEta, with(Cavitation::MassConserving));
+  for (const double eps : {0.7, 0.8, 0.9}) {
+    const FilmResult a = solve_ok(gumbel, journal(eps)), b = solve_ok(jfo, journal(eps));
+    EXPECT_LT(rel(std::hypot(b.fx, b.fy), std::hypot(a.fx, a.fy)), kTol) << "eps " << eps;
+    EXPECT_GT(b.cavitated_fraction, 0.3);
+    const auto [lo, hi] = std::minmax_element(jfo.film_fraction().begin(), jfo.film_fraction().end());
+    EXPECT_GE(*lo, 0.0);
+    EXPECT_LT(*lo, 0.9);
+    EXPECT_EQ(*hi, 1.0);
+  }
+}
+
+TEST(MassConserving, ContinuityEndLeakageEqualsSupply) {
+  // Steady state: what the holes feed leaves through the ends (exact for the discrete scheme; required 1 %).
+  // The Swift-Stieber model does not conserve mass (its cavitated nodes are sources and sinks).
+  FilmGeometry g = plain(0.7, 60, 12, 0.005, 15e-6);
+  for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.2, 0.0, 0.002, 2e5 + 1e4 * k});
+  FilmSolver jfo(g, 0.0108, with(Cavitation::MassConserving));
+  FilmState s = journal(0.6, 1.0, 10000.0, 15e-6);
+  s.sx = 2e-4;  // tilt: no mid-width symmetry
+  s.omega_outer = 3000.0;
+  const FilmResult r = solve_ok(jfo, s);
+  double supply = 0.0;
+  for (const double q : r.hole_flows) supply += q;
+  EXPECT_GT(r.cavitated_fraction, 0.1);
+  EXPECT_EQ(r.fallback_nodes, 0);
+  EXPECT_GT(r.flow_ends, 0.0);
+  EXPECT_NEAR(supply, r.flow_ends, 1e-6 * r.flow_ends);
+
+  // Squeezing: supply = end leakage + rate of change of the oil volume, sum of theta dh/dt over the film (the
+  // model is quasi-static in theta: its own rate is not a state, docs/reynolds.md).
+  s.vx = 0.02;
+  s.vy = -0.01;
+  s.dsy = 3.0;
+  const FilmResult q = solve_ok(jfo, s);
+  EXPECT_EQ(q.fallback_nodes, 0);
+  const std::vector<double> th = jfo.theta_nodes(), z = jfo.z_nodes();
+  const double area = g.radius * 2.0 * kPi / g.n_circ * g.length / (g.n_axial + 1);
+  double dvdt = 0.0;
+  for (int i = 0; i < g.n_circ; ++i)
+    for (int j = 0; j < g.n_axial; ++j) {
+      const double hdot = -((s.vx + z[j] * s.dsx) * std::cos(th[i]) + (s.vy + z[j] * s.dsy) * std::sin(th[i]));
+      dvdt += jfo.film_fraction()[i * g.n_axial + j] * hdot * area;
+    }
+  supply = 0.0;
+  for (const double f : q.hole_flows) supply += f;
+  EXPECT_GT(std::abs(dvdt), 0.05 * q.flow_ends);
+  EXPECT_NEAR(supply, q.flow_ends + dvdt, 1e-6 * q.flow_ends);
+}
+
+TEST(MassConserving, CavitatedZoneCarriesTheCouetteFlux) {
+  // JFO/Elrod-Adams: in the cavitated zone the pressure is constant, so the film content is carried by the surfaces
+  // alone and theta h (U1 + U2)/2 is conserved along the circumference (steady; upwind faces h at i + 1/2).
+  const FilmGeometry g = supplied(2e5);
+  FilmSolver jfo(g, kEta, with(Cavitation::MassConserving));
+  const FilmState s = journal(0.8, 0.0);
+  solve_ok(jfo, s);
+  const std::vector<double>& th = jfo.film_fraction();
+  const std::vector<double>& p = jfo.pressure();
+  const int n = g.n_circ, nz = g.n_axial;
+  const std::vector<double> tn = jfo.theta_nodes();
+  const double dth = 2.0 * kPi / n;
+  int checked = 0;
+  auto cav = [&](int i, int j) {
+    i = (i + n) % n;
+    return j < 0 || j >= nz || (p[i * nz + j] == 0.0 && th[i * nz + j] < 1.0);
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < nz; ++j) {
+      if (!(cav(i, j) && cav(i - 1, j) && cav(i + 1, j) && cav(i, j - 1) && cav(i, j + 1) && cav(i - 1, j - 1) &&
+            cav(i - 1, j + 1)))
+        continue;
+      const int iw = (i + n - 1) % n;
+      const double he = kC - s.ex * std::cos(tn[i] + 0.5 * dth), hw = kC - s.ex * std::cos(tn[iw] + 0.5 * dth);
+      EXPECT_NEAR(th[i * nz + j] * he, th[iw * nz + j] * hw, 1e-9 * kC) << i << ", " << j;
+      ++checked;
+    }
+  EXPECT_GT(checked, 50);
+}
+
+TEST(MassConserving, SqueezeDominatedStatesSolveWithTheFallback) {
+  // The model is quasi-static in theta. Where a cavitated gap closes faster than the Couette flow empties it, no
+  // steady film fraction exists; those cells fall back to the Swift-Stieber condition (reported), and the active
+  // set cannot cycle. Random slow-speed, strong-squeeze states (fixed seed) all solve; in steady rotation none
+  // falls back and continuity is exact (ContinuityEndLeakageEqualsSupply).
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int with_fallback = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    FilmGeometry g = plain(0.7, 40, 8, 0.005, 15e-6);
+    g.holes = {Hole{kPi * (1 + u(rng)), 0.0, 0.002, 1e4 + 2e5 * (1 + u(rng))}};
+    FilmSolver jfo(g, 0.0108, with(Cavitation::MassConserving));
+    FilmState s = journal(0.95 * std::abs(u(rng)), kPi * u(rng), 100.0 * u(rng), 15e-6);
+    s.vx = 0.05 * u(rng);
+    s.vy = 0.05 * u(rng);
+    FilmResult r;
+    ASSERT_TRUE(jfo.solve(s, r)) << trial << ": " << jfo.last_error();
+    with_fallback += r.fallback_nodes > 0;
+    EXPECT_LE(r.iterations, 40) << trial;
+  }
+  EXPECT_GT(with_fallback, 0);
+}
+
+TEST(MassConserving, NeedsAnOilSupply) {
+  FilmSolver jfo(plain(1.0), kEta, with(Cavitation::MassConserving));
+  FilmResult r;
+  EXPECT_FALSE(jfo.solve(journal(0.5), r));
+  EXPECT_THAT(jfo.last_error(), HasSubstr("supply"));
+}
+
+// ---- holes and grooves ------------------------------------------------------------------------------------------
+
+TEST(Holes, SupplyHoleAtTheTopFeedsTheEnds) {
+  // Centred, non-rotating journal, 2-mm feed hole at 12 o'clock (theta = 90 deg) at 4.5 bar: the nodes in the hole
+  // hold the supply pressure, the film around it lies between ambient and supply, the oil fed through the hole
+  // leaves through the ends, and the film pushes the journal down.
+  FilmGeometry g = plain(0.7, 60, 12, 0.005, 15e-6);
+  g.holes = {Hole{kPi / 2, 0.0, 0.002, 4.5e5}};
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel, Cavitation::MassConserving}) {
+    FilmSolver solver(g, 0.0108, with(cav));
+    const FilmResult r = solve_ok(solver, FilmState{});
+    const std::vector<double>& p = solver.pressure();
+    const std::vector<double> th = solver.theta_nodes(), z = solver.z_nodes();
+    int in_hole = 0;
+    for (int i = 0; i < g.n_circ; ++i)
+      for (int j = 0; j < g.n_axial; ++j) {
+        const double dx = g.radius * std::remainder(th[i] - kPi / 2, 2 * kPi), dz = z[j];
+        const double pk = p[i * g.n_axial + j];
+        if (dx * dx + dz * dz <= 1e-6) {
+          EXPECT_EQ(pk, 4.5e5);
+          ++in_hole;
+        } else {
+          EXPECT_GT(pk, 0.0);
+          EXPECT_LT(pk, 4.5e5);
+        }
+      }
+    EXPECT_GT(in_hole, 4);
+    EXPECT_EQ(r.max_pressure, 4.5e5);
+    ASSERT_EQ(r.hole_flows.size(), 1u);
+    EXPECT_GT(r.hole_flows[0], 0.0);
+    EXPECT_NEAR(r.hole_flows[0], r.flow_ends, 1e-9 * r.flow_ends) << to_string(cav);
+    EXPECT_LT(r.fy, 0.0);
+    EXPECT_NEAR(r.fx, 0.0, 1e-9 * std::abs(r.fy));
+    EXPECT_TRUE(r.symmetric);
+  }
+}
+
+TEST(Holes, OverrideSetsThePressurePerCall) {
+  FilmGeometry g = plain(0.7, 60, 12, 0.005, 15e-6);
+  g.holes = {Hole{0.0, 0.0, 0.002, 1e5}, Hole{kPi, 0.0, 0.002, 1e5}};
+  FilmSolver solver(g, 0.0108, with(Cavitation::Gumbel));
+  FilmState s;
+  const FilmResult a = solve_ok(solver, s);
+  s.use_override = true;
+  s.hole_pressure_override = {3e5, 1e5};
+  const FilmResult b = solve_ok(solver, s);
+  EXPECT_NEAR(a.fx, 0.0, 1e-9 * std::abs(b.fx));  // equal holes opposite each other: no force
+  EXPECT_LT(b.fx, 0.0);  // the stronger hole at theta = 0 pushes the journal towards -x
+  EXPECT_EQ(b.max_pressure, 3e5);
+  EXPECT_GT(b.hole_flows[0], b.hole_flows[1]);
+}
+
+TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
+  // Centred journal, full circumferential groove at mid-width: the pressure falls linearly from the groove edge to
+  // each end, Q = 2 (2 pi R) c^3 / (12 eta) p_s / (L/2 - z_edge). The scheme is exact for a linear profile.
+  FilmGeometry g = plain(0.7, 24, 13, 0.005, 15e-6);
+  g.grooves = {Groove{0.0, 0.001, 2e5}};
+  FilmSolver solver(g, 0.0108, with(Cavitation::Gumbel));
+  const FilmResult r = solve_ok(solver, FilmState{});
+  const std::vector<double> z = solver.z_nodes();
+  double edge = 0.0;
+  for (const double zj : z)
+    if (std::abs(zj) <= 0.0005) edge = std::max(edge, std::abs(zj));
+  const double c = g.clearance;
+  const double q = 2.0 * (2.0 * kPi * g.radius) * c * c * c / (12.0 * 0.0108) * 2e5 / (0.5 * g.length - edge);
+  EXPECT_NEAR(r.flow_ends, q, 1e-9 * q);
+  EXPECT_TRUE(r.hole_flows.empty());
+}
+
+// ---- solver core against independent solvers --------------------------------------------------------------------
+
+FilmGeometry awkward() {  // tilt-free mid-width asymmetry, holes of different sizes, a groove: the general case
+  FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
+  g.holes = {Hole{0.3, 0.0005, 0.002, 2e5}, Hole{2.0, -0.001, 0.0015, 1e5}, Hole{4.0, 0.0, 0.0005, 0.5e5}};
+  g.grooves = {Groove{0.0028, 0.0006, 0.3e5}};
+  return g;
+}
+
+FilmState tilted_state() {
+  FilmState s;
+  s.ex = 5e-6;
+  s.ey = -3e-6;
+  s.sx = 1e-3;
+  s.sy = -1.5e-3;
+  s.vx = 2e-3;
+  s.vy = -1e-3;
+  s.dsx = 0.2;
+  s.dsy = 0.1;
+  s.omega_inner = 8000;
+  s.omega_outer = 1500;
+  return s;
+}
+
+TEST(Solver, FullFilmMatchesSparseLu) {
+  // The band L D L^T with its periodic border against Eigen's SparseLU on the same assembled system.
+  FilmSolver solver(awkward(), 0.0108, with(Cavitation::None));
+  const FilmState s = tilted_state();
+  const FilmResult r = solve_ok(solver, s);
+  EXPECT_FALSE(r.symmetric);
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+  solver.assemble_full_film_system(s, A, b);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(A);
+  const Eigen::VectorXd x = lu.solve(b);
+  const Eigen::Map<const Eigen::VectorXd> p(solver.pressure().data(), x.size());
+  EXPECT_LT((p - x).lpNorm<Eigen::Infinity>(), 1e-11 * x.lpNorm<Eigen::Infinity>());
+}
+
+TEST(Solver, SwiftStieberMatchesProjectedGaussSeidel) {
+  // The active-set solution against projected SOR (Cryer 1971) on the assembled system: min p with p >= 0 ...
+  FilmSolver solver(awkward(), 0.0108, with(Cavitation::Gumbel));
+  const FilmState s = tilted_state();
+  const FilmResult r = solve_ok(solver, s);
+  EXPECT_GT(r.cavitated_fraction, 0.1);
+  Eigen::SparseMatrix<double> Ac;
+  Eigen::VectorXd b;
+  solver.assemble_full_film_system(s, Ac, b);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> A = Ac;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  for (int sweep = 0; sweep < 20000; ++sweep) {
+    double change = 0.0;
+    for (int k = 0; k < A.rows(); ++k) {
+      double diag = 0.0, off = 0.0;
+      int nnz = 0;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, k); it; ++it, ++nnz) {
+        if (it.col() == k)
+          diag = it.value();
+        else
+          off += it.value() * x[it.col()];
+      }
+      double v = (b[k] - off) / diag;
+      if (nnz > 1) v = std::max(0.0, x[k] + 1.8 * (v - x[k]));  // hole and groove rows are identities
+      change = std::max(change, std::abs(v - x[k]));
+      x[k] = v;
+    }
+    if (change < 1e-13 * x.lpNorm<Eigen::Infinity>()) break;
+  }
+  const Eigen::Map<const Eigen::VectorXd> p(solver.pressure().data(), x.size());
+  EXPECT_LT((p - x).lpNorm<Eigen::Infinity>(), 1e-9 * x.lpNorm<Eigen::Infinity>());
+}
+
+TEST(Solver, MidWidthSymmetryMatchesTheFullGrid) {
+  // Solving half the film (even and odd axial counts) gives the full grid's answer.
+  for (const int nz : {12, 13})
+    for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel, Cavitation::MassConserving}) {
+      FilmGeometry g = plain(0.7, 60, nz, 0.005, 15e-6);
+      g.holes = {Hole{kPi / 2, 0.0, 0.002, 4.5e5}, Hole{kPi, 0.002, 0.001, 1e5}, Hole{kPi, -0.002, 0.001, 1e5}};
+      SolverOptions o = with(cav), full = with(cav);
+      full.use_symmetry = false;
+      FilmSolver half_solver(g, 0.0108, o), full_solver(g, 0.0108, full);
+      FilmState s = journal(0.7, 0.4, 10000.0, 15e-6);
+      s.vx = 0.01;
+      const FilmResult a = solve_ok(half_solver, s), b = solve_ok(full_solver, s);
+      EXPECT_TRUE(a.symmetric);
+      EXPECT_FALSE(b.symmetric);
+      const double F = std::hypot(b.fx, b.fy);
+      EXPECT_NEAR(a.fx, b.fx, 1e-9 * F) << nz << " " << to_string(cav);
+      EXPECT_NEAR(a.fy, b.fy, 1e-9 * F) << nz << " " << to_string(cav);
+      EXPECT_NEAR(a.torque_inner, b.torque_inner, 1e-9 * std::abs(b.torque_inner));
+      EXPECT_NEAR(a.flow_ends, b.flow_ends, 1e-9 * std::abs(b.flow_ends));
+      for (int h = 0; h < 3; ++h) EXPECT_NEAR(a.hole_flows[h], b.hole_flows[h], 1e-9 * std::abs(b.flow_ends));
+      EXPECT_EQ(a.cavitated_fraction, b.cavitated_fraction);
+    }
+}
+
+// ---- input checks, failures, warm start, allocations ------------------------------------------------------------
+
+TEST(BadInput, ConstructorRejectsWithAClearMessage) {
+  auto message = [](FilmGeometry g, double eta = kEta, SolverOptions o = {}) -> std::string {
+    try {
+      FilmSolver s(g, eta, o);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  FilmGeometry g = plain(1.0);
+  g.clearance = 0.0;
+  EXPECT_THAT(message(g), HasSubstr("clearance"));
+  g = plain(1.0);
+  g.n_circ = 6;
+  EXPECT_THAT(message(g), HasSubstr("8 x 4"));
+  g = plain(1.0);
+  g.n_axial = 3;
+  EXPECT_THAT(message(g), HasSubstr("8 x 4"));
+  g = plain(1.0);
+  g.holes = {Hole{0.0, 0.024, 0.004, 1e5}};  // reaches beyond z = L/2 = 25 mm
+  EXPECT_THAT(message(g), HasSubstr("not inside the film"));
+  g = plain(1.0);
+  g.holes = {Hole{0.0, 0.0, 0.004, 1e5}, Hole{0.05, 0.0, 0.004, 1e5}};
+  EXPECT_THAT(message(g), HasSubstr("overlaps"));
+  g = plain(1.0);
+  g.holes.assign(9, Hole{0.0, 0.0, 0.001, 0.0});
+  EXPECT_THAT(message(g), HasSubstr("at most 8"));
+  g = plain(1.0);
+  g.grooves = {Groove{0.02, 0.02, 1e5}};
+  EXPECT_THAT(message(g), HasSubstr("not inside the film"));
+  EXPECT_THAT(message(plain(1.0), 0.0), HasSubstr("viscosity"));
+  SolverOptions o;
+  o.tolerance = 0.0;
+  EXPECT_THAT(message(plain(1.0), kEta, o), HasSubstr("tolerance"));
+}
+
+TEST(BadInput, ClosingFilmReturnsFalse) {
+  FilmSolver solver(plain(1.0), kEta);
+  FilmResult r;
+  r.fx = 123.0;
+  EXPECT_FALSE(solver.solve(journal(1.0), r));
+  EXPECT_THAT(solver.last_error(), HasSubstr("film closes"));
+  EXPECT_EQ(r.fx, 123.0);  // left unchanged
+  EXPECT_FALSE(solver.solve(journal(1.3), r));
+  // Centred but tilted so far that the ends touch.
+  FilmState s = journal(0.0);
+  s.sx = 1.01 * kC / (0.5 * 2.0 * kR);
+  EXPECT_FALSE(solver.solve(s, r));
+  EXPECT_THAT(solver.last_error(), HasSubstr("film closes"));
+  s = journal(0.5);
+  s.vx = std::nan("");
+  EXPECT_FALSE(solver.solve(s, r));
+  EXPECT_THAT(solver.last_error(), HasSubstr("not finite"));
+  // ... and the solver works again afterwards.
+  EXPECT_TRUE(solver.solve(journal(0.5), r)) << solver.last_error();
+}
+
+TEST(WarmStart, RepeatedSolvesAreIdenticalAndHistoryDoesNotMatter) {
+  for (const Cavitation cav : {Cavitation::Gumbel, Cavitation::MassConserving}) {
+    FilmGeometry g = plain(0.7, 60, 12, 0.005, 15e-6);
+    for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2, 0.0, 0.002, 2e5});
+    FilmState a = journal(0.6, 0.3, 10000.0, 15e-6), b = journal(0.8, 2.5, 10000.0, 15e-6);
+    a.sx = 3e-4;
+    b.vy = 0.02;
+    FilmSolver cold(g, 0.0108, with(cav)), warm(g, 0.0108, with(cav));
+    const FilmResult ref = solve_ok(cold, a);
+    const FilmResult again = solve_ok(cold, a);
+    EXPECT_EQ(again.fx, ref.fx) << to_string(cav);
+    EXPECT_EQ(again.fy, ref.fy);
+    EXPECT_EQ(again.my, ref.my);
+    EXPECT_EQ(again.iterations, 1);  // the warm active set is already right
+    solve_ok(warm, b);
+    const FilmResult r = solve_ok(warm, a);
+    const double F = std::hypot(ref.fx, ref.fy);
+    EXPECT_NEAR(r.fx, ref.fx, 1e-9 * F) << to_string(cav);
+    EXPECT_NEAR(r.fy, ref.fy, 1e-9 * F) << to_string(cav);
+    EXPECT_NEAR(r.flow_ends, ref.flow_ends, 1e-9 * ref.flow_ends) << to_string(cav);
+  }
+}
+
+TEST(Allocation, NoHeapAllocationInSteadyUse) {
+  FilmGeometry g = plain(0.7, 60, 12, 0.005, 15e-6);
+  for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2, 0.0, 0.002, 2e5});
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel, Cavitation::MassConserving}) {
+    FilmSolver solver(g, 0.0108, with(cav));
+    FilmResult r;
+    FilmState s = journal(0.6, 0.0, 10000.0, 15e-6);
+    ASSERT_TRUE(solver.solve(s, r));
+    const long before = g_allocations.load();
+    for (int k = 0; k < 50; ++k) {
+      s = journal(0.6, 0.01 * k, 10000.0, 15e-6);
+      s.sx = k % 2 ? 2e-4 : 0.0;  // alternate symmetric and full solves
+      solver.solve(s, r);
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << to_string(cav);
+  }
+}
+
+}  // namespace
+}  // namespace turbodyn::reynolds
