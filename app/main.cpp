@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/journal_command.h"
 #include "app/modal_command.h"
 #include "app/response_command.h"
 #include "app/run_command.h"
@@ -104,12 +105,33 @@ int main(int argc, char** argv) {
   merge->add_option("-o,--output", merge_output, "Output directory")->capture_default_str();
   merge->add_flag("!--no-plots", merge_plots, "Do not draw PNG pictures");
 
+  turbodyn::app::JournalCommandOptions jo;
+  CLI::App* journal = app.add_subcommand(
+      "journal", "One plain journal bearing at a given state: forces, Sommerfeld number, linearised coefficients (JSON)");
+  journal->add_option("--diameter", jo.diameter, "Journal diameter")->capture_default_str();
+  journal->add_option("--length", jo.length, "Bearing width");
+  journal->add_option("--ld", jo.ld, "Width as a ratio L/D (instead of --length)");
+  journal->add_option("--clearance", jo.clearance, "Radial clearance")->capture_default_str();
+  journal->add_option("--viscosity", jo.viscosity, "Dynamic viscosity (default: SAE 30 Vogel fit at --temperature)");
+  journal->add_option("--temperature", jo.temperature, "Oil temperature")->capture_default_str();
+  journal->add_option("--speed", jo.speed, "Journal speed")->capture_default_str();
+  journal->add_option("--outer-speed", jo.outer_speed, "Bush speed")->capture_default_str();
+  journal->add_option("--eccentricity", jo.eccentricity, "Eccentricity ratio e/c")->capture_default_str();
+  journal->add_option("--attitude", jo.attitude, "Direction of the eccentricity from +x towards +y")
+      ->capture_default_str();
+  journal->add_option("--cavitation", jo.cavitation, "gumbel, mass-conserving or none")->capture_default_str();
+  journal->add_option("--n-circ", jo.n_circ, "Grid nodes around")->capture_default_str();
+  journal->add_option("--n-axial", jo.n_axial, "Grid nodes across")->capture_default_str();
+  journal->add_option("--hole-diameter", jo.hole_diameter, "Feed hole at the top, mid-width")->capture_default_str();
+  journal->add_option("--supply-pressure", jo.supply_pressure, "Feed pressure (gauge)")->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
 
   try {
     std::vector<turbodyn::Override> overrides;
     for (const std::string& s : sets) overrides.push_back(turbodyn::parse_override(s));
     if (check->parsed()) return run_check(check_file, overrides);
+    if (journal->parsed()) return turbodyn::app::run_journal_command(jo);
     if (sweep->parsed()) return turbodyn::app::run_sweep_command(sweep_options);
     if (merge->parsed()) return turbodyn::app::run_merge_command(merge_study, merge_dirs, merge_output, merge_plots);
     if (run->parsed()) {

@@ -99,6 +99,17 @@ case $case in
     "$exe" sweep "$study" --shard 3/3 -o "$out/bad" > "$out/log_bad" 2>&1
     [ $? -eq 2 ] || fail "--shard 3/3 accepted"
     ;;
+  journal_raimondi_boyd)
+    # Raimondi & Boyd (1958), L/D = 1, eps = 0.6: S = 0.121, (R/c) f = 3.22 (validation-references.md §1), 3 %.
+    "$exe" journal --ld 1 --eccentricity 0.6 --viscosity "10 mPa*s" --speed "3000 rpm" > "$out/j.json" 2>&1 \
+      || fail "exit $?: $(cat "$out/j.json")"
+    get() { grep "\"$1\"" "$out/j.json" | head -1 | sed 's/.*: *//; s/,$//'; }
+    awk -v s="$(get sommerfeld_number)" -v f="$(get friction_variable)" \
+      'BEGIN { exit !(s > 0.121 * 0.97 && s < 0.121 * 1.03 && f > 3.22 * 0.97 && f < 3.22 * 1.03) }' \
+      || fail "S = $(get sommerfeld_number), (R/c)f = $(get friction_variable)"
+    "$exe" journal --eccentricity 1.2 > "$out/bad.log" 2>&1
+    [ $? -eq 2 ] || fail "eccentricity 1.2 accepted"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS ($case)"

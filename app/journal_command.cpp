@@ -1,0 +1,128 @@
+#include "app/journal_command.h"
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "model/model_file.h"
+#include "model/model_spec.h"
+#include "model/reynolds.h"
+#include "model/units.h"
+
+namespace turbodyn::app {
+namespace {
+
+double value(const std::string& option, const std::string& text, const Dimension& d) {
+  try {
+    return parse_quantity(text, d);
+  } catch (const UnitError& e) {
+    throw ModelError("--" + option + " '" + text + "': " + e.what());
+  }
+}
+
+}  // namespace
+
+int run_journal_command(const JournalCommandOptions& o) {
+  using namespace reynolds;
+  const double D = value("diameter", o.diameter, dim::length);
+  const double c = value("clearance", o.clearance, dim::length);
+  double L = o.length.empty() ? 0.0 : value("length", o.length, dim::length);
+  if (o.ld > 0.0) L = o.ld * D;
+  if (!(D > 0) || !(c > 0) || !(L > 0))
+    throw ModelError("journal: diameter, clearance and length (or --ld) must be positive");
+  if (!(o.eccentricity >= 0.0 && o.eccentricity < 1.0))
+    throw ModelError("--eccentricity: the ratio e/c must lie in [0, 1)");
+  OilSpec oil;
+  double eta = o.viscosity.empty() ? oil.viscosity_at(value("temperature", o.temperature, dim::temperature))
+                                   : value("viscosity", o.viscosity, dim::viscosity);
+  const double w = value("speed", o.speed, dim::angular_speed);
+  const double w_out = value("outer-speed", o.outer_speed, dim::angular_speed);
+  const double att = value("attitude", o.attitude, dim::angle);
+  FilmGeometry g;
+  g.radius = 0.5 * D;
+  g.length = L;
+  g.clearance = c;
+  g.n_circ = o.n_circ;
+  g.n_axial = o.n_axial;
+  const double hole = value("hole-diameter", o.hole_diameter, dim::length);
+  const double supply = value("supply-pressure", o.supply_pressure, dim::pressure);
+  if (hole > 0.0) g.holes.push_back({M_PI / 2, 0.0, hole, supply});
+  SolverOptions so;
+  if (o.cavitation == "mass-conserving") so.cavitation = Cavitation::MassConserving;
+  else if (o.cavitation == "none") so.cavitation = Cavitation::None;
+  else if (o.cavitation != "gumbel")
+    throw ModelError("--cavitation '" + o.cavitation + "': expected gumbel, mass-conserving or none");
+  FilmSolver film(g, eta, so);
+
+  FilmState s;
+  s.ex = o.eccentricity * c * std::cos(att);
+  s.ey = o.eccentricity * c * std::sin(att);
+  s.omega_inner = w;
+  s.omega_outer = w_out;
+  FilmResult r;
+  if (!film.solve(s, r)) throw std::runtime_error("journal: " + film.last_error());
+  const FilmResult base = r;
+  const double W = std::hypot(base.fx, base.fy);
+  const double R = 0.5 * D;
+
+  // Linearised coefficients by central differences: K_ij = -dF_i/dx_j, C_ij = -dF_i/dv_j.
+  const double dx = 1e-4 * c, dv = 1e-4 * c * std::max(std::abs(w), 1.0);
+  double K[2][2], C[2][2];
+  for (int j = 0; j < 2; ++j) {
+    FilmResult p, m;
+    FilmState sp = s, sm = s;
+    (j == 0 ? sp.ex : sp.ey) += dx;
+    (j == 0 ? sm.ex : sm.ey) -= dx;
+    if (!film.solve(sp, p) || !film.solve(sm, m)) throw std::runtime_error("journal: " + film.last_error());
+    K[0][j] = -(p.fx - m.fx) / (2 * dx);
+    K[1][j] = -(p.fy - m.fy) / (2 * dx);
+    sp = s;
+    sm = s;
+    (j == 0 ? sp.vx : sp.vy) += dv;
+    (j == 0 ? sm.vx : sm.vy) -= dv;
+    if (!film.solve(sp, p) || !film.solve(sm, m)) throw std::runtime_error("journal: " + film.last_error());
+    C[0][j] = -(p.fx - m.fx) / (2 * dv);
+    C[1][j] = -(p.fy - m.fy) / (2 * dv);
+  }
+
+  nlohmann::json j;
+  j["input"] = {{"diameter_m", D}, {"length_m", L}, {"l_over_d", L / D}, {"clearance_m", c},
+                {"viscosity_pa_s", eta}, {"speed_rad_s", w}, {"outer_speed_rad_s", w_out},
+                {"eccentricity_ratio", o.eccentricity}, {"attitude_of_eccentricity_rad", att},
+                {"cavitation", o.cavitation}, {"n_circ", o.n_circ}, {"n_axial", o.n_axial},
+                {"hole_diameter_m", hole}, {"supply_pressure_pa", supply}};
+  j["force_on_journal_n"] = {base.fx, base.fy};
+  j["load_n"] = W;
+  if (W > 0.0) {
+    // Load carried = -film force; attitude angle between the load line and the eccentricity vector.
+    const double load_angle = std::atan2(-base.fy, -base.fx);
+    double phi = att - load_angle;
+    while (phi > M_PI) phi -= 2 * M_PI;
+    while (phi < -M_PI) phi += 2 * M_PI;
+    // Speed of the equivalent journal in a stationary bush (the pressure depends on the sum of the surface speeds).
+    const double N = std::abs(w + w_out) / (2 * M_PI);
+    const double P = W / (2 * R * L);
+    j["sommerfeld_number"] = (R / c) * (R / c) * eta * N / P;
+    j["attitude_angle_deg"] = std::abs(phi) * 180 / M_PI;
+    j["friction_variable"] = (R / c) * (std::abs(base.torque_inner) / R) / W;
+    j["stiffness_n_per_m"] = {{K[0][0], K[0][1]}, {K[1][0], K[1][1]}};
+    j["damping_n_s_per_m"] = {{C[0][0], C[0][1]}, {C[1][0], C[1][1]}};
+    j["stiffness_dimensionless"] = {{K[0][0] * c / W, K[0][1] * c / W}, {K[1][0] * c / W, K[1][1] * c / W}};
+    const double cw = c * std::max(std::abs(w), 1e-12) / W;
+    j["damping_dimensionless"] = {{C[0][0] * cw, C[0][1] * cw}, {C[1][0] * cw, C[1][1] * cw}};
+  }
+  j["moment_on_journal_n_m"] = {base.mx, base.my};
+  j["torque_on_journal_n_m"] = base.torque_inner;
+  j["torque_on_bush_n_m"] = base.torque_outer;
+  j["friction_power_w"] = -base.torque_inner * w - base.torque_outer * w_out;
+  j["flow_out_of_ends_m3_s"] = base.flow_ends;
+  j["flow_into_holes_m3_s"] = base.hole_flows;
+  j["max_pressure_pa"] = base.max_pressure;
+  j["cavitated_fraction"] = base.cavitated_fraction;
+  std::cout << std::setw(2) << j << "\n";
+  return 0;
+}
+
+}  // namespace turbodyn::app
