@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/film_linearisation.h"
 #include "model/model_file.h"
 #include "model/model_spec.h"
 #include "model/reynolds.h"
@@ -61,31 +62,12 @@ int run_journal_command(const JournalCommandOptions& o) {
   s.ey = o.eccentricity * c * std::sin(att);
   s.omega_inner = w;
   s.omega_outer = w_out;
-  FilmResult r;
-  if (!film.solve(s, r)) throw std::runtime_error("journal: " + film.last_error());
-  const FilmResult base = r;
+  const Linearisation lin = linearise(film, s);
+  const FilmResult& base = lin.at;
   const double W = std::hypot(base.fx, base.fy);
   const double R = 0.5 * D;
-
-  // Linearised coefficients by central differences: K_ij = -dF_i/dx_j, C_ij = -dF_i/dv_j.
-  const double dx = 1e-4 * c, dv = 1e-4 * c * std::max(std::abs(w), 1.0);
-  double K[2][2], C[2][2];
-  for (int j = 0; j < 2; ++j) {
-    FilmResult p, m;
-    FilmState sp = s, sm = s;
-    (j == 0 ? sp.ex : sp.ey) += dx;
-    (j == 0 ? sm.ex : sm.ey) -= dx;
-    if (!film.solve(sp, p) || !film.solve(sm, m)) throw std::runtime_error("journal: " + film.last_error());
-    K[0][j] = -(p.fx - m.fx) / (2 * dx);
-    K[1][j] = -(p.fy - m.fy) / (2 * dx);
-    sp = s;
-    sm = s;
-    (j == 0 ? sp.vx : sp.vy) += dv;
-    (j == 0 ? sm.vx : sm.vy) -= dv;
-    if (!film.solve(sp, p) || !film.solve(sm, m)) throw std::runtime_error("journal: " + film.last_error());
-    C[0][j] = -(p.fx - m.fx) / (2 * dv);
-    C[1][j] = -(p.fy - m.fy) / (2 * dv);
-  }
+  const Eigen::Matrix2d& K = lin.K;
+  const Eigen::Matrix2d& C = lin.C;
 
   nlohmann::json j;
   j["input"] = {{"diameter_m", D}, {"length_m", L}, {"l_over_d", L / D}, {"clearance_m", c},
@@ -107,11 +89,11 @@ int run_journal_command(const JournalCommandOptions& o) {
     j["sommerfeld_number"] = (R / c) * (R / c) * eta * N / P;
     j["attitude_angle_deg"] = std::abs(phi) * 180 / M_PI;
     j["friction_variable"] = (R / c) * (std::abs(base.torque_inner) / R) / W;
-    j["stiffness_n_per_m"] = {{K[0][0], K[0][1]}, {K[1][0], K[1][1]}};
-    j["damping_n_s_per_m"] = {{C[0][0], C[0][1]}, {C[1][0], C[1][1]}};
-    j["stiffness_dimensionless"] = {{K[0][0] * c / W, K[0][1] * c / W}, {K[1][0] * c / W, K[1][1] * c / W}};
+    j["stiffness_n_per_m"] = {{K(0, 0), K(0, 1)}, {K(1, 0), K(1, 1)}};
+    j["damping_n_s_per_m"] = {{C(0, 0), C(0, 1)}, {C(1, 0), C(1, 1)}};
+    j["stiffness_dimensionless"] = {{K(0, 0) * c / W, K(0, 1) * c / W}, {K(1, 0) * c / W, K(1, 1) * c / W}};
     const double cw = c * std::max(std::abs(w), 1e-12) / W;
-    j["damping_dimensionless"] = {{C[0][0] * cw, C[0][1] * cw}, {C[1][0] * cw, C[1][1] * cw}};
+    j["damping_dimensionless"] = {{C(0, 0) * cw, C(0, 1) * cw}, {C(1, 0) * cw, C(1, 1) * cw}};
   }
   j["moment_on_journal_n_m"] = {base.mx, base.my};
   j["torque_on_journal_n_m"] = base.torque_inner;
