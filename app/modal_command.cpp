@@ -166,6 +166,11 @@ void require_linear_supports(const MachineSpec& spec) {
                        " bearing is nonlinear; the linear analyses (modal, response) need linear bearings "
                        "(linearised coefficients, e.g. from `turbodyn journal`, as type = \"linear\")");
   for (const BearingSpec& b : spec.bearings)
+    if (b.damper.enabled)
+      throw ModelError(spec.source.string() + ": bearings." + b.name +
+                       ".damper: squeeze-film dampers are nonlinear; the linear analyses (modal, response) do not "
+                       "include them");
+  for (const BearingSpec& b : spec.bearings)
     if (b.pedestal_mass > 0.0)
       throw ModelError(spec.source.string() + ": bearings." + b.name +
                        ".pedestal_mass: pedestal masses are part of the run-up model only; the linear analyses "

@@ -223,11 +223,41 @@ void read_journal_bearing(Reader& r, BearingSpec& b) {
                          "supply_pressure > 0");
 }
 
+void read_damper(Reader& r, DamperSpec& d) {
+  d.enabled = true;
+  d.diameter = r.quantity("diameter", dim::length, Bound::Positive);
+  d.length = r.quantity("length", dim::length, Bound::Positive);
+  d.clearance = r.quantity("clearance", dim::length, Bound::Positive);
+  if (d.clearance >= 0.05 * d.diameter)
+    r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
+  d.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
+  d.centring_stiffness = r.quantity_or("centring_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
+  d.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, d.cavitation);
+  d.n_circ = static_cast<int>(r.integer_or("n_circ", d.n_circ, 8));
+  d.n_axial = static_cast<int>(r.integer_or("n_axial", d.n_axial, 4));
+  d.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  d.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
+  d.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  d.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, d.feed_hole_angle);
+  if (d.feed_hole_diameter >= d.length) r.fail("feed_hole_diameter", "must be smaller than the land width");
+  if (d.supply_pressure > 0.0 && d.feed_hole_diameter == 0.0)
+    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
+  if (d.cavitation == "mass-conserving" && !(d.feed_hole_diameter > 0.0 && d.supply_pressure > 0.0))
+    r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole with supply_pressure > 0");
+  r.finish();
+}
+
 void read_bearing(Reader& r, BearingSpec& b) {
   b.type = r.choice("type", {"linear", "journal"}, "");
   b.z = r.quantity("z", dim::length);
   if (b.type == "linear") read_linear_bearing(r, b);
   if (b.type == "journal") read_journal_bearing(r, b);
+  if (b.type == "linear") {
+    if (const toml::table* damper = r.table("damper")) {
+      Reader d(*damper, r.key_path("damper"), r.sources());
+      read_damper(d, b.damper);
+    }
+  }
   b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
   b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
   b.pedestal_damping = r.quantity_or("pedestal_damping", dim::damping, 0.0, Bound::NonNegative);
@@ -235,6 +265,8 @@ void read_bearing(Reader& r, BearingSpec& b) {
     r.fail("pedestal_stiffness", "a pedestal mass needs a positive pedestal_stiffness to ground");
   if (b.pedestal_mass == 0.0 && (r.has("pedestal_stiffness") || r.has("pedestal_damping")))
     r.fail("pedestal_mass", "missing: pedestal_stiffness/pedestal_damping need a pedestal_mass");
+  if (b.pedestal_mass > 0.0 && b.damper.enabled)
+    r.fail("damper", "a bearing sits either on a pedestal or in a squeeze-film damper, not both");
   r.finish();
 }
 

@@ -86,12 +86,30 @@ struct JournalBearingSpec {
   double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
 };
 
+/// Squeeze-film damper around a linear bearing: the bearing's outer ring is a mass that moves in a non-rotating
+/// oil film towards the housing, optionally held by a centring spring (run-up only).
+struct DamperSpec {
+  bool enabled = false;
+  double diameter = 0.0;            ///< m, damper land diameter
+  double length = 0.0;              ///< m, land width
+  double clearance = 0.0;           ///< m, radial clearance
+  double ring_mass = 0.0;           ///< kg, outer ring moving in the damper
+  double centring_stiffness = 0.0;  ///< N/m, isotropic centring spring (0 = none)
+  std::string cavitation = "gumbel";
+  int n_circ = 60, n_axial = 12;
+  double oil_temperature = 0.0;     ///< K; 0 = the [oil] temperature
+  double supply_pressure = 0.0;     ///< Pa gauge at the feed hole
+  double feed_hole_diameter = 0.0;  ///< m; 0 = none
+  double feed_hole_angle = M_PI / 2;
+};
+
 struct BearingSpec {
   std::string name;
   std::string type;  ///< "linear" or "journal" (further bearing types come with their own issues)
   double z = 0.0;    ///< m
   LinearBearingSpec linear;
   JournalBearingSpec journal;
+  DamperSpec damper;  ///< linear bearings only
   double pedestal_mass = 0.0;       ///< kg; > 0 puts the bearing housing on a pedestal mass (run-up only)
   double pedestal_stiffness = 0.0;  ///< N/m, pedestal to ground
   double pedestal_damping = 0.0;    ///< N s/m, pedestal to ground

@@ -12,6 +12,7 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 
+#include "model/damper_element.h"
 #include "model/journal_bearing_element.h"
 #include "model/linear_bearing_element.h"
 
@@ -408,9 +409,16 @@ std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
   std::vector<std::unique_ptr<ForceElement>> elements;
   for (const LinearBearing& b : rotor.bearings) {
     Pedestal pedestal;
+    const DamperSpec* damper = nullptr;
     for (const BearingSpec& bs : spec.bearings)
-      if (bs.name == b.name) pedestal = Pedestal{bs.pedestal_mass, bs.pedestal_stiffness, bs.pedestal_damping};
-    elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
+      if (bs.name == b.name) {
+        pedestal = Pedestal{bs.pedestal_mass, bs.pedestal_stiffness, bs.pedestal_damping};
+        if (bs.damper.enabled) damper = &bs.damper;
+      }
+    if (damper)
+      elements.push_back(std::make_unique<DamperElement>(b, rotor.dof(b.node, kX), *damper, spec.oil, spec.gravity));
+    else
+      elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
   }
   for (const BearingSpec& b : spec.bearings)
     if (b.type == "journal")

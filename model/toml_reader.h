@@ -66,6 +66,7 @@ class Reader {
       : table_(table), path_(std::move(path)), sources_(sources) {}
 
   const std::string& path() const { return path_; }
+  const Sources& sources() const { return sources_; }
   std::string key_path(std::string_view key) const {
     return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
   }
