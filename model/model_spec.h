@@ -86,6 +86,22 @@ struct JournalBearingSpec {
   double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
 };
 
+/// Full-floating-ring bearing (first version): a ring between the journal and the housing with two films, the
+/// ring translating and spinning freely, driven by the film torques; oil supplied through a feed hole in the
+/// housing. Not yet modelled: ring tilt and the drill holes that couple the films (issue 4).
+struct FloatingRingSpec {
+  double inner_diameter = 0.0, inner_length = 0.0, inner_clearance = 0.0;  ///< m (journal diameter, width, radial)
+  double outer_diameter = 0.0, outer_length = 0.0, outer_clearance = 0.0;  ///< m (ring outer diameter, ...)
+  double ring_mass = 0.0;            ///< kg
+  double ring_polar_inertia = 0.0;   ///< kg m^2
+  std::string cavitation = "gumbel";
+  int n_circ = 60, n_axial = 12;
+  double inner_oil_temperature = 0.0, outer_oil_temperature = 0.0;  ///< K; 0 = the [oil] temperature
+  double supply_pressure = 0.0;      ///< Pa gauge at the housing feed hole (outer film)
+  double feed_hole_diameter = 0.0;   ///< m
+  double feed_hole_angle = M_PI / 2; ///< rad
+};
+
 /// Squeeze-film damper around a linear bearing: the bearing's outer ring is a mass that moves in a non-rotating
 /// oil film towards the housing, optionally held by a centring spring (run-up only).
 struct DamperSpec {
@@ -110,6 +126,7 @@ struct BearingSpec {
   LinearBearingSpec linear;
   JournalBearingSpec journal;
   DamperSpec damper;  ///< linear bearings only
+  FloatingRingSpec ring;
   double pedestal_mass = 0.0;       ///< kg; > 0 puts the bearing housing on a pedestal mass (run-up only)
   double pedestal_stiffness = 0.0;  ///< N/m, pedestal to ground
   double pedestal_damping = 0.0;    ///< N s/m, pedestal to ground

@@ -13,6 +13,7 @@
 #include <sundials/sundials_linearsolver.h>
 
 #include "model/damper_element.h"
+#include "model/floating_ring_element.h"
 #include "model/journal_bearing_element.h"
 #include "model/linear_bearing_element.h"
 
@@ -424,6 +425,9 @@ std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
     if (b.type == "journal")
       elements.push_back(
           std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, rotor.dof(rotor.node_at(b.z), kX)));
+    else if (b.type == "floating-ring")
+      elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil,
+                                                               rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
   // The bearings act through the elements; the rotor's own matrices stay bearing-free.
   double cutoff = spec.solver.reduction_cutoff;
   if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz
