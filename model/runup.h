@@ -5,7 +5,7 @@
 //   z'   = g(q, v, z, t)
 // q are the rotor coordinates: the physical FE DOFs, or (default) a Craig-Bampton reduction of them,
 //   u = T q,  q = [u_B; eta],  T = [I 0; Psi Phi]
-// where u_B are all DOFs of the nodes that force elements attach to (kept exactly), Psi the static constraint
+// where u_B are the translations force elements act on and the disks' translations (kept exactly), Psi the static constraint
 // modes and Phi the fixed-interface normal modes below a cutoff frequency (Craig & Bampton 1968, AIAA J. 6(7)).
 // The Timoshenko mesh has element-level modes near 1e7 rad/s that force any BDF method above order 2 into
 // tiny steps; the reduction removes them while keeping the bearing DOFs exact (see bench/README.md).
@@ -107,7 +107,7 @@ class RunupModel {
   Eigen::MatrixXd T_;                 // u = T q
   Eigen::MatrixXd M_, K_, D_, G_;     // in rotor coordinates
   Eigen::VectorXd gravity_;           // T' f_g
-  std::vector<std::vector<int>> element_coordinates_;  // per element: coordinate index of each of its DOFs
+  std::vector<Eigen::MatrixXd> element_rows_;  // per element: rows of T for its DOFs (u_e = R q)
   struct DiskRows {
     Eigen::RowVectorXd x, y;          // rows of T for the disk's x and y
   };
