@@ -434,6 +434,8 @@ struct Integration {
   void* cvode = nullptr;
   double gamma_factored = -1.0;
   std::string last_error;
+  long jacobian_step = 0;       // integrator step count at the last Jacobian
+  long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
 };
 
 int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
@@ -497,17 +499,26 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
   auto* in = static_cast<Integration*>(S->content);
   const RunupModel& model = *in->model;
   RunupWorkspace& ws = *in->ws;
-  // CVODE calls the setup of a matrix-embedded solver rarely; the solve keeps the Newton matrix current: a new
-  // Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than 2 % since the last
-  // one, a new factorisation when gamma (the step size) changed.
+  // CVODE does not call the setup of a matrix-embedded solver on its own schedule, so the solve keeps the Newton
+  // matrix current: a new Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than
+  // 2 % since the last one, when the nonlinear solver failed since then (the Jacobian is stale: nonlinear films),
+  // or every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51); a new factorisation
+  // when gamma (the step size) changed.
   constexpr double kJacobianSpeedChange = 0.02;
+  constexpr long kJacobianMaxSteps = 50;
   sunrealtype tcur, gamma, rl1;
   N_Vector ypred, yn, fn, zn1;
   void* user = nullptr;
   if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
     return -1;
   const double w = model.speed().speed(tcur), w_jac = ws.jac_spin.speed;
-  if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0)) {
+  long steps = 0, failures = 0;
+  CVodeGetNumSteps(in->cvode, &steps);
+  CVodeGetNumNonlinSolvConvFails(in->cvode, &failures);
+  if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0) ||
+      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps) {
+    in->jacobian_step = steps;
+    in->jacobian_failures = failures;
     try {
       model.Jacobian(tcur, N_VGetArrayPointer(ypred), ws);
     } catch (const std::exception& e) {
