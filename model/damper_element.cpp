@@ -1,5 +1,7 @@
 #include "model/damper_element.h"
 
+#include "model/journal_bearing_element.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -13,12 +15,6 @@ struct DamperWorkspace : ElementWorkspace {
   double last[4] = {NAN, NAN, NAN, NAN};  // ring state of `result`
 };
 
-reynolds::Cavitation cavitation_of(const std::string& name) {
-  if (name == "mass-conserving") return reynolds::Cavitation::MassConserving;
-  if (name == "none") return reynolds::Cavitation::None;
-  return reynolds::Cavitation::Gumbel;
-}
-
 }  // namespace
 
 DamperElement::DamperElement(const LinearBearing& bearing, int x_dof, const DamperSpec& damper, const OilSpec& oil,
@@ -27,14 +23,7 @@ DamperElement::DamperElement(const LinearBearing& bearing, int x_dof, const Damp
       bearing_(bearing),
       damper_(damper),
       gravity_(gravity) {
-  geometry_.radius = 0.5 * damper.diameter;
-  geometry_.length = damper.length;
-  geometry_.clearance = damper.clearance;
-  geometry_.n_circ = damper.n_circ;
-  geometry_.n_axial = damper.n_axial;
-  if (damper.feed_hole_diameter > 0.0)
-    geometry_.holes.push_back({damper.feed_hole_angle, 0.0, damper.feed_hole_diameter, damper.supply_pressure});
-  options_.cavitation = cavitation_of(damper.cavitation);
+  geometry_ = film_geometry(damper, options_);
   viscosity_ = oil.viscosity_at(damper.oil_temperature > 0.0 ? damper.oil_temperature : oil.temperature);
   reynolds::FilmSolver check(geometry_, viscosity_, options_);  // inconsistent geometry fails now, not mid-run
 }

@@ -23,11 +23,6 @@ struct RingWorkspace : ElementWorkspace {
   bool valid = false;
 };
 
-reynolds::Cavitation cavitation_of(const std::string& name) {
-  if (name == "none") return reynolds::Cavitation::None;
-  return reynolds::Cavitation::Gumbel;
-}
-
 }  // namespace
 
 FloatingRingElement::FloatingRingElement(const std::string& name, const FloatingRingSpec& spec, const OilSpec& oil,
@@ -45,7 +40,8 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
   }
   if (spec.feed_hole_diameter > 0.0)
     outer_.holes.push_back({spec.feed_hole_angle, 0.0, spec.feed_hole_diameter, spec.supply_pressure});
-  options_.cavitation = cavitation_of(spec.cavitation);
+  if (!reynolds::cavitation_from_string(spec.cavitation, options_.cavitation))
+    throw std::logic_error("unknown cavitation model '" + spec.cavitation + "'");
   eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
   eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
   reynolds::FilmSolver a(inner_, eta_inner_, options_), b(outer_, eta_outer_, options_);  // fail now, not mid-run

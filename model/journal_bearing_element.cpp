@@ -19,25 +19,12 @@ bool same(const reynolds::FilmState& a, const reynolds::FilmState& b) {
          a.dsx == b.dsx && a.dsy == b.dsy && a.omega_inner == b.omega_inner && a.omega_outer == b.omega_outer;
 }
 
-reynolds::Cavitation cavitation_of(const std::string& name) {
-  if (name == "mass-conserving") return reynolds::Cavitation::MassConserving;
-  if (name == "none") return reynolds::Cavitation::None;
-  return reynolds::Cavitation::Gumbel;
-}
-
 }  // namespace
 
 JournalBearingElement::JournalBearingElement(const std::string& name, const JournalBearingSpec& spec,
                                              const OilSpec& oil, int node_dof)
     : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3}, 0) {
-  geometry_.radius = 0.5 * spec.diameter;
-  geometry_.length = spec.length;
-  geometry_.clearance = spec.clearance;
-  geometry_.n_circ = spec.n_circ;
-  geometry_.n_axial = spec.n_axial;
-  if (spec.feed_hole_diameter > 0.0)
-    geometry_.holes.push_back({spec.feed_hole_angle, 0.0, spec.feed_hole_diameter, spec.supply_pressure});
-  options_.cavitation = cavitation_of(spec.cavitation);
+  geometry_ = film_geometry(spec, options_);
   viscosity_ = oil.viscosity_at(spec.oil_temperature > 0.0 ? spec.oil_temperature : oil.temperature);
   reynolds::FilmSolver check(geometry_, viscosity_, options_);  // throws for inconsistent geometry now, not mid-run
 }

@@ -201,49 +201,37 @@ void read_linear_bearing(Reader& r, BearingSpec& b) {
   }
 }
 
-void read_journal_bearing(Reader& r, BearingSpec& b) {
-  JournalBearingSpec& j = b.journal;
-  j.diameter = r.quantity("diameter", dim::length, Bound::Positive);
-  j.length = r.quantity("length", dim::length, Bound::Positive);
-  j.clearance = r.quantity("clearance", dim::length, Bound::Positive);
-  if (j.clearance >= 0.05 * j.diameter)
+// Keys shared by the single-film specs (JournalBearingSpec, DamperSpec); `width` names the film's length in
+// messages.
+template <class Film>
+void read_film(Reader& r, Film& f, const std::string& width) {
+  f.diameter = r.quantity("diameter", dim::length, Bound::Positive);
+  f.length = r.quantity("length", dim::length, Bound::Positive);
+  f.clearance = r.quantity("clearance", dim::length, Bound::Positive);
+  if (f.clearance >= 0.05 * f.diameter)
     r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
-  j.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, j.cavitation);
-  j.n_circ = static_cast<int>(r.integer_or("n_circ", j.n_circ, 8));
-  j.n_axial = static_cast<int>(r.integer_or("n_axial", j.n_axial, 4));
-  j.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
-  j.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
-  j.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
-  j.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, j.feed_hole_angle);
-  if (j.feed_hole_diameter >= j.length) r.fail("feed_hole_diameter", "must be smaller than the bearing length");
-  if (j.supply_pressure > 0.0 && j.feed_hole_diameter == 0.0)
+  f.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, f.cavitation);
+  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
+  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
+  f.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
+  f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
+  if (f.feed_hole_diameter >= f.length) r.fail("feed_hole_diameter", "must be smaller than the " + width);
+  if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
     r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
-  if (j.cavitation == "mass-conserving" && !(j.feed_hole_diameter > 0.0 && j.supply_pressure > 0.0))
+  if (f.cavitation == "mass-conserving" && !(f.feed_hole_diameter > 0.0 && f.supply_pressure > 0.0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) with "
                          "supply_pressure > 0");
 }
 
+void read_journal_bearing(Reader& r, BearingSpec& b) { read_film(r, b.journal, "bearing length"); }
+
 void read_damper(Reader& r, DamperSpec& d) {
   d.enabled = true;
-  d.diameter = r.quantity("diameter", dim::length, Bound::Positive);
-  d.length = r.quantity("length", dim::length, Bound::Positive);
-  d.clearance = r.quantity("clearance", dim::length, Bound::Positive);
-  if (d.clearance >= 0.05 * d.diameter)
-    r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
+  read_film(r, d, "land width");
   d.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
   d.centring_stiffness = r.quantity_or("centring_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
-  d.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, d.cavitation);
-  d.n_circ = static_cast<int>(r.integer_or("n_circ", d.n_circ, 8));
-  d.n_axial = static_cast<int>(r.integer_or("n_axial", d.n_axial, 4));
-  d.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
-  d.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
-  d.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
-  d.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, d.feed_hole_angle);
-  if (d.feed_hole_diameter >= d.length) r.fail("feed_hole_diameter", "must be smaller than the land width");
-  if (d.supply_pressure > 0.0 && d.feed_hole_diameter == 0.0)
-    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
-  if (d.cavitation == "mass-conserving" && !(d.feed_hole_diameter > 0.0 && d.supply_pressure > 0.0))
-    r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole with supply_pressure > 0");
   r.finish();
 }
 

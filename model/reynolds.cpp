@@ -252,6 +252,14 @@ bool finite_state(const FilmState& s) {
 
 }  // namespace
 
+bool cavitation_from_string(const std::string& name, Cavitation& c) {
+  if (name == "gumbel") c = Cavitation::Gumbel;
+  else if (name == "mass-conserving") c = Cavitation::MassConserving;
+  else if (name == "none") c = Cavitation::None;
+  else return false;
+  return true;
+}
+
 std::string to_string(Cavitation c) {
   switch (c) {
     case Cavitation::None: return "none";
