@@ -15,6 +15,8 @@ packages=(
   gnuplot-nox            # PNG pictures (pngcairo terminal)
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # micro-benchmarks
+  libnlopt-cxx-dev       # design optimisation (turbodyn optimize)
+  libceres-dev           # parameter identification (turbodyn identify)
 )
 
 missing=()

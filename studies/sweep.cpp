@@ -73,14 +73,13 @@ std::string file_safe(std::string s) {
   return s;
 }
 
-// One run: model with the run's overrides, run-up (optionally over the speed window), metrics.
-RunRecord execute(const StudySpec& study, const Design& design, std::size_t i, const std::atomic<bool>* cancel) {
+}  // namespace
+
+RunRecord evaluate_run(const StudySpec& study, const std::vector<Override>& overrides,
+                       const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
   RunRecord rec;
-  rec.index = i;
-  rec.parameters = design.values[i];
   rec.metrics.assign(study.metrics.size(), NAN);
-  const std::vector<Override> overrides = run_overrides(study, design, i);
   try {
     const MachineSpec spec = load_model(study.model, overrides);
     const auto model = make_runup_model(spec);
@@ -99,6 +98,16 @@ RunRecord execute(const StudySpec& study, const Design& design, std::size_t i, c
     rec.error = e.what();
   }
   rec.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return rec;
+}
+
+namespace {
+
+// One run of the design: the run's overrides, evaluate_run.
+RunRecord execute(const StudySpec& study, const Design& design, std::size_t i, const std::atomic<bool>* cancel) {
+  RunRecord rec = evaluate_run(study, run_overrides(study, design, i), cancel);
+  rec.index = i;
+  rec.parameters = design.values[i];
   return rec;
 }
 

@@ -44,6 +44,13 @@ struct SweepResult {
   bool complete = false;             ///< every run of the shard is recorded
 };
 
+/// One run-up of the study's base model with `overrides`, the complete list (study.base_overrides first, then the
+/// run's own, as run_overrides() builds them): its
+/// metrics (NaN where undefined), status ("ok", "incomplete", "cancelled", "failed"), error and wall time. Never
+/// throws for a failing run; index and parameters are left empty. Thread-safe (each call owns its model).
+RunRecord evaluate_run(const StudySpec& study, const std::vector<Override>& overrides,
+                       const std::atomic<bool>* cancel = nullptr);
+
 /// Runs (or resumes) the study into options.output_dir/runs.jsonl. Throws ModelError for a bad study (checked on
 /// the first run's model before anything runs) or an output directory holding another study's runs.
 SweepResult run_sweep(const StudySpec& study, const SweepOptions& options);
