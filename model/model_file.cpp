@@ -249,6 +249,8 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
       r.fail(k, "is not small against the diameter (the film model needs c << D): a unit mistake?");
   f.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
   f.ring_polar_inertia = r.quantity("ring_polar_inertia", dim::inertia, Bound::Positive);
+  f.ring_diametral_inertia = r.quantity_or("ring_diametral_inertia", dim::inertia, 0.0, Bound::Positive);
+  f.ring_tilt = r.flag_or("ring_tilt", f.ring_tilt);
   f.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, f.cavitation);
   f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
   f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
@@ -260,9 +262,21 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
   if (f.feed_hole_diameter >= f.outer_length) r.fail("feed_hole_diameter", "must be smaller than outer_length");
   if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
     r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
-  if (f.cavitation == "mass-conserving")
-    r.fail("cavitation", "the mass-conserving model needs an oil supply in each film; the inner film is fed through "
-                         "the ring's drill holes, which this version does not model yet: use \"gumbel\"");
+  f.drill_holes = static_cast<int>(r.integer_or("drill_holes", f.drill_holes, 0));
+  if (f.drill_holes > 8) r.fail("drill_holes", "at most 8 drill holes");
+  f.drill_hole_diameter = r.quantity_or("drill_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  f.drill_hole_angle = r.quantity_or("drill_hole_angle", dim::angle, f.drill_hole_angle);
+  f.drill_hole_centrifugal = r.flag_or("drill_hole_centrifugal", f.drill_hole_centrifugal);
+  if (f.drill_holes > 0 && f.drill_hole_diameter == 0.0)
+    r.fail("drill_holes", "needs drill_hole_diameter");
+  if (f.drill_holes == 0 && f.drill_hole_diameter > 0.0)
+    r.fail("drill_hole_diameter", "given without drill_holes (the number of holes)");
+  if (f.drill_hole_diameter >= f.inner_length) r.fail("drill_hole_diameter", "must be smaller than inner_length");
+  if (f.drill_holes > 0 && f.drill_hole_diameter * f.drill_holes >= M_PI * f.inner_diameter)
+    r.fail("drill_hole_diameter", "the drill holes overlap around the bore");
+  if (f.cavitation == "mass-conserving" && (f.supply_pressure == 0.0 || f.drill_holes == 0))
+    r.fail("cavitation", "the mass-conserving model needs an oil supply in each film: a supply_pressure at the feed "
+                         "hole (outer film) and drill_holes through the ring (inner film)");
 }
 
 void read_bearing(Reader& r, BearingSpec& b) {

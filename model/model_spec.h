@@ -94,12 +94,18 @@ struct FloatingRingSpec {
   double outer_diameter = 0.0, outer_length = 0.0, outer_clearance = 0.0;  ///< m (ring outer diameter, ...)
   double ring_mass = 0.0;            ///< kg
   double ring_polar_inertia = 0.0;   ///< kg m^2
+  double ring_diametral_inertia = 0.0;  ///< kg m^2; 0 = the thick-walled cylinder's
+  bool ring_tilt = true;             ///< the ring tilts (2 DOF); false holds it aligned with the housing
   std::string cavitation = "gumbel";
   int n_circ = 60, n_axial = 12;
   double inner_oil_temperature = 0.0, outer_oil_temperature = 0.0;  ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0;      ///< Pa gauge at the housing feed hole (outer film)
   double feed_hole_diameter = 0.0;   ///< m
   double feed_hole_angle = M_PI / 2; ///< rad
+  int drill_holes = 0;               ///< radial holes through the ring at mid-width, evenly spaced (0-8)
+  double drill_hole_diameter = 0.0;  ///< m
+  double drill_hole_angle = 0.0;     ///< rad, first hole in the ring frame
+  bool drill_hole_centrifugal = true;  ///< the oil column spinning in the holes lowers the inner-mouth pressure
 };
 
 /// Squeeze-film damper around a linear bearing: the bearing's outer ring is a mass that moves in a non-rotating

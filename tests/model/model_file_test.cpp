@@ -86,6 +86,23 @@ TEST(ModelFile, ExamplesLoad) {
   EXPECT_NO_THROW(load_model(example("friswell_5_9_1.toml")));
 }
 
+TEST(ModelFile, FloatingRingDrillHolesAndMassConservingFilms) {
+  const std::filesystem::path f = example("reference_floating_ring.toml");
+  const MachineSpec s = load_model(f);
+  EXPECT_EQ(s.bearings[0].ring.drill_holes, 4);
+  EXPECT_DOUBLE_EQ(s.bearings[0].ring.drill_hole_diameter, 0.002);
+  EXPECT_TRUE(s.bearings[0].ring.ring_tilt);
+  // The mass-conserving model needs a supply in both films: the inner one is fed through the drill holes.
+  EXPECT_NO_THROW(load_model(f, {parse_override("bearings.compressor.cavitation=mass-conserving")}));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.cavitation=mass-conserving"),
+                           parse_override("bearings.compressor.drill_holes=0"),
+                           parse_override("bearings.compressor.drill_hole_diameter=0")}),
+              HasSubstr("drill_holes through the ring"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.drill_holes=9")}), HasSubstr("at most 8"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.drill_hole_diameter=8 mm")}),
+              HasSubstr("smaller than inner_length"));
+}
+
 TEST(ModelFile, MissingFile) {
   EXPECT_THAT(error_of(bad("does_not_exist.toml")), HasSubstr("cannot open"));
 }
