@@ -5,8 +5,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/identify_command.h"
 #include "app/journal_command.h"
 #include "app/modal_command.h"
+#include "app/optimize_command.h"
 #include "app/response_command.h"
 #include "app/run_command.h"
 #include "app/sweep_command.h"
@@ -125,6 +127,25 @@ int main(int argc, char** argv) {
   journal->add_option("--hole-diameter", jo.hole_diameter, "Feed hole at the top, mid-width")->capture_default_str();
   journal->add_option("--supply-pressure", jo.supply_pressure, "Feed pressure (gauge)")->capture_default_str();
 
+  turbodyn::app::OptimizeCommandOptions optimize_options;
+  CLI::App* optimize = app.add_subcommand("optimize", "Design optimisation (NLopt) of model parameters on run metrics");
+  optimize->add_option("STUDY", optimize_options.study_file, "Optimisation study file (TOML)")->required();
+  optimize->add_option("-o,--output", optimize_options.output_dir, "Output directory (restarts from the evaluations found there)")
+      ->capture_default_str();
+  optimize->add_option("-j,--threads", optimize_options.threads, "Parallel runs (default: the study's, else all cores)")
+      ->check(CLI::NonNegativeNumber);
+  optimize->add_option("--maxeval", optimize_options.maxeval, "Replace the study's maxeval (e.g. a quick trial)")
+      ->check(CLI::PositiveNumber);
+  optimize->add_flag("!--no-plots", optimize_options.plots, "No pictures (and no final run-ups for the spectrograms)");
+
+  turbodyn::app::IdentifyCommandOptions identify_options;
+  CLI::App* identify = app.add_subcommand("identify", "Fit bearing and unbalance parameters to a measured run-up (Ceres)");
+  identify->add_option("STUDY", identify_options.study_file, "Identification study file (TOML)")->required();
+  identify->add_option("-o,--output", identify_options.output_dir, "Output directory")->capture_default_str();
+  identify->add_option("-j,--threads", identify_options.threads, "Parallel model runs (default: the study's, else all cores)")
+      ->check(CLI::NonNegativeNumber);
+  identify->add_flag("!--no-plots", identify_options.plots, "Do not draw PNG pictures");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -133,6 +154,8 @@ int main(int argc, char** argv) {
     if (check->parsed()) return run_check(check_file, overrides);
     if (journal->parsed()) return turbodyn::app::run_journal_command(jo);
     if (sweep->parsed()) return turbodyn::app::run_sweep_command(sweep_options);
+    if (identify->parsed()) return turbodyn::app::run_identify_command(identify_options);
+    if (optimize->parsed()) return turbodyn::app::run_optimize_command(optimize_options);
     if (merge->parsed()) return turbodyn::app::run_merge_command(merge_study, merge_dirs, merge_output, merge_plots);
     if (run->parsed()) {
       run_options.overrides = overrides;

@@ -237,15 +237,20 @@ double FloatingRingElement::PotentialEnergy(const double*, const double* z) cons
 
 double FloatingRingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
                                             ElementWorkspace& ws) const {
-  // Power the films take out of the lateral motion, the tilt and the ring spin (the drive supplies the rotor spin):
-  // minus the power of the film forces, moments and torques on the shaft's lateral DOFs and on the ring.
+  // All the films turn into heat: minus the power of their forces, moments and torques on the shaft and the ring
+  // (the housing is fixed).
   const Films& films = Solve(s, q, v, z, ws);
   const reynolds::FilmResult& i = films.inner;
   const reynolds::FilmResult& o = films.outer;
-  const double shaft = i.fx * v[0] + i.fy * v[1] + i.mx * v[2] + i.my * v[3];
+  const double shaft = i.fx * v[0] + i.fy * v[1] + i.mx * v[2] + i.my * v[3] + i.torque_inner * s.speed;
   const double ring = (-i.fx + o.fx) * z[kVx] + (-i.fy + o.fy) * z[kVy] + (-i.mx + o.mx) * z[kWx] +
                       (-i.my + o.my) * z[kWy] + (i.torque_outer + o.torque_inner) * z[kSpin];
   return -(shaft + ring);
+}
+
+double FloatingRingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                                       ElementWorkspace& ws) const {
+  return -Solve(s, q, v, z, ws).inner.torque_inner * s.speed;
 }
 
 }  // namespace turbodyn

@@ -45,6 +45,8 @@ class FloatingRingElement final : public ForceElement {
   double PotentialEnergy(const double* q, const double* z) const override;
   double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
+  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                    ElementWorkspace& ws) const override;
 
   /// Centrifugal pressure drop across a drill hole at ring speed w_r (Pa).
   double centrifugal_head(double w_r) const;

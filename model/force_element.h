@@ -84,8 +84,9 @@ class ForceElement {
     (void)s, (void)q, (void)v, (void)z, (void)ws, (void)out;
   }
 
-  /// Power the element puts into the rotor and its own states from outside minus what it dissipates is not
-  /// needed separately: the engine's energy balance uses these two.
+  /// Energy bookkeeping of the run (RunupResult: E(t) - E(t0) = work in - dissipated). The rotor's spin is
+  /// prescribed, so the drive supplies whatever torque an element puts on the shaft about the spin axis: that
+  /// power is work in (DrivePower); what the element turns into heat is DissipatedPower.
   /// Potential energy stored in the element (J).
   virtual double PotentialEnergy(const double* q, const double* z) const {
     (void)q, (void)z;
@@ -99,6 +100,13 @@ class ForceElement {
   /// Power dissipated in the element (W, >= 0).
   virtual double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
                                  ElementWorkspace& ws) const {
+    (void)s, (void)q, (void)v, (void)z, (void)ws;
+    return 0.0;
+  }
+  /// Power the drive puts into the element through the prescribed spin: -T Omega for a moment T of the element
+  /// on the shaft about the spin axis (W; > 0 for a drag).
+  virtual double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                            ElementWorkspace& ws) const {
     (void)s, (void)q, (void)v, (void)z, (void)ws;
     return 0.0;
   }

@@ -92,9 +92,15 @@ void JournalBearingElement::EvalProbes(const SpinState& s, const double* q, cons
 
 double JournalBearingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double*,
                                               ElementWorkspace& ws) const {
-  // Power the film takes out of the lateral motion (the drive supplies the spin): -F.v - M.omega.
+  // All the film turns into heat: minus the power of its forces, moments and torque on the journal (the bush is
+  // fixed).
   const reynolds::FilmResult& r = Solve(s, q, v, ws);
-  return -(r.fx * v[0] + r.fy * v[1] + r.mx * v[2] + r.my * v[3]);
+  return -(r.fx * v[0] + r.fy * v[1] + r.mx * v[2] + r.my * v[3] + r.torque_inner * s.speed);
+}
+
+double JournalBearingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double*,
+                                         ElementWorkspace& ws) const {
+  return -Solve(s, q, v, ws).torque_inner * s.speed;
 }
 
 }  // namespace turbodyn

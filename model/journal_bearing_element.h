@@ -40,6 +40,8 @@ class JournalBearingElement final : public ForceElement {
                   double* out) const override;
   double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
+  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                    ElementWorkspace& ws) const override;
 
   const reynolds::FilmGeometry& geometry() const { return geometry_; }
   double viscosity() const { return viscosity_; }

@@ -227,10 +227,13 @@ void read_film(Reader& r, Film& f, const std::string& width) {
 
 void read_journal_bearing(Reader& r, BearingSpec& b) { read_film(r, b.journal, "bearing length"); }
 
-void read_damper(Reader& r, DamperSpec& d) {
+void read_damper(Reader& r, DamperSpec& d, bool needs_ring_mass) {
   d.enabled = true;
   read_film(r, d, "land width");
-  d.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
+  if (needs_ring_mass)
+    d.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
+  else if (r.has("ring_mass"))
+    r.fail("ring_mass", "the damper's ring is the ball bearing's outer ring: give its outer_ring_mass instead");
   d.centring_stiffness = r.quantity_or("centring_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
   r.finish();
 }
@@ -279,18 +282,63 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
                          "hole (outer film) and drill_holes through the ring (inner film)");
 }
 
+void read_ball_bearing(Reader& r, BearingSpec& b) {
+  BallBearingSpec& s = b.ball;
+  s.n_balls = static_cast<int>(r.integer_or("n_balls", s.n_balls, 3));
+  s.ball_diameter = r.quantity_or("ball_diameter", dim::length, s.ball_diameter, Bound::Positive);
+  s.pitch_diameter = r.quantity_or("pitch_diameter", dim::length, s.pitch_diameter, Bound::Positive);
+  s.inner_groove_ratio = r.quantity_or("inner_groove_ratio", dim::dimensionless, s.inner_groove_ratio, Bound::Positive);
+  s.outer_groove_ratio = r.quantity_or("outer_groove_ratio", dim::dimensionless, s.outer_groove_ratio, Bound::Positive);
+  s.contact_angle = r.quantity_or("contact_angle", dim::angle, s.contact_angle, Bound::NonNegative);
+  const long side = r.integer_or("side", s.side, -1);
+  if (side != 1 && side != -1) r.fail("side", "must be 1 or -1 (the side of the outer contact, see the manual)");
+  s.side = static_cast<int>(side);
+  s.ball_youngs_modulus = r.quantity_or("ball_modulus", dim::pressure, s.ball_youngs_modulus, Bound::Positive);
+  s.ball_poisson_ratio = r.quantity_or("ball_poisson_ratio", dim::dimensionless, s.ball_poisson_ratio, Bound::NonNegative);
+  s.ball_density = r.quantity_or("ball_density", dim::density, s.ball_density, Bound::Positive);
+  s.ring_youngs_modulus = r.quantity_or("ring_modulus", dim::pressure, s.ring_youngs_modulus, Bound::Positive);
+  s.ring_poisson_ratio = r.quantity_or("ring_poisson_ratio", dim::dimensionless, s.ring_poisson_ratio, Bound::NonNegative);
+  s.cage_mass = r.quantity_or("cage_mass", dim::mass, s.cage_mass, Bound::Positive);
+  s.cage_polar_inertia = r.quantity_or("cage_polar_inertia", dim::inertia, 0.0, Bound::Positive);
+  s.pocket_clearance = r.quantity_or("pocket_clearance", dim::length, s.pocket_clearance, Bound::Positive);
+  s.cage_youngs_modulus = r.quantity_or("cage_modulus", dim::pressure, s.cage_youngs_modulus, Bound::Positive);
+  s.cage_poisson_ratio = r.quantity_or("cage_poisson_ratio", dim::dimensionless, s.cage_poisson_ratio, Bound::NonNegative);
+  s.pocket_damping = r.quantity_or("pocket_damping", dim::damping, s.pocket_damping, Bound::NonNegative);
+  s.contact_damping = r.quantity_or("contact_damping", dim::damping, s.contact_damping, Bound::NonNegative);
+  s.friction_static = r.quantity_or("friction_static", dim::dimensionless, s.friction_static, Bound::NonNegative);
+  s.friction_sliding = r.quantity_or("friction_sliding", dim::dimensionless, s.friction_sliding, Bound::NonNegative);
+  s.friction_v1 = r.quantity_or("friction_v1", dim::velocity, s.friction_v1, Bound::Positive);
+  s.friction_v2 = r.quantity_or("friction_v2", dim::velocity, s.friction_v2, Bound::Positive);
+  s.spin_friction = r.flag_or("spin_friction", s.spin_friction);
+  s.preload = r.quantity_or("preload", dim::force, s.preload, Bound::NonNegative);
+  s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
+  s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);
+  const std::string mode = r.choice("outer_ring", {"fixed", "spring"}, "fixed");
+  s.outer_ring_mode = mode == "spring" ? OuterRingMode::kSpring : OuterRingMode::kFixed;
+  s.outer_ring_stiffness =
+      r.quantity_or("outer_ring_stiffness", dim::stiffness, s.outer_ring_stiffness, Bound::Positive);
+  s.outer_ring_damping = r.quantity_or("outer_ring_damping", dim::damping, s.outer_ring_damping, Bound::NonNegative);
+  if (mode == "fixed" && (r.has("outer_ring_stiffness") || r.has("outer_ring_damping")))
+    r.fail("outer_ring", "outer_ring_stiffness/outer_ring_damping need outer_ring = \"spring\"");
+  std::string why;
+  if (!s.IsValid(&why)) r.fail("type", "ball bearing: " + why);
+}
+
 void read_bearing(Reader& r, BearingSpec& b) {
-  b.type = r.choice("type", {"linear", "journal", "floating-ring"}, "");
+  b.type = r.choice("type", {"linear", "journal", "floating-ring", "ball"}, "");
   b.z = r.quantity("z", dim::length);
   if (b.type == "linear") read_linear_bearing(r, b);
   if (b.type == "journal") read_journal_bearing(r, b);
   if (b.type == "floating-ring") read_floating_ring(r, b);
-  if (b.type == "linear") {
+  if (b.type == "ball") read_ball_bearing(r, b);
+  if (b.type == "linear" || b.type == "ball") {
     if (const toml::table* damper = r.table("damper")) {
       Reader d(*damper, r.key_path("damper"), r.sources());
-      read_damper(d, b.damper);
+      read_damper(d, b.damper, b.type == "linear");
     }
   }
+  if (b.type == "ball" && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::kSpring)
+    r.fail("outer_ring", "\"spring\" and a [damper] both hold the outer ring: choose one");
   b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
   b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
   b.pedestal_damping = r.quantity_or("pedestal_damping", dim::damping, 0.0, Bound::NonNegative);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "model/ball_bearing.h"
+
 namespace turbodyn {
 
 /// Isotropic linear-elastic material.
@@ -127,12 +129,13 @@ struct DamperSpec {
 
 struct BearingSpec {
   std::string name;
-  std::string type;  ///< "linear" or "journal" (further bearing types come with their own issues)
+  std::string type;  ///< "linear", "journal", "floating-ring" or "ball"
   double z = 0.0;    ///< m
   LinearBearingSpec linear;
   JournalBearingSpec journal;
-  DamperSpec damper;  ///< linear bearings only
+  DamperSpec damper;  ///< linear and ball bearings
   FloatingRingSpec ring;
+  BallBearingSpec ball;
   double pedestal_mass = 0.0;       ///< kg; > 0 puts the bearing housing on a pedestal mass (run-up only)
   double pedestal_stiffness = 0.0;  ///< N/m, pedestal to ground
   double pedestal_damping = 0.0;    ///< N s/m, pedestal to ground

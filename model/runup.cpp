@@ -13,6 +13,8 @@
 #include <sundials/sundials_linearsolver.h>
 
 #include "model/damper_element.h"
+#include "model/ball_bearing.h"
+#include "model/ball_damper_element.h"
 #include "model/floating_ring_element.h"
 #include "model/journal_bearing_element.h"
 #include "model/linear_bearing_element.h"
@@ -204,7 +206,7 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
     unbalance_power += fx * disk_rows_[k].x.dot(v) + fy * disk_rows_[k].y.dot(v);
   }
 
-  double element_dissipation = 0.0;
+  double element_dissipation = 0.0, drive_power = 0.0;
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const ForceElement& e = *elements_[k];
     Gather(e, y, y + n, ws, static_cast<int>(k));
@@ -214,8 +216,10 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
                        ydot + state_offsets_[k]);
     ++ws.element_calls;
     f.noalias() += element_rows_[k].transpose() * ws.ef[k];
-    if (ws.energy)
+    if (ws.energy) {
       element_dissipation += e.DissipatedPower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
+      drive_power += e.DrivePower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
+    }
   }
 
   qdot = v;
@@ -223,9 +227,10 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
 
   double* energy = ydot + 2 * n + n_element_states_;
   if (ws.energy) {
-    // Work in: unbalance forces, and the spin-acceleration gyroscopic term -Omega' G q (the drive's share).
+    // Work in: unbalance forces, the spin-acceleration gyroscopic term -Omega' G q and the elements' drag torques
+    // (the drive's share).
     ws.tmp.noalias() = G_ * q;
-    energy[0] = unbalance_power - s.acceleration * v.dot(ws.tmp);
+    energy[0] = unbalance_power - s.acceleration * v.dot(ws.tmp) + drive_power;
     ws.tmp.noalias() = D_ * v;
     energy[1] = v.dot(ws.tmp) + element_dissipation;
   } else {
@@ -415,6 +420,12 @@ std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
     else if (b.type == "floating-ring")
       elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil,
                                                                rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+    else if (b.type == "ball" && b.damper.enabled)
+      elements.push_back(std::make_unique<BallDamperElement>(b.name, b.ball, b.damper, spec.oil,
+                                                             rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+    else if (b.type == "ball")
+      elements.push_back(
+          std::make_unique<BallBearingElement>(b.name, b.ball, rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
   // The bearings act through the elements; the rotor's own matrices stay bearing-free.
   double cutoff = spec.solver.reduction_cutoff;
   if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz

@@ -1,0 +1,66 @@
+#include "app/identify_command.h"
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "identification/identify.h"
+#include "identification/identify_study.h"
+#include "identification/report.h"
+
+namespace turbodyn::app {
+namespace {
+
+constexpr int kExitInterrupted = 130;
+
+std::atomic<bool> g_stop_identify{false};
+extern "C" void on_sigint_identify(int) { g_stop_identify.store(true); }
+
+}  // namespace
+
+int run_identify_command(const IdentifyCommandOptions& options) {
+  using namespace identification;
+  const IdentifyStudy study = load_identify_study(options.study_file);
+  IdentifyOptions io;
+  io.threads = options.threads;
+  io.cancel = &g_stop_identify;
+  io.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  g_stop_identify.store(false);
+  auto previous = std::signal(SIGINT, on_sigint_identify);
+  IdentifyResult r;
+  try {
+    r = identify(study, io);
+  } catch (...) {
+    std::signal(SIGINT, previous);
+    throw;
+  }
+  std::signal(SIGINT, previous);
+  std::vector<std::string> warnings = r.warnings;
+  const std::vector<std::string> files = write_identify_results(study, r, options.output_dir, options.plots, warnings);
+
+  std::cout << study.name << ": " << r.brief_report << "\n";
+  std::cout << std::setprecision(6);
+  for (std::size_t i = 0; i < study.parameters.size(); ++i) {
+    const ParameterSpec& p = study.parameters[i];
+    std::cout << "  " << std::left << std::setw(24) << p.name << std::right << " = " << r.estimate[i];
+    if (std::isfinite(r.std_dev[i])) std::cout << " +- " << r.std_dev[i];
+    if (!p.unit.empty()) std::cout << " " << p.unit;
+    if (std::isfinite(p.truth)) std::cout << "   (true " << p.truth << ")";
+    std::cout << "\n";
+  }
+  std::cout << r.model_runs << " model runs on " << r.threads << " threads, " << std::fixed << std::setprecision(1)
+            << r.wall_time << " s\n"
+            << "Wrote " << (options.output_dir / "estimates.json").string() << " and " << files.size() - 1
+            << " more files\n";
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+  if (r.cancelled) {
+    std::cerr << "interrupted: the results are those of the last finished iteration\n";
+    return kExitInterrupted;
+  }
+  return 0;
+}
+
+}  // namespace turbodyn::app

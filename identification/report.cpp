@@ -1,0 +1,374 @@
+#include "identification/report.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "model/plot.h"
+#include "model/signal.h"
+
+namespace turbodyn::identification {
+namespace {
+
+constexpr double kHzToRpm = 60.0;
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  std::ostringstream os;
+  os << std::setprecision(10) << v;
+  return os.str();
+}
+
+std::string file_safe(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
+  return s;
+}
+
+// Display scaling of a sensor's quantity.
+struct Display {
+  double factor = 1.0;
+  std::string unit;
+};
+Display display_of(Quantity q) {
+  switch (q) {
+    case Quantity::Displacement: return {1e6, "µm"};
+    case Quantity::Acceleration: return {1.0, "m/s²"};
+    case Quantity::Force: return {1.0, "N"};
+  }
+  return {};
+}
+std::string si_unit(Quantity q) { return q == Quantity::Displacement ? "m" : q == Quantity::Acceleration ? "m/s^2" : "N"; }
+
+// Sets `path` (--set syntax: dotted keys, name[i]) in `root` to the TOML value `value` (a plain string if it is not
+// TOML). The model loader has the same rule for --set; this copy only writes a file, the loader then checks it.
+void set_path(toml::table& root, const Override& o) {
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + o.value);
+  } catch (const toml::parse_error&) {
+    parsed.insert_or_assign("v", o.value);
+  }
+  const toml::node& value = *parsed.get("v");
+  toml::table* table = &root;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t dot = o.path.find('.', pos);
+    std::string key = o.path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
+    long index = -1;
+    if (const std::size_t b = key.find('['); b != std::string::npos && key.back() == ']') {
+      index = std::stol(key.substr(b + 1, key.size() - b - 2));
+      key = key.substr(0, b);
+    }
+    const bool last = dot == std::string::npos;
+    toml::node* n = table->get(key);
+    if (index >= 0) {
+      if (!n || !n->is_array() || static_cast<std::size_t>(index) >= n->as_array()->size())
+        throw ModelError(o.path + ": no entry " + std::to_string(index) + " of '" + key + "' in the model file");
+      toml::array& arr = *n->as_array();
+      if (last) {
+        value.visit([&](auto&& v) { arr.replace(arr.cbegin() + index, v); });
+        return;
+      }
+      if (!arr[static_cast<std::size_t>(index)].is_table()) throw ModelError(o.path + ": '" + key + "[...]' is not a table");
+      table = arr[static_cast<std::size_t>(index)].as_table();
+    } else if (last) {
+      value.visit([&](auto&& v) { table->insert_or_assign(key, v); });
+      return;
+    } else {
+      if (!n) n = table->insert_or_assign(key, toml::table{}).first->second.as_table();
+      if (!n->is_table()) throw ModelError(o.path + ": '" + key + "' is a value, not a table");
+      table = n->as_table();
+    }
+    pos = dot + 1;
+  }
+}
+
+void try_render(const plot::LineChart& c, const std::filesystem::path& png, std::vector<std::string>& files,
+                std::vector<std::string>& warnings) {
+  try {
+    plot::render_png(c, png);
+    files.push_back(png.filename().string());
+  } catch (const plot::PlotError& e) {
+    warnings.push_back(std::string("picture ") + png.filename().string() + " not drawn: " + e.what());
+  }
+}
+
+void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSpec& p, const std::string& title,
+                         const Display& disp, double fmax, const std::filesystem::path& png,
+                         std::vector<std::string>& files, std::vector<std::string>& warnings) {
+  if (r.time.size() < p.segment) {
+    warnings.push_back(png.filename().string() + " not drawn: the record is shorter than one STFT segment");
+    return;
+  }
+  const SpectraSet s = spectra_from_record(r, p);
+  plot::Heatmap hm;
+  hm.title = title;
+  hm.xlabel = "rotor speed [rpm]";
+  hm.ylabel = "frequency [Hz]";
+  hm.zlabel = "amplitude [" + disp.unit + "]";
+  hm.logz = true;
+  const std::vector<double>& f = s.frequency_hz.front();
+  std::size_t nb = 0;
+  while (nb < f.size() && f[nb] <= fmax) ++nb;
+  hm.y.assign(f.begin(), f.begin() + nb);
+  std::vector<std::size_t> keep;
+  for (std::size_t k = 0; k < s.speed_hz.size(); ++k)
+    if (keep.empty() || s.speed_hz[k] > s.speed_hz[keep.back()] + 1e-9) keep.push_back(k);
+  for (std::size_t k : keep) hm.x.push_back(s.speed_hz[k] * kHzToRpm);
+  hm.z.resize(nb * keep.size());
+  for (std::size_t j = 0; j < nb; ++j)
+    for (std::size_t i = 0; i < keep.size(); ++i) hm.z[j * keep.size() + i] = s.amplitude[sensor][keep[i]][j] * disp.factor;
+  plot::Series one;
+  one.label = "1x";
+  one.x = {hm.x.front(), hm.x.back()};
+  one.y = {hm.x.front() / kHzToRpm, hm.x.back() / kHzToRpm};
+  one.color = "white";
+  plot::Series half;
+  half.label = "0.5x";
+  half.x = one.x;
+  half.y = {0.5 * one.y[0], 0.5 * one.y[1]};
+  half.color = "white";
+  half.style = plot::Series::Style::Dashed;
+  hm.overlays = {one, half};
+  if (keep.size() < 2 || nb < 2) {
+    warnings.push_back(png.filename().string() + " not drawn: too few spectra");
+    return;
+  }
+  try {
+    plot::render_png(hm, png);
+    files.push_back(png.filename().string());
+  } catch (const plot::PlotError& e) {
+    warnings.push_back(std::string("picture ") + png.filename().string() + " not drawn: " + e.what());
+  }
+}
+
+}  // namespace
+
+nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& r) {
+  nlohmann::json params = nlohmann::json::array();
+  for (std::size_t i = 0; i < study.parameters.size(); ++i) {
+    const ParameterSpec& p = study.parameters[i];
+    nlohmann::json j{{"name", p.name},
+                     {"paths", p.paths},
+                     {"unit", p.unit},
+                     {"start", p.start},
+                     {"lower", p.lower},
+                     {"upper", p.upper},
+                     {"estimate", r.estimate[i]},
+                     {"std_dev", number(r.std_dev[i])},
+                     {"relative_std_dev", number(r.std_dev[i] / std::abs(r.estimate[i]))},
+                     {"at_bound", r.estimate[i] <= p.lower || r.estimate[i] >= p.upper}};
+    if (std::isfinite(p.truth)) {
+      j["true"] = p.truth;
+      j["error"] = r.estimate[i] - p.truth;
+      j["error_in_std_devs"] = number((r.estimate[i] - p.truth) / r.std_dev[i]);
+    }
+    params.push_back(j);
+  }
+  auto matrix = [](const Eigen::MatrixXd& m) {
+    nlohmann::json a = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+      nlohmann::json row = nlohmann::json::array();
+      for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(number(m(i, j)));
+      a.push_back(row);
+    }
+    return a;
+  };
+  double rms = 0.0;
+  std::size_t cnt = 0;
+  for (double v : r.fitted_residuals)
+    if (std::isfinite(v)) {
+      rms += v * v;
+      ++cnt;
+    }
+  rms = cnt ? std::sqrt(rms / static_cast<double>(cnt)) : NAN;
+  const SolverSpec& s = study.solver;
+  return {{"study", study.name},
+          {"study_file", study.source.string()},
+          {"model", study.model.string()},
+          {"method", study.method == Method::Response ? "response" : "runup"},
+          {"measurement", study.measurement.file.string()},
+          {"parameters", params},
+          {"covariance_ok", r.covariance_ok},
+          {"covariance_message", r.covariance_message},
+          {"covariance", matrix(r.covariance)},
+          {"correlation", matrix(r.correlation)},
+          {"residuals", {{"count", r.n_residuals}, {"variance", number(r.residual_variance)}, {"rms", number(rms)}}},
+          {"cost", {{"initial", r.initial_cost}, {"final", r.final_cost}}},
+          {"iterations", r.iterations},
+          {"converged", r.converged},
+          {"cancelled", r.cancelled},
+          {"termination", r.termination},
+          {"model_runs", r.model_runs},
+          {"threads", r.threads},
+          {"wall_time_s", r.wall_time},
+          {"solver",
+           {{"loss", to_string(s.loss)},
+            {"loss_scale", s.loss_scale},
+            {"max_iterations", s.max_iterations},
+            {"step", s.step},
+            {"differences", s.central ? "central" : "forward"},
+            {"scaling", s.scaling == Scaling::Start ? "start" : "bounds"},
+            {"function_tolerance", s.function_tolerance},
+            {"parameter_tolerance", s.parameter_tolerance},
+            {"gradient_tolerance", s.gradient_tolerance}}},
+          {"warnings", r.warnings}};
+}
+
+void write_model_with_overrides(const std::filesystem::path& base, const std::vector<Override>& overrides,
+                                const std::filesystem::path& file, const std::string& header_comment) {
+  toml::table root;
+  try {
+    root = toml::parse_file(base.string());
+  } catch (const toml::parse_error& e) {
+    throw ModelError(base.string() + ": " + std::string(e.description()));
+  }
+  for (const Override& o : overrides) set_path(root, o);
+  {
+    std::ofstream out(file);
+    if (!out) throw ModelError(file.string() + ": cannot write");
+    std::istringstream lines(header_comment);
+    for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+    out << "\n" << root << "\n";
+  }
+  (void)load_model(file);  // it must be a valid model file
+}
+
+std::vector<std::string> write_identify_results(const IdentifyStudy& study, const IdentifyResult& r,
+                                                const std::filesystem::path& dir, bool plots,
+                                                std::vector<std::string>& warnings) {
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> files;
+  {
+    std::ofstream out(dir / "estimates.json");
+    out << std::setw(2) << estimates_json(study, r) << "\n";
+    files.push_back("estimates.json");
+  }
+  {
+    std::ofstream out(dir / "ceres_summary.txt");
+    out << r.full_report;
+    files.push_back("ceres_summary.txt");
+  }
+  {
+    std::vector<Override> o = study.fixed;
+    std::ostringstream header;
+    header << "Fitted by `turbodyn identify " << study.source.string() << "` from " << study.model.string() << "\n"
+           << "(comments of the base model are not kept). Estimates:\n";
+    for (std::size_t i = 0; i < study.parameters.size(); ++i) {
+      const ParameterSpec& p = study.parameters[i];
+      header << "  " << p.name << " = " << format_value(r.estimate[i], p.unit);
+      if (std::isfinite(r.std_dev[i])) header << " +- " << format_value(r.std_dev[i], p.unit);
+      header << "\n";
+      for (const std::string& path : p.paths) o.push_back({path, format_value(r.estimate[i], p.unit)});
+    }
+    header << "Sample run:\n  turbodyn run " << (dir / "fitted.toml").string() << " -o out/fitted";
+    write_model_with_overrides(study.model, o, dir / "fitted.toml", header.str());
+    files.push_back("fitted.toml");
+  }
+  {
+    std::ofstream out(dir / "features.csv");
+    out << "feature,kind,sensor,quantity,speed_rpm,measured,initial,fitted,unit\n";
+    for (std::size_t f = 0; f < study.features.size(); ++f) {
+      const FeatureSpec& fs = study.features[f];
+      const SensorSpec& sensor = study.measurement.sensors[fs.sensor];
+      const FeatureTrack& m = r.measured_features[f];
+      const FeatureTrack* i0 = r.initial_features.empty() ? nullptr : &r.initial_features[f];
+      const FeatureTrack& fi = r.fitted_features[f];
+      auto row = [&](const std::string& q, double speed_hz, double a, double b, double c, const std::string& unit) {
+        out << fs.name << ',' << to_string(fs.kind) << ',' << sensor.name << ',' << q << ',' << csv_number(speed_hz * kHzToRpm)
+            << ',' << csv_number(a) << ',' << csv_number(b) << ',' << csv_number(c) << ',' << unit << '\n';
+      };
+      const double nan = NAN;
+      if (fs.kind == FeatureKind::Resonance) {
+        row("resonance_speed_rpm", nan, m.resonance_hz * kHzToRpm, i0 ? i0->resonance_hz * kHzToRpm : nan,
+            fi.resonance_hz * kHzToRpm, "rpm");
+        row("resonance_amplitude", nan, m.resonance_amplitude, i0 ? i0->resonance_amplitude : nan,
+            fi.resonance_amplitude, si_unit(sensor.quantity));
+        continue;
+      }
+      for (std::size_t k = 0; k < m.speed_hz.size(); ++k) {
+        row("amplitude", m.speed_hz[k], m.amplitude[k], i0 ? i0->amplitude[k] : nan, fi.amplitude[k], si_unit(sensor.quantity));
+        if (fs.kind == FeatureKind::Order1x && fs.phase)
+          row("phase", m.speed_hz[k], m.phase[k], i0 ? i0->phase[k] : nan, fi.phase[k], "rad");
+        if (fs.kind == FeatureKind::Subsync)
+          row("frequency", m.speed_hz[k], m.frequency[k], i0 ? i0->frequency[k] : nan, fi.frequency[k], "Hz");
+      }
+    }
+    files.push_back("features.csv");
+  }
+  if (!plots) return files;
+
+  for (std::size_t f = 0; f < study.features.size(); ++f) {
+    const FeatureSpec& fs = study.features[f];
+    const SensorSpec& sensor = study.measurement.sensors[fs.sensor];
+    const Display disp = display_of(sensor.quantity);
+    const FeatureTrack& m = r.measured_features[f];
+    const FeatureTrack* i0 = r.initial_features.empty() ? nullptr : &r.initial_features[f];
+    const FeatureTrack& fi = r.fitted_features[f];
+    auto series = [&](const std::string& label, const std::vector<double>& x, const std::vector<double>& y,
+                      double factor, plot::Series::Style style, const std::string& color) {
+      plot::Series s;
+      s.label = label;
+      s.style = style;
+      s.color = color;
+      for (std::size_t k = 0; k < x.size(); ++k) {
+        s.x.push_back(x[k] * kHzToRpm);
+        s.y.push_back(y[k] * factor);
+      }
+      return s;
+    };
+    auto chart = [&](const std::string& what, const std::vector<double> FeatureTrack::*member, double factor,
+                     const std::string& unit, const std::string& file) {
+      plot::LineChart c;
+      c.title = fs.name + ": " + what + " (" + sensor.name + ", " + sensor.probe + ")";
+      c.xlabel = "rotor speed [rpm]";
+      c.ylabel = what + " [" + unit + "]";
+      c.series.push_back(series("measured", m.speed_hz, m.*member, factor, plot::Series::Style::Points, "black"));
+      if (i0) c.series.push_back(series("initial model", i0->speed_hz, i0->*member, factor, plot::Series::Style::Dashed, "#888888"));
+      c.series.push_back(series("fitted model", fi.speed_hz, fi.*member, factor, plot::Series::Style::Lines, "#d62728"));
+      try_render(c, dir / file, files, warnings);
+    };
+    const std::string stem = "feature_" + file_safe(fs.name);
+    if (fs.kind == FeatureKind::Order1x) {
+      chart("1x amplitude", &FeatureTrack::amplitude, disp.factor, disp.unit, stem + "_amplitude.png");
+      if (fs.phase) chart("1x phase", &FeatureTrack::phase, 180.0 / M_PI, "deg", stem + "_phase.png");
+    } else if (fs.kind == FeatureKind::Subsync) {
+      chart("sub-synchronous amplitude", &FeatureTrack::amplitude, disp.factor, disp.unit, stem + "_amplitude.png");
+      chart("sub-synchronous frequency", &FeatureTrack::frequency, 1.0, "Hz", stem + "_frequency.png");
+    } else {
+      plot::LineChart c;
+      c.title = fs.name + ": 1x resonance (" + sensor.name + ")";
+      c.xlabel = "rotor speed [rpm]";
+      c.ylabel = "1x amplitude [" + disp.unit + "]";
+      c.series.push_back(series("measured", m.curve_speed_hz, m.curve_amplitude, disp.factor, plot::Series::Style::Points, "black"));
+      if (i0) c.series.push_back(series("initial model", i0->curve_speed_hz, i0->curve_amplitude, disp.factor, plot::Series::Style::Dashed, "#888888"));
+      c.series.push_back(series("fitted model", fi.curve_speed_hz, fi.curve_amplitude, disp.factor, plot::Series::Style::Lines, "#d62728"));
+      for (double v : {m.resonance_hz, fi.resonance_hz})
+        if (std::isfinite(v)) c.vertical_lines.push_back(v * kHzToRpm);
+      try_render(c, dir / (stem + ".png"), files, warnings);
+    }
+  }
+  // Spectrograms of the measured and the fitted signals (time-series measurements, run-up method).
+  if (r.measured.format == MeasurementFormat::TimeSeries && !r.fitted_record.time.empty()) {
+    double top = 0.0;
+    for (double v : r.measured.record.speed_hz) top = std::max(top, v);
+    const double fmax = std::min(0.5 * r.measured.record.sample_rate, 1.2 * top);
+    for (std::size_t s = 0; s < study.measurement.sensors.size(); ++s) {
+      const SensorSpec& sensor = study.measurement.sensors[s];
+      const Display disp = display_of(sensor.quantity);
+      spectrogram_picture(r.measured.record, s, study.processing, "Measured: " + sensor.name, disp, fmax,
+                          dir / ("spectrogram_measured_" + file_safe(sensor.name) + ".png"), files, warnings);
+      spectrogram_picture(r.fitted_record, s, study.processing, "Fitted model: " + sensor.name + " (" + sensor.probe + ")",
+                          disp, fmax, dir / ("spectrogram_fitted_" + file_safe(sensor.name) + ".png"), files, warnings);
+    }
+  }
+  return files;
+}
+
+}  // namespace turbodyn::identification

@@ -1,0 +1,506 @@
+#include "optim/optimization.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "model/rotor.h"
+#include "model/runup.h"
+#include "model/toml_reader.h"
+#include "studies/metrics.h"
+
+namespace turbodyn::optim {
+namespace {
+
+using input::Bound;
+using input::Reader;
+using input::Sources;
+
+constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
+
+struct AlgorithmInfo {
+  const char* name;
+  bool constraints, global, gradient;
+};
+
+// NLopt's algorithms by the names of the study file (docs/optimization.md).
+constexpr AlgorithmInfo kAlgorithms[] = {
+    {"cobyla", true, false, false}, {"bobyqa", false, false, false}, {"sbplx", false, false, false},
+    {"direct-l", false, true, false}, {"crs2", false, true, false}, {"isres", true, true, false},
+    {"mlsl", false, true, false},     {"mma", true, false, true},     {"slsqp", true, false, true},
+};
+
+const AlgorithmInfo* info(const std::string& name) {
+  for (const AlgorithmInfo& a : kAlgorithms)
+    if (name == a.name) return &a;
+  return nullptr;
+}
+
+std::string location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
+
+// A number or "<number> <unit>" (unit checked later by the model loader, as in the sweep's study file).
+studies::UnitValue node_value(const toml::node& n, const std::string& context) {
+  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
+  if (n.is_floating_point()) return {*n.value<double>(), ""};
+  if (n.is_string()) return studies::split_value(*n.value<std::string>(), context);
+  throw ModelError(context + ": expected a number or a string such as \"51 um\"");
+}
+
+std::string number_text(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+std::string shown(double v, const std::string& unit) { return number_text(v) + (unit.empty() ? "" : " " + unit); }
+
+Variable read_variable(Reader& r) {
+  Variable v;
+  const std::string path = r.text_or("path", "");
+  if (!path.empty()) v.paths.push_back(path);
+  if (const toml::array* paths = r.array("paths")) {
+    if (!path.empty()) r.fail("paths", "give either path or paths");
+    for (const toml::node& n : *paths) {
+      if (!n.is_string()) r.fail("paths", "expected model-file paths (strings)");
+      v.paths.push_back(*n.value<std::string>());
+    }
+  }
+  if (v.paths.empty())
+    r.fail_missing("path", "the model-file path of the variable, e.g. \"bearings.compressor.damper.clearance\", or "
+                           "paths = [...] for several keys set to one value");
+  v.path = r.text_or("name", v.paths.size() == 1 ? v.paths[0] : v.paths[0] + " (+" + std::to_string(v.paths.size() - 1) + ")");
+  bool unit_set = false;
+  auto take = [&](const std::string& key) -> double {
+    const toml::node* n = r.get(key);
+    if (!n) return NAN;
+    const studies::UnitValue u = node_value(*n, location(r, key));
+    if (unit_set && u.unit != v.unit)
+      r.fail(key, "is written in '" + u.unit + "' but the variable's other values in '" + v.unit +
+                      "'; write low, high and start in one unit");
+    v.unit = u.unit;
+    unit_set = true;
+    return u.value;
+  };
+  v.low = take("low");
+  v.high = take("high");
+  if (std::isnan(v.low)) r.fail_missing("low", "the lower bound, e.g. \"30 um\"");
+  if (std::isnan(v.high)) r.fail_missing("high", "the upper bound, e.g. \"120 um\"");
+  if (!(v.low < v.high))
+    r.fail("low", "the lower bound " + shown(v.low, v.unit) + " must be below the upper bound " + shown(v.high, v.unit));
+  const std::string scale = r.choice("scale", {"linear", "log"}, "linear");
+  v.log_scale = scale == "log";
+  if (v.log_scale && !(v.low > 0.0)) r.fail("scale", "a logarithmic scale needs a positive lower bound");
+  v.start = take("start");
+  if (std::isnan(v.start)) {
+    v.start = v.value(0.5);
+  } else if (v.start < v.low || v.start > v.high) {
+    r.fail("start", "the start " + shown(v.start, v.unit) + " lies outside the bounds [" + shown(v.low, v.unit) +
+                        ", " + shown(v.high, v.unit) + "]");
+  }
+  r.finish();
+  return v;
+}
+
+Metric read_metric(Reader& r, double window_min, double window_max) {
+  Metric m;
+  studies::MetricSpec& s = m.spec;
+  const std::vector<std::string> kinds = {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed",
+                                          "subsync_max", "subsync_ratio", "subsync_onset_speed",
+                                          "subsync_frequency", "summary", "response_peak", "response_peak_speed"};
+  s.kind = r.choice("kind", kinds, "");
+  if (s.kind.empty()) r.fail_missing("kind", "max, max_radius, peak_1x, ..., response_peak");
+  s.probe = r.text_or("probe", "");
+  if (s.probe.empty()) r.fail_missing("probe", "a probe name such as \"disk.compressor.x\" or \"bearing.turbine\"");
+  s.name = r.text_or("name", s.kind + "(" + s.probe + ")");
+  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
+  if (!window.empty()) {
+    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
+    s.speed_min = window[0];
+    s.speed_max = window[1];
+  }
+  if (const toml::node* n = r.get("threshold")) {
+    const studies::UnitValue v = node_value(*n, location(r, "threshold"));
+    s.threshold = v.value;
+    if (!v.unit.empty()) {
+      const std::string text = n->value<std::string>().value_or("");
+      try {
+        s.threshold = parse_quantity(text, dim::length);
+      } catch (const UnitError&) {
+        try {
+          s.threshold = parse_quantity(text, dim::force);
+        } catch (const UnitError& e) {
+          r.fail("threshold", std::string("expected a length or a force: ") + e.what());
+        }
+      }
+    }
+  }
+  if (s.kind == "subsync_onset_speed" && !(s.threshold > 0.0))
+    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+  m.points = static_cast<int>(r.integer_or("points", 200, 3));
+  if (m.response() && s.speed_max <= 0.0) {
+    if (window_max <= 0.0)
+      r.fail("speed_window", "a steady-state response metric needs a speed window (here or in [optimize])");
+    s.speed_min = window_min;
+    s.speed_max = window_max;
+  }
+  r.finish();
+  return m;
+}
+
+std::size_t metric_index(Reader& r, const std::string& key, const std::vector<Metric>& metrics) {
+  const std::string name = r.text_or(key, "");
+  if (name.empty()) r.fail_missing(key, "the name of one of the [[metrics]]");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    if (metrics[i].spec.name == name) return i;
+    names.push_back(metrics[i].spec.name);
+  }
+  const std::string hint = closest_match(name, names);
+  std::string known;
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+  r.fail(key, "unknown metric '" + name + "'" + (hint.empty() ? " (metrics: " + known + ")" : "; did you mean '" + hint + "'?"));
+}
+
+// A constraint bound in the unit the metric's values have (metric_unit): lengths in m, forces in N, speeds in rpm.
+double bound_value(Reader& r, const std::string& key, const std::string& unit) {
+  const toml::node* n = r.get(key);
+  const studies::UnitValue v = node_value(*n, location(r, key));
+  if (v.unit.empty()) return v.value;
+  const std::string text = *n->value<std::string>();
+  try {
+    if (unit == "m") return parse_quantity(text, dim::length);
+    if (unit == "N") return parse_quantity(text, dim::force);
+    if (unit == "rpm") return parse_quantity(text, dim::angular_speed) * kRadPerSToRpm;
+    if (unit == "Hz") return parse_quantity(text, dim::frequency);
+    if (unit == "1") return parse_quantity(text, dim::dimensionless);
+  } catch (const UnitError& e) {
+    r.fail(key, std::string("the metric is in ") + unit + ": " + e.what());
+  }
+  if (v.unit == unit) return v.value;
+  r.fail(key, "the metric's values are in '" + (unit.empty() ? std::string("(unknown)") : unit) +
+                  "'; write the bound as a plain number in that unit");
+}
+
+// x/y (or fx/fy) channels of a pair stem, as the run-up metrics read them.
+bool has_pair(const std::vector<std::string>& names, const std::string& stem) {
+  auto has = [&](const std::string& n) { return std::find(names.begin(), names.end(), n) != names.end(); };
+  return (has(stem + ".x") && has(stem + ".y")) || (has(stem + ".fx") && has(stem + ".fy"));
+}
+
+// Checks the metrics against the base model (probes exist, response metrics have a linear model) and sets their
+// units.
+void resolve_metrics(OptimizationSpec& s) {
+  const MachineSpec machine = load_model(s.model, run_overrides(s, start_design(s), &s.cases.front()));
+  const std::unique_ptr<RunupModel> model = make_runup_model(machine);
+  const std::vector<ProbeChannel>& channels = model->channels();
+  std::vector<std::string> names;
+  for (const ProbeChannel& c : channels) names.push_back(c.name);
+  for (std::size_t i = 0; i < s.metrics.size(); ++i) {
+    Metric& m = s.metrics[i];
+    const std::string where = s.source.string() + ": metrics[" + std::to_string(i) + "].probe: ";
+    if (m.response()) {
+      for (const BearingSpec& b : machine.bearings)
+        if (b.type != "linear" || b.damper.enabled || b.pedestal_mass > 0.0)
+          throw ModelError(s.source.string() + ": metrics[" + std::to_string(i) + "].kind: " + m.spec.kind +
+                           " needs the linear rotor (linear bearings without dampers or pedestals); bearing '" +
+                           b.name + "' is not; use a run-up metric");
+      std::vector<std::string> stems;
+      for (const DiskSpec& d : machine.disks)
+        for (const char* sfx : {"", ".x", ".y"}) stems.push_back("disk." + d.name + sfx);
+      for (const BearingSpec& b : machine.bearings)
+        for (const char* sfx : {"", ".fx", ".fy"}) stems.push_back("bearing." + b.name + sfx);
+      if (std::find(stems.begin(), stems.end(), m.spec.probe) == stems.end()) {
+        const std::string hint = closest_match(m.spec.probe, stems);
+        throw ModelError(where + "the steady-state response has no probe '" + m.spec.probe + "'" +
+                         (hint.empty() ? " (use disk.NAME or bearing.NAME)" : "; did you mean '" + hint + "'?"));
+      }
+      m.unit = m.spec.kind == "response_peak_speed" ? "rpm" : m.spec.probe.rfind("disk.", 0) == 0 ? "m" : "N";
+      continue;
+    }
+    if (m.spec.kind != "summary") {
+      const bool ok = m.spec.kind == "max_radius" ? has_pair(names, m.spec.probe)
+                                                  : std::find(names.begin(), names.end(), m.spec.probe) != names.end();
+      if (!ok) {
+        std::string msg = where + "the model has no probe '" + m.spec.probe + "'";
+        const std::string hint = closest_match(m.spec.probe, names);
+        if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
+        else {
+          msg += " (probes:";
+          for (const std::string& n : names) msg += " " + n;
+          msg += ")";
+        }
+        throw ModelError(msg);
+      }
+    }
+    m.unit = studies::metric_unit(m.spec, channels);
+  }
+  // Spectrogram probes: the channels of the objective's metrics unless given.
+  if (s.spectrogram_probes.empty()) {
+    for (const ObjectiveTerm& t : s.objective.terms) {
+      const std::string& p = s.metrics[t.metric].spec.probe;
+      for (const std::string& c : {p, p + ".x", p + ".fx"})
+        if (std::find(names.begin(), names.end(), c) != names.end() &&
+            std::find(s.spectrogram_probes.begin(), s.spectrogram_probes.end(), c) == s.spectrogram_probes.end()) {
+          s.spectrogram_probes.push_back(c);
+          break;
+        }
+    }
+  }
+  for (const std::string& p : s.spectrogram_probes)
+    if (std::find(names.begin(), names.end(), p) == names.end()) {
+      const std::string hint = closest_match(p, names);
+      throw ModelError(s.source.string() + ": optimize.spectrograms: the model has no probe '" + p + "'" +
+                       (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+    }
+}
+
+}  // namespace
+
+double Variable::value(double x) const {
+  x = std::clamp(x, 0.0, 1.0);
+  if (x == 0.0) return low;
+  if (x == 1.0) return high;
+  return log_scale ? low * std::pow(high / low, x) : low + x * (high - low);
+}
+
+double Variable::scaled(double v) const {
+  const double x = log_scale ? std::log(v / low) / std::log(high / low) : (v - low) / (high - low);
+  return std::clamp(x, 0.0, 1.0);
+}
+
+const std::vector<std::string>& algorithm_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const AlgorithmInfo& a : kAlgorithms) n.push_back(a.name);
+    return n;
+  }();
+  return names;
+}
+
+bool supports_constraints(const std::string& a) { return info(a) && info(a)->constraints; }
+bool is_global(const std::string& a) { return info(a) && info(a)->global; }
+bool needs_gradient(const std::string& a) { return info(a) && info(a)->gradient; }
+
+bool AlgorithmOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!info(name)) return fail("unknown algorithm '" + name + "'");
+  if (name == "mlsl" && (!info(local) || is_global(local)))
+    return fail("mlsl needs a local optimiser (local = cobyla, bobyqa, sbplx, mma or slsqp), got '" + local + "'");
+  if (is_global(name) && maxeval <= 0 && maxtime <= 0.0)
+    return fail("the global algorithm " + name + " stops only on maxeval or maxtime: give one of them");
+  if (maxeval <= 0 && maxtime <= 0.0 && xtol_rel <= 0.0 && xtol_abs <= 0.0 && ftol_rel <= 0.0 && ftol_abs <= 0.0 &&
+      !has_stopval)
+    return fail("no stopping criterion: give at least one of xtol_rel, xtol_abs, ftol_rel, ftol_abs, maxeval, maxtime");
+  if (!(gradient_step > 0.0 && gradient_step < 0.5)) return fail("gradient_step must lie in (0, 0.5)");
+  if (initial_step < 0.0 || initial_step > 1.0) return fail("initial_step must lie in [0, 1]");
+  if (constraint_tolerance < 0.0) return fail("constraint_tolerance must not be negative");
+  return true;
+}
+
+std::vector<double> start_design(const OptimizationSpec& spec) {
+  std::vector<double> d;
+  for (const Variable& v : spec.variables) d.push_back(v.start);
+  return d;
+}
+
+std::string value_text(const Variable& v, double value) { return shown(value, v.unit); }
+
+std::vector<Override> run_overrides(const OptimizationSpec& spec, const std::vector<double>& design,
+                                    const OperatingCase* operating_case) {
+  std::vector<Override> o = spec.base_overrides;
+  for (std::size_t i = 0; i < spec.variables.size(); ++i)
+    for (const std::string& p : spec.variables[i].paths) o.push_back({p, value_text(spec.variables[i], design[i])});
+  if (operating_case) o.insert(o.end(), operating_case->overrides.begin(), operating_case->overrides.end());
+  return o;
+}
+
+OptimizationSpec load_optimization(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ModelError(file.string() + ": cannot open the study file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  toml::table root;
+  try {
+    root = toml::parse(text.str(), std::string_view(file.string()));
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << file.string() << ':' << e.source().begin.line << ':' << e.source().begin.column
+       << ": TOML syntax error: " << e.description();
+    throw ModelError(os.str());
+  }
+  const Sources src{file.string(), {}};
+  OptimizationSpec s;
+  s.source = file;
+  Reader top(root, "", src);
+  const toml::table* opt = top.table("optimize");
+  if (!opt) top.fail("optimize", "missing: an [optimize] table with at least model = \"...\"");
+  {
+    Reader r(*opt, "optimize", src);
+    s.name = r.text_or("name", file.stem().string());
+    const std::string model = r.text_or("model", "");
+    if (model.empty()) r.fail_missing("model", "the base model file");
+    s.model = std::filesystem::path(model).is_absolute() ? std::filesystem::path(model) : file.parent_path() / model;
+    if (!std::filesystem::exists(s.model)) r.fail("model", "no such file: " + s.model.string());
+    s.threads = static_cast<int>(r.integer_or("threads", 0, 0));
+    const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
+    if (!window.empty()) {
+      if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
+      s.speed_window_min = window[0];
+      s.speed_window_max = window[1];
+    }
+    if (const toml::array* fixed = r.array("fixed"))
+      for (const toml::node& n : *fixed) {
+        if (!n.is_string()) r.fail("fixed", "expected strings \"PATH=VALUE\"");
+        s.base_overrides.push_back(parse_override(*n.value<std::string>()));
+      }
+    if (const toml::array* probes = r.array("spectrograms"))
+      for (const toml::node& n : *probes) {
+        if (!n.is_string()) r.fail("spectrograms", "expected probe names such as \"disk.turbine.x\"");
+        s.spectrogram_probes.push_back(*n.value<std::string>());
+      }
+    s.final_runs = r.choice("final_runs", {"full", "window", "none"}, "full");
+    r.finish();
+  }
+  const toml::table* alg = top.table("algorithm");
+  if (!alg) top.fail("algorithm", "missing: an [algorithm] table with name = \"cobyla\" (or another) and stopping criteria");
+  {
+    Reader r(*alg, "algorithm", src);
+    AlgorithmOptions& a = s.algorithm;
+    a.name = r.choice("name", algorithm_names(), "");
+    if (a.name.empty()) r.fail_missing("name", "one of cobyla, bobyqa, sbplx, direct-l, crs2, isres, mlsl, mma, slsqp");
+    std::vector<std::string> locals;
+    for (const std::string& n : algorithm_names())
+      if (!is_global(n)) locals.push_back(n);
+    a.local = r.choice("local", locals, a.local);
+    a.xtol_rel = r.quantity_or("xtol_rel", dim::dimensionless, 0.0, Bound::NonNegative);
+    a.xtol_abs = r.quantity_or("xtol_abs", dim::dimensionless, 0.0, Bound::NonNegative);
+    a.ftol_rel = r.quantity_or("ftol_rel", dim::dimensionless, 0.0, Bound::NonNegative);
+    a.ftol_abs = r.quantity_or("ftol_abs", dim::dimensionless, 0.0, Bound::NonNegative);
+    if (r.has("stopval")) {
+      a.has_stopval = true;
+      a.stopval = r.quantity("stopval", dim::dimensionless);
+    }
+    a.maxeval = static_cast<int>(r.integer_or("maxeval", 0, 1));
+    a.maxtime = r.quantity_or("maxtime", dim::time, 0.0, Bound::Positive);
+    a.initial_step = r.quantity_or("initial_step", dim::dimensionless, 0.0, Bound::Positive);
+    a.central_differences = r.choice("gradient", {"forward", "central"}, "forward") == "central";
+    a.gradient_step = r.quantity_or("gradient_step", dim::dimensionless, a.gradient_step, Bound::Positive);
+    a.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0));
+    a.constraint_tolerance =
+        r.quantity_or("constraint_tolerance", dim::dimensionless, a.constraint_tolerance, Bound::NonNegative);
+    std::string why;
+    if (!a.IsValid(&why)) r.fail_table(why);
+    r.finish();
+  }
+  const toml::array* vars = top.array("variables");
+  if (!vars || vars->empty()) top.fail("variables", "missing: at least one [[variables]] entry (path, low, high)");
+  for (std::size_t i = 0; i < vars->size(); ++i) {
+    const toml::node& n = (*vars)[i];
+    const std::string path = "variables[" + std::to_string(i) + "]";
+    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
+    Reader r(*n.as_table(), path, src);
+    s.variables.push_back(read_variable(r));
+    for (std::size_t j = 0; j + 1 < s.variables.size(); ++j)
+      for (const std::string& p : s.variables.back().paths)
+        if (std::find(s.variables[j].paths.begin(), s.variables[j].paths.end(), p) != s.variables[j].paths.end())
+          r.fail(r.has("paths") ? "paths" : "path", "'" + p + "' is already set by variables[" + std::to_string(j) + "]");
+  }
+  if (const toml::array* cases = top.array("cases")) {
+    for (std::size_t i = 0; i < cases->size(); ++i) {
+      const toml::node& n = (*cases)[i];
+      const std::string path = "cases[" + std::to_string(i) + "]";
+      if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
+      Reader r(*n.as_table(), path, src);
+      OperatingCase c;
+      c.name = r.text_or("name", "case " + std::to_string(i));
+      c.weight = r.quantity_or("weight", dim::dimensionless, 1.0, Bound::Positive);
+      if (const toml::array* set = r.array("set"))
+        for (const toml::node& o : *set) {
+          if (!o.is_string()) r.fail("set", "expected strings \"PATH=VALUE\"");
+          c.overrides.push_back(parse_override(*o.value<std::string>()));
+        }
+      r.finish();
+      s.cases.push_back(c);
+    }
+  }
+  if (s.cases.empty()) s.cases.push_back({"nominal", 1.0, {}});
+  const toml::array* metrics = top.array("metrics");
+  if (!metrics || metrics->empty()) top.fail("metrics", "missing: at least one [[metrics]] entry (kind, probe)");
+  for (std::size_t i = 0; i < metrics->size(); ++i) {
+    const toml::node& n = (*metrics)[i];
+    const std::string path = "metrics[" + std::to_string(i) + "]";
+    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
+    Reader r(*n.as_table(), path, src);
+    s.metrics.push_back(read_metric(r, s.speed_window_min, s.speed_window_max));
+    for (std::size_t j = 0; j + 1 < s.metrics.size(); ++j)
+      if (s.metrics[j].spec.name == s.metrics.back().spec.name)
+        r.fail("name", "the name '" + s.metrics[j].spec.name + "' is already used by metrics[" + std::to_string(j) + "]");
+  }
+  const toml::table* objective = top.table("objective");
+  if (!objective) top.fail("objective", "missing: an [objective] table with metric = \"...\" (minimised)");
+  {
+    Reader r(*objective, "objective", src);
+    s.objective.cases = r.choice("cases", {"max", "weighted"}, "max") == "max" ? CaseAggregate::Max
+                                                                                : CaseAggregate::Weighted;
+    if (r.has("metric")) s.objective.terms.push_back({metric_index(r, "metric", s.metrics), 1.0});
+    if (const toml::array* terms = r.array("terms")) {
+      for (std::size_t i = 0; i < terms->size(); ++i) {
+        const toml::node& n = (*terms)[i];
+        if (!n.is_table()) r.fail("terms", "expected tables {metric = \"...\", weight = 1.0}");
+        Reader t(*n.as_table(), r.key_path("terms") + "[" + std::to_string(i) + "]", src);
+        ObjectiveTerm term;
+        term.metric = metric_index(t, "metric", s.metrics);
+        term.weight = t.quantity_or("weight", dim::dimensionless, 1.0);
+        t.finish();
+        s.objective.terms.push_back(term);
+      }
+    }
+    if (s.objective.terms.empty())
+      r.fail_missing("metric", "the metric to minimise, or terms = [{metric = \"...\", weight = 1.0}, ...]");
+    r.finish();
+  }
+  struct PendingBound {
+    const toml::table* table;
+    std::string path, key;
+  };
+  std::vector<PendingBound> pending;
+  if (const toml::array* cons = top.array("constraints")) {
+    for (std::size_t i = 0; i < cons->size(); ++i) {
+      const toml::node& n = (*cons)[i];
+      const std::string path = "constraints[" + std::to_string(i) + "]";
+      if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
+      Reader r(*n.as_table(), path, src);
+      Constraint c;
+      c.metric = metric_index(r, "metric", s.metrics);
+      c.name = r.text_or("name", s.metrics[c.metric].spec.name);
+      const bool upper = r.has("upper"), lower = r.has("lower");
+      if (!upper && !lower)
+        r.fail_table("a constraint needs a bound: upper = \"...\" (metric <= upper) or lower = \"...\" (metric >= lower)");
+      if (upper && lower) r.fail("lower", "give either upper or lower (write two constraints for a band)");
+      c.upper = upper;
+      r.finish();
+      s.constraints.push_back(c);
+      pending.push_back({n.as_table(), path, upper ? "upper" : "lower"});
+    }
+  }
+  if (!s.constraints.empty() && !supports_constraints(s.algorithm.name) && is_global(s.algorithm.name)) {
+    Reader r(*alg, "algorithm", src);
+    r.fail("name", s.algorithm.name + " handles bound constraints only, not the study's [[constraints]]; use isres "
+                   "(global) or cobyla, mma, slsqp (local), or bobyqa/sbplx (wrapped in NLopt's augmented Lagrangian, "
+                   "AUGLAG)");
+  }
+  top.finish();
+  resolve_metrics(s);
+  for (std::size_t i = 0; i < s.constraints.size(); ++i) {
+    Reader r(*pending[i].table, pending[i].path, src);
+    s.constraints[i].bound = bound_value(r, pending[i].key, s.metrics[s.constraints[i].metric].unit);
+  }
+  return s;
+}
+
+}  // namespace turbodyn::optim

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# `turbodyn identify` as a user runs it, run by CTest: identify_test.sh TURBODYN SOURCE_DIR WORK_DIR CASE
+set -u
+exe=$1 src=$2 work=$3 case=$4
+out="$work/identify_$case"
+rm -rf "$out" && mkdir -p "$out"
+fail() { echo "FAIL (identify_$case): $*"; exit 1; }
+
+case $case in
+  example)
+    # The example study recovers the true values of its synthetic measurement within 3 standard deviations, and
+    # the fitted model file runs.
+    "$exe" identify "$src/examples/identify_bench_rotor.toml" -o "$out" -j 2 > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    for f in estimates.json ceres_summary.txt fitted.toml features.csv feature_order1x_x_mid_amplitude.png \
+             spectrogram_measured_x_mid.png spectrogram_fitted_x_mid.png; do
+      [ -s "$out/$f" ] || fail "missing $f"
+    done
+    grep -Eq "Termination: +CONVERGENCE" "$out/ceres_summary.txt" || fail "not converged: $(head -40 "$out/ceres_summary.txt")"
+    # |error_in_std_devs| < 3 for every parameter (the JSON is indented two spaces per level).
+    n=$(grep -c '"error_in_std_devs"' "$out/estimates.json")
+    [ "$n" -eq 3 ] || fail "expected 3 parameters with true values, found $n"
+    bad=$(grep '"error_in_std_devs"' "$out/estimates.json" | awk -F: '{ v = $2 + 0; if (v < -3 || v > 3) print }')
+    [ -z "$bad" ] || fail "estimates off by more than 3 sigma: $bad"
+    "$exe" run "$out/fitted.toml" --no-plots -o "$out/fitted_run" > "$out/run.log" 2>&1 || fail "fitted.toml does not run: $(cat "$out/run.log")"
+    grep -q '"complete": true' "$out/fitted_run/summary.json" || fail "fitted run incomplete"
+    ;;
+  bad_measured_file)
+    # A NaN in the measured file: exit code 2 and a message naming file, line, field and column.
+    sed 's/^0.010000,\([^,]*\),\([^,]*\),\([^,]*\),.*$/0.010000,\1,\2,\3,nan/' "$src/examples/data/bench_rotor_runup.csv" \
+      > "$out/bench_rotor_runup.csv"
+    sed "s|^model = \"bench_rotor_journal.toml\"|model = \"$src/examples/bench_rotor_journal.toml\"|; s|^file = \"data/bench_rotor_runup.csv\"|file = \"bench_rotor_runup.csv\"|" \
+      "$src/examples/identify_bench_rotor.toml" > "$out/study.toml"
+    "$exe" identify "$out/study.toml" -o "$out/res" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || fail "exit $rc, expected 2: $(cat "$out/log")"
+    grep -q "bench_rotor_runup.csv:53:[0-9]*: column 'y_mid': 'nan' is not a finite number" "$out/log" \
+      || fail "message: $(cat "$out/log")"
+    ;;
+  bad_study)
+    # A misspelt key in the study file: exit code 2, file:line:column and a suggestion.
+    sed 's/^n_speeds = 18$/n_speed = 18/' "$src/examples/identify_bench_rotor.toml" > "$out/study.toml"
+    sed -i "s|^model = \"bench_rotor_journal.toml\"|model = \"$src/examples/bench_rotor_journal.toml\"|" "$out/study.toml"
+    "$exe" identify "$out/study.toml" -o "$out/res" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || fail "exit $rc, expected 2: $(cat "$out/log")"
+    grep -q "study.toml:[0-9]*:[0-9]*: features\[0\].n_speed: unknown key; did you mean 'n_speeds'?" "$out/log" \
+      || fail "message: $(cat "$out/log")"
+    ;;
+  *)
+    fail "unknown case"
+    ;;
+esac
+echo "ok ($case)"

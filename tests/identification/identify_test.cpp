@@ -1,0 +1,447 @@
+// Identification (`turbodyn identify`): known answers from synthetic measurements, bad measured files, and
+// determinism across thread counts (docs/identification.md, "Tests").
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "identification/identify.h"
+#include "identification/identify_study.h"
+#include "identification/measurement.h"
+#include "identification/report.h"
+#include "model/model_file.h"
+#include "model/response.h"
+#include "model/rotor.h"
+#include "model/runup.h"
+#include "model/timeseries_file.h"
+
+namespace turbodyn::identification {
+namespace {
+
+// Estimates must lie within this many of their reported standard deviations of the truth (a 3-sigma band:
+// 99.7 % for a Gaussian estimate; each test draws one fixed noise realisation, so it is deterministic).
+constexpr double kSigmas = 3.0;
+
+std::filesystem::path source(const std::string& rel) { return std::filesystem::path(TURBODYN_SOURCE_DIR) / rel; }
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("turbodyn_identify_test_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void write(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file);
+  out << text;
+}
+
+// ---------------------------------------------------------------------------------------------- linear Jeffcott
+
+// Noisy 1x spectra of the Jeffcott rotor (k = 2e5 N/m, c = 200 N s/m, both bearings) at 1000 .. 6000 rpm: per
+// speed a background bin at 0.5 f_d and the 1x line, additive Gaussian noise of 1 um (about 1 % of the peak).
+constexpr double kTrueK = 2e5, kTrueC = 200.0, kJeffcottNoise = 1e-6;
+
+std::filesystem::path jeffcott_study(const std::filesystem::path& dir) {
+  const MachineSpec spec = load_model(source("tests/data/identification/jeffcott.toml"));
+  const Rotor rotor = build_rotor(spec);
+  const int x = rotor.dof(rotor.disks[0].node, kX), y = rotor.dof(rotor.disks[0].node, kY);
+  std::mt19937_64 rng(42);
+  std::normal_distribution<double> noise(0.0, kJeffcottNoise);
+  std::ostringstream csv;
+  csv << "speed [rpm],frequency [Hz],x [um],y [um]\n" << std::setprecision(10);
+  for (int i = 0; i <= 100; ++i) {
+    const double rpm = 1000.0 + 50.0 * i, fd = rpm / 60.0;
+    const SteadyResponse r = unbalance_response(rotor, 2.0 * M_PI * fd);
+    csv << rpm << ',' << 0.5 * fd << ',' << 1e6 * std::abs(noise(rng)) << ',' << 1e6 * std::abs(noise(rng)) << '\n';
+    csv << rpm << ',' << fd << ',' << 1e6 * std::abs(std::abs(r.q(x)) + noise(rng)) << ','
+        << 1e6 * std::abs(std::abs(r.q(y)) + noise(rng)) << '\n';
+  }
+  write(dir / "jeffcott_spectra.csv", csv.str());
+  const std::string study = R"([identify]
+model = ")" + source("tests/data/identification/jeffcott.toml").string() + R"("
+method = "response"
+
+[measurement]
+file = "jeffcott_spectra.csv"
+format = "spectra"
+speed = "speed"
+frequency = "frequency"
+
+[[measurement.sensors]]
+column = "x"
+probe = "disk.mid.x"
+
+[[measurement.sensors]]
+column = "y"
+probe = "disk.mid.y"
+
+[[features]]
+kind = "order1x"
+sensor = "x"
+phase = false
+speed_range = ["1000 rpm", "6000 rpm"]
+n_speeds = 101
+scale = "1 um"
+
+[[features]]
+kind = "order1x"
+sensor = "y"
+phase = false
+speed_range = ["1000 rpm", "6000 rpm"]
+n_speeds = 101
+scale = "1 um"
+
+[[parameters]]
+name = "k"
+path = ["bearings.left.k", "bearings.right.k"]
+start = "3e5 N/m"
+lower = "5e4 N/m"
+upper = "1e6 N/m"
+true = "2e5 N/m"
+
+[[parameters]]
+name = "c"
+path = ["bearings.left.c", "bearings.right.c"]
+start = "100 N*s/m"
+lower = "10 N*s/m"
+upper = "1000 N*s/m"
+true = "200 N*s/m"
+
+[solver]
+function_tolerance = 1e-10
+parameter_tolerance = 1e-10
+)";
+  write(dir / "study.toml", study);
+  return dir / "study.toml";
+}
+
+TEST(Identify, LinearJeffcottBearingStiffnessAndDampingFromNoisyUnbalanceResponse) {
+  const auto dir = scratch("jeffcott");
+  const IdentifyStudy study = load_identify_study(jeffcott_study(dir));
+  const IdentifyResult r = identify(study);
+  ASSERT_TRUE(r.covariance_ok) << r.covariance_message;
+  EXPECT_TRUE(r.converged) << r.full_report;
+  std::cout << "k = " << r.estimate[0] << " +- " << r.std_dev[0] << " N/m (true " << kTrueK << "), c = "
+            << r.estimate[1] << " +- " << r.std_dev[1] << " N s/m (true " << kTrueC << "), correlation "
+            << r.correlation(0, 1) << ", residual sigma " << std::sqrt(r.residual_variance) << ", " << r.model_runs
+            << " model runs\n";
+  EXPECT_LT(std::abs(r.estimate[0] - kTrueK), kSigmas * r.std_dev[0]);
+  EXPECT_LT(std::abs(r.estimate[1] - kTrueC), kSigmas * r.std_dev[1]);
+  // "Within noise": with 1 um noise on ~100 um peaks, k to 1 % and c to 5 %.
+  EXPECT_LT(std::abs(r.estimate[0] / kTrueK - 1.0), 0.01);
+  EXPECT_LT(std::abs(r.estimate[1] / kTrueC - 1.0), 0.05);
+  // The residuals were scaled by the true noise, so their standard deviation comes out near 1.
+  EXPECT_NEAR(std::sqrt(r.residual_variance), 1.0, 0.2);
+  // Outputs, and fitted.toml is a valid model file carrying the estimates.
+  std::vector<std::string> warnings;
+  write_identify_results(study, r, dir / "out", false, warnings);
+  const MachineSpec fitted = load_model(dir / "out" / "fitted.toml");
+  EXPECT_NEAR(fitted.bearings[0].linear.k[0].front(), r.estimate[0], 1e-6 * r.estimate[0]);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "estimates.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "features.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "ceres_summary.txt"));
+}
+
+// ------------------------------------------------------------------------------ nonlinear: journal bearings
+
+// A run-up of tests/data/identification/journal_rotor.toml (clearance 30 um, viscosity 10 mPa s: the file's
+// values) written as a bench would: HDF5 with time, speed in rpm, a tacho signal and the two displacements in um
+// with Gaussian noise of 0.1 um.
+constexpr double kTrueClearanceUm = 30.0, kTrueViscosityMPas = 10.0, kJournalNoiseUm = 0.1;
+
+constexpr const char* kJournalParameters = R"([[parameters]]
+name = "clearance"
+path = ["bearings.left.clearance", "bearings.right.clearance"]
+start = "34 um"
+lower = "20 um"
+upper = "45 um"
+true = "30 um"
+
+[[parameters]]
+name = "viscosity"
+path = "oil.viscosity"
+start = "12 mPa*s"
+lower = "5 mPa*s"
+upper = "20 mPa*s"
+true = "10 mPa*s"
+)";
+
+std::filesystem::path runup_study(const std::filesystem::path& dir, const std::string& model_file,
+                                  const std::string& parameters, int max_iterations) {
+  const MachineSpec spec = load_model(source(model_file));
+  const auto model = make_runup_model(spec);
+  const RunupResult r = simulate_runup(*model, runup_options(spec));
+  EXPECT_TRUE(r.complete) << r.message;
+  int cs = -1, ca = -1, cx = -1, cy = -1;
+  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+    if (r.channels[c].name == "speed") cs = static_cast<int>(c);
+    if (r.channels[c].name == "spin_angle") ca = static_cast<int>(c);
+    if (r.channels[c].name == "disk.mid.x") cx = static_cast<int>(c);
+    if (r.channels[c].name == "disk.mid.y") cy = static_cast<int>(c);
+  }
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, kJournalNoiseUm);
+  {
+    Hdf5TimeSeriesWriter w(dir / "journal_runup.h5",
+                           {{"speed", "rpm", ""}, {"tacho", "V", "key-phasor"}, {"x", "um", ""}, {"y", "um", ""}});
+    for (std::size_t i = 0; i < r.time.size(); ++i) {
+      // Key-phasor: rising edge through 2.5 V at rotor angle 0, edges 1.5 rad wide (as in
+      // scripts/make_synthetic_measurement.sh).
+      const double a = r.columns[ca][i], wrapped = a - 2.0 * M_PI * std::floor(a / (2.0 * M_PI) + 0.5);
+      const double rise = std::clamp(0.5 + wrapped / 1.5, 0.0, 1.0), fall = std::clamp(0.5 - (wrapped - 2.0) / 1.5, 0.0, 1.0);
+      const double row[4] = {60.0 * r.columns[cs][i], 5.0 * std::min(rise, fall),
+                             1e6 * r.columns[cx][i] + noise(rng), 1e6 * r.columns[cy][i] + noise(rng)};
+      w.append(r.time[i], row);
+    }
+    w.finish(true);
+  }
+  const std::string study = R"([identify]
+model = ")" + source(model_file).string() + R"("
+
+[measurement]
+file = "journal_runup.h5"
+speed = "speed"
+tacho = "tacho"
+
+[[measurement.sensors]]
+column = "x"
+probe = "disk.mid.x"
+
+[[measurement.sensors]]
+column = "y"
+probe = "disk.mid.y"
+
+[processing]
+revolutions = 4
+
+[[features]]
+kind = "order1x"
+sensor = "x"
+speed_range = ["5000 rpm", "11500 rpm"]
+n_speeds = 14
+
+[[features]]
+kind = "order1x"
+sensor = "y"
+speed_range = ["5000 rpm", "11500 rpm"]
+n_speeds = 14
+
+)" + parameters + R"(
+[solver]
+max_iterations = )" + std::to_string(max_iterations) + "\n";
+  write(dir / "study.toml", study);
+  return dir / "study.toml";
+}
+
+TEST(Identify, NonlinearJournalBearingClearanceAndViscosityFromNoisyRunup) {
+  const auto dir = scratch("journal");
+  const IdentifyStudy study = load_identify_study(runup_study(dir, "tests/data/identification/journal_rotor.toml", kJournalParameters, 15));
+  IdentifyOptions o;
+  o.threads = 2;
+  const IdentifyResult r = identify(study, o);
+  ASSERT_TRUE(r.covariance_ok) << r.covariance_message;
+  std::cout << "clearance = " << r.estimate[0] << " +- " << r.std_dev[0] << " um (true " << kTrueClearanceUm
+            << "), viscosity = " << r.estimate[1] << " +- " << r.std_dev[1] << " mPa s (true " << kTrueViscosityMPas
+            << "), correlation " << r.correlation(0, 1) << ", " << r.iterations << " iterations, " << r.model_runs
+            << " model runs, " << r.wall_time << " s\n";
+  EXPECT_LT(std::abs(r.estimate[0] - kTrueClearanceUm), kSigmas * r.std_dev[0]);
+  EXPECT_LT(std::abs(r.estimate[1] - kTrueViscosityMPas), kSigmas * r.std_dev[1]);
+  // The fit moved well away from the start (34 um, 12 mPa s): the band above is not met by standing still.
+  EXPECT_LT(std::abs(r.estimate[0] - kTrueClearanceUm), 0.25 * std::abs(34.0 - kTrueClearanceUm));
+  EXPECT_LT(std::abs(r.estimate[1] - kTrueViscosityMPas), 0.25 * std::abs(12.0 - kTrueViscosityMPas));
+  EXPECT_LT(r.final_cost, 0.01 * r.initial_cost);
+}
+
+// The floating-ring variant: inner and outer film clearances of both bearings (true 30 and 60 um).
+TEST(Identify, NonlinearFloatingRingClearancesFromNoisyRunup) {
+  const auto dir = scratch("floating_ring");
+  const std::string parameters = R"([[parameters]]
+name = "inner_clearance"
+path = ["bearings.left.inner_clearance", "bearings.right.inner_clearance"]
+start = "34 um"
+lower = "20 um"
+upper = "45 um"
+true = "30 um"
+
+[[parameters]]
+name = "outer_clearance"
+path = ["bearings.left.outer_clearance", "bearings.right.outer_clearance"]
+start = "68 um"
+lower = "40 um"
+upper = "90 um"
+true = "60 um"
+)";
+  const IdentifyStudy study =
+      load_identify_study(runup_study(dir, "tests/data/identification/floating_ring_rotor.toml", parameters, 15));
+  IdentifyOptions o;
+  o.threads = 2;
+  const IdentifyResult r = identify(study, o);
+  ASSERT_TRUE(r.covariance_ok) << r.covariance_message;
+  std::cout << "inner clearance = " << r.estimate[0] << " +- " << r.std_dev[0] << " um (true 30), outer clearance = "
+            << r.estimate[1] << " +- " << r.std_dev[1] << " um (true 60), correlation " << r.correlation(0, 1) << ", "
+            << r.iterations << " iterations, " << r.model_runs << " model runs, " << r.wall_time << " s\n";
+  EXPECT_LT(std::abs(r.estimate[0] - 30.0), kSigmas * r.std_dev[0]);
+  EXPECT_LT(std::abs(r.estimate[1] - 60.0), kSigmas * r.std_dev[1]);
+  EXPECT_LT(std::abs(r.estimate[0] - 30.0), 0.25 * 4.0);
+  EXPECT_LT(std::abs(r.estimate[1] - 60.0), 0.25 * 8.0);
+}
+
+// Results do not depend on the number of threads: the same model runs, placed by index, the same Ceres steps.
+TEST(Identify, SameEstimatesWithOneAndTwoThreads) {
+  const auto dir = scratch("threads");
+  const IdentifyStudy study = load_identify_study(runup_study(dir, "tests/data/identification/journal_rotor.toml", kJournalParameters, 2));
+  IdentifyOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const IdentifyResult a = identify(study, one), b = identify(study, two);
+  ASSERT_EQ(a.estimate.size(), b.estimate.size());
+  for (std::size_t i = 0; i < a.estimate.size(); ++i) {
+    EXPECT_EQ(a.estimate[i], b.estimate[i]);
+    EXPECT_EQ(a.std_dev[i], b.std_dev[i]);
+  }
+  EXPECT_EQ(a.final_cost, b.final_cost);
+  EXPECT_EQ(a.model_runs, b.model_runs);
+}
+
+// --------------------------------------------------------------------------------------- bad measured files
+
+MeasurementSpec bench_spec(const std::filesystem::path& file) {
+  MeasurementSpec m;
+  m.file = file;
+  m.time = {"time", ""};
+  m.speed = {"speed", "rpm"};
+  SensorSpec s;
+  s.name = "x";
+  s.column = {"x", ""};
+  s.probe = "disk.mid.x";
+  m.sensors.push_back(s);
+  return m;
+}
+
+std::string good_rows(int n, int from = 0) {
+  std::ostringstream os;
+  for (int i = from; i < n; ++i) os << 1e-3 * i << ',' << 3000 + i << ',' << std::sin(0.3 * i) << '\n';
+  return os.str();
+}
+
+std::string error_of(const MeasurementSpec& m) {
+  try {
+    (void)read_measurement(m);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Identify, MeasuredFileWithMissingColumnNamesTheColumnAndListsThePresentOnes) {
+  const auto dir = scratch("bad_missing");
+  write(dir / "m.csv", "time [s],speed [rpm],z [um]\n" + good_rows(40));
+  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  EXPECT_NE(e.find("m.csv: no column 'x' (sensor x); the file has: 'time' 'speed' 'z'"), std::string::npos) << e;
+}
+
+TEST(Identify, MeasuredFileWithNonMonotonicTimeNamesLineAndColumn) {
+  const auto dir = scratch("bad_time");
+  write(dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(20) + "0.0185,3020,0.1\n" + good_rows(40, 21));
+  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  // Line 22 = header + 20 rows + the bad one.
+  EXPECT_NE(e.find("m.csv:22:1: column 'time': time does not increase (0.0185 s after 0.019 s on line 21)"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Identify, MeasuredFileWithNaNNamesLineFieldAndColumn) {
+  const auto dir = scratch("bad_nan");
+  write(dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(10) + "0.010,3010,NaN\n" + good_rows(40, 11));
+  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  EXPECT_NE(e.find("m.csv:12:12: column 'x': 'NaN' is not a finite number"), std::string::npos) << e;
+  write(dir / "m2.csv", "time [s],speed [rpm],x [um]\n" + good_rows(10) + "0.010,,0.5\n" + good_rows(40, 11));
+  const std::string e2 = error_of(bench_spec(dir / "m2.csv"));
+  EXPECT_NE(e2.find("m2.csv:12:7: column 'speed': empty field is not a finite number"), std::string::npos) << e2;
+}
+
+TEST(Identify, MeasuredFileWithUnknownUnitNamesColumnAndSuggests) {
+  const auto dir = scratch("bad_unit");
+  write(dir / "m.csv", "time [s],speed [rpm],x [mum]\n" + good_rows(40));
+  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  EXPECT_NE(e.find("m.csv: column 'x' (sensor x): unit 'mum' in the file's header:"), std::string::npos) << e;
+  EXPECT_NE(e.find("mum"), std::string::npos) << e;
+  // A unit of the wrong kind (a speed where a displacement is expected) is refused too.
+  write(dir / "m2.csv", "time [s],speed [rpm],x [rpm]\n" + good_rows(40));
+  const std::string e2 = error_of(bench_spec(dir / "m2.csv"));
+  EXPECT_NE(e2.find("column 'x' (sensor x): unit 'rpm'"), std::string::npos) << e2;
+}
+
+TEST(Identify, UnknownUnitInTheStudyFileNamesItsLine) {
+  const auto dir = scratch("bad_study_unit");
+  write(dir / "m.csv", "time,speed,x\n" + good_rows(40));
+  write(dir / "study.toml", R"([identify]
+model = ")" + source("tests/data/identification/jeffcott.toml").string() + R"("
+
+[measurement]
+file = "m.csv"
+speed = "speed"
+speed_unit = "rpm"
+
+[[measurement.sensors]]
+column = "x"
+unit = "furlong"
+probe = "disk.mid.x"
+
+[[features]]
+kind = "order1x"
+speeds = ["3000 rpm"]
+
+[[parameters]]
+path = "bearings.left.k"
+start = 1e5
+lower = 1e4
+upper = 1e6
+)");
+  try {
+    (void)load_identify_study(dir / "study.toml");
+    FAIL() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("study.toml:11:8: measurement.sensors[0].unit: unit 'furlong'"), std::string::npos)
+        << e.what();
+  }
+}
+
+// The tacho path: the angle from pulses of a constant-acceleration run-up is exact (quadratic interpolation).
+TEST(Identify, TachoAngleOfALinearRampIsExact) {
+  const auto dir = scratch("tacho");
+  const double f0 = 50.0, alpha = 500.0, fs = 5000.0;  // Hz, Hz/s, 1/s
+  std::ostringstream csv;
+  csv << "time,tacho,x\n" << std::setprecision(17);
+  for (int i = 0; i < 2000; ++i) {
+    const double t = i / fs, a = 2.0 * M_PI * (f0 * t + 0.5 * alpha * t * t);
+    const double w = a - 2.0 * M_PI * std::floor(a / (2.0 * M_PI) + 0.5);
+    csv << t << ',' << 5.0 * std::min(std::clamp(0.5 + w / 1.5, 0.0, 1.0), std::clamp(0.5 - (w - 2.0) / 1.5, 0.0, 1.0))
+        << ",0\n";
+  }
+  write(dir / "m.csv", csv.str());
+  MeasurementSpec m;
+  m.file = dir / "m.csv";
+  m.tacho = "tacho";
+  SensorSpec s;
+  s.name = "x";
+  s.column = {"x", "m"};
+  m.sensors.push_back(s);
+  const MeasuredData d = read_measurement(m);
+  double worst = 0.0, worst_speed = 0.0;
+  for (std::size_t i = 0; i < d.record.time.size(); ++i) {
+    const double t = d.record.time[i], a = 2.0 * M_PI * (f0 * t + 0.5 * alpha * t * t);
+    worst = std::max(worst, std::abs(std::remainder(d.record.angle[i] - a, 2.0 * M_PI)));
+    worst_speed = std::max(worst_speed, std::abs(d.record.speed_hz[i] - (f0 + alpha * t)));
+  }
+  EXPECT_LT(worst, 1e-4);        // rad (the pulse times come from linear interpolation between samples)
+  EXPECT_LT(worst_speed, 2e-3);  // Hz, of 50 .. 250 Hz
+}
+
+}  // namespace
+}  // namespace turbodyn::identification

@@ -1,0 +1,68 @@
+// The ball bearing's force evaluation allocates nothing (STYLE.md; Drake's LimitMalloc idea): this executable
+// replaces the global operator new with a counting one, like rhs_alloc_test.cpp.
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "model/ball_bearing.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace turbodyn {
+namespace {
+
+TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
+  for (OuterRingMode mode : {OuterRingMode::kFixed, OuterRingMode::kSpring, OuterRingMode::kExternal}) {
+    BallBearingSpec spec;
+    spec.outer_ring_mode = mode;
+    const BallBearingElement e("alloc", spec, 0, 9.81);
+    auto ws = e.make_workspace();
+    std::vector<double> z(e.n_states()), zdot(e.n_states()), out(e.probes().size());
+    e.initial_states(z.data());
+    const double W = 100000 * 2 * M_PI / 60;
+    e.steady_states(W, z.data());
+    z[e.cage_offset() + 3] += 0.01;  // pockets in contact
+    const double q[4] = {1e-6, -0.5e-6, 1e-5, 0}, v[4] = {1e-3, 0, 0, 0};
+    double f[4] = {0, 0, 0, 0};
+    const SpinState s{0.0, W, 0.0, 0.0};
+    e.CalcAndAddForces(s, q, v, z.data(), *ws, f, zdot.data());  // warm-up
+    const long before = g_allocations.load();
+    double sink = 0.0;
+    for (int i = 0; i < 100; ++i) {
+      z[0] += 1e-4;
+      e.CalcAndAddForces(s, q, v, z.data(), *ws, f, zdot.data());
+      e.EvalProbes(s, q, v, z.data(), *ws, out.data());
+      sink += e.DissipatedPower(s, q, v, z.data(), *ws) + e.KineticEnergy(z.data()) + e.PotentialEnergy(q, z.data());
+      BallBearingLoads loads;
+      e.CalcBearing(s, q, v, z.data(), OuterRingKinematics{1e-7, 0, 0, 0}, loads, zdot.data());
+      sink += loads.max_contact_force;
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << "outer-ring mode " << static_cast<int>(mode);
+    EXPECT_TRUE(std::isfinite(sink));
+    EXPECT_GT(f[0] * f[0] + f[1] * f[1], 0.0);
+  }
+  // The counter works: a vector allocates.
+  const long before = g_allocations.load();
+  std::vector<double> v(10);
+  EXPECT_GT(g_allocations.load() - before, 0);
+}
+
+}  // namespace
+}  // namespace turbodyn
