@@ -596,16 +596,7 @@ MachineSpec load_model(const std::filesystem::path& file, const std::vector<Over
 
 MachineSpec load_model_from_string(const std::string& toml_text, const std::string& source_name,
                                    const std::vector<Override>& overrides) {
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, std::string_view(source_name));
-  } catch (const toml::parse_error& e) {
-    std::ostringstream os;
-    os << source_name << ':' << e.source().begin.line << ':' << e.source().begin.column
-       << ": TOML syntax error: " << e.description();
-    throw ModelError(os.str());
-  }
-  return load_parsed(std::move(root), source_name, overrides);
+  return load_parsed(input::parse_toml(toml_text, source_name), source_name, overrides);
 }
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {

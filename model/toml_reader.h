@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -19,6 +21,27 @@
 namespace turbodyn::input {
 
 inline constexpr const char* kOverridePrefix = "--set ";
+
+/// Parses TOML text; a syntax error is a ModelError naming source:line:column.
+inline toml::table parse_toml(const std::string& text, const std::string& source_name) {
+  try {
+    return toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << source_name << ':' << e.source().begin.line << ':' << e.source().begin.column
+       << ": TOML syntax error: " << e.description();
+    throw ModelError(os.str());
+  }
+}
+
+/// Reads the whole file (a ModelError "FILE: cannot open the WHAT" if it cannot).
+inline std::string read_text_file(const std::filesystem::path& file, const std::string& what) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ModelError(file.string() + ": cannot open the " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // Where values came from: the file, or the --set override that put a node into the tree.
 struct Sources {

@@ -5,6 +5,8 @@
 
 #include <toml++/toml.h>
 
+#include "model/toml_reader.h"
+
 namespace turbodyn::optim {
 namespace {
 
@@ -106,18 +108,9 @@ std::size_t byte_offset(const std::string& line, std::size_t column) {
 
 std::string patched_model(const std::filesystem::path& base, const std::vector<Override>& overrides,
                           const std::string& header) {
-  std::ifstream in(base, std::ios::binary);
-  if (!in) throw ModelError(base.string() + ": cannot open the model file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string original = text.str();
-  toml::table tree, target;
-  try {
-    tree = toml::parse(original, std::string_view(base.string()));
-    target = toml::parse(original, std::string_view(base.string()));
-  } catch (const toml::parse_error& e) {
-    throw ModelError(base.string() + ": TOML syntax error: " + std::string(e.description()));
-  }
+  const std::string original = input::read_text_file(base, "model file");
+  toml::table tree = input::parse_toml(original, base.string());
+  toml::table target = tree;
   // In-place edits, line by line; the same override twice: the last wins, as in the loader.
   std::vector<std::string> lines;
   {

@@ -123,20 +123,30 @@ UnitValue split_value(const std::string& text, const std::string& context) {
   return {v, trim(std::string(res.ptr, s.data() + s.size()))};
 }
 
-StudySpec load_study(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ModelError(file.string() + ": cannot open the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  toml::table root;
-  try {
-    root = toml::parse(text.str(), std::string_view(file.string()));
-  } catch (const toml::parse_error& e) {
-    std::ostringstream os;
-    os << file.string() << ':' << e.source().begin.line << ':' << e.source().begin.column
-       << ": TOML syntax error: " << e.description();
-    throw ModelError(os.str());
+StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file) {
+  StudyCommon s;
+  s.name = r.text_or("name", file.stem().string());
+  const std::string model = r.text_or("model", "");
+  if (model.empty()) r.fail_missing("model", "the base model file");
+  s.model = std::filesystem::path(model).is_absolute() ? std::filesystem::path(model) : file.parent_path() / model;
+  if (!std::filesystem::exists(s.model)) r.fail("model", "no such file: " + s.model.string());
+  s.threads = static_cast<int>(r.integer_or("threads", 0, 0));
+  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
+  if (!window.empty()) {
+    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
+    s.speed_window_min = window[0];
+    s.speed_window_max = window[1];
   }
+  if (const toml::array* fixed = r.array("fixed"))
+    for (const toml::node& n : *fixed) {
+      if (!n.is_string()) r.fail("fixed", "expected strings \"PATH=VALUE\"");
+      s.fixed.push_back(parse_override(*n.value<std::string>()));
+    }
+  return s;
+}
+
+StudySpec load_study(const std::filesystem::path& file) {
+  const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   StudySpec s;
   s.source = file;
@@ -145,23 +155,13 @@ StudySpec load_study(const std::filesystem::path& file) {
   if (!study) top.fail("study", "missing: a [study] table with at least model = \"...\"");
   {
     Reader r(*study, "study", src);
-    s.name = r.text_or("name", file.stem().string());
-    const std::string model = r.text_or("model", "");
-    if (model.empty()) r.fail("model", "missing required key (the base model file)");
-    s.model = std::filesystem::path(model).is_absolute() ? std::filesystem::path(model) : file.parent_path() / model;
-    if (!std::filesystem::exists(s.model)) r.fail("model", "no such file: " + s.model.string());
-    s.threads = static_cast<int>(r.integer_or("threads", 0, 0));
-    const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
-    if (!window.empty()) {
-      if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
-      s.speed_window_min = window[0];
-      s.speed_window_max = window[1];
-    }
-    if (const toml::array* fixed = r.array("fixed"))
-      for (const toml::node& n : *fixed) {
-        if (!n.is_string()) r.fail("fixed", "expected strings \"PATH=VALUE\"");
-        s.base_overrides.push_back(parse_override(*n.value<std::string>()));
-      }
+    const StudyCommon c = read_study_common(r, file);
+    s.name = c.name;
+    s.model = c.model;
+    s.threads = c.threads;
+    s.speed_window_min = c.speed_window_min;
+    s.speed_window_max = c.speed_window_max;
+    s.base_overrides = c.fixed;
     r.finish();
   }
   const toml::table* design = top.table("design");

@@ -11,6 +11,10 @@
 #include "model/model_file.h"
 #include "studies/design.h"
 
+namespace turbodyn::input {
+class Reader;
+}
+
 namespace turbodyn::studies {
 
 /// A value as written in the study file: a number and the unit it was written in ("580 mg*mm" -> 580, "mg*mm").
@@ -43,6 +47,17 @@ struct StudySpec {
   double speed_window_max = 0.0;           ///< rad/s: a run stops where the ramp reaches this speed (0 = end)
   int threads = 0;                         ///< 0 = all cores
 };
+
+/// The keys every study-type table shares ([study], [optimize], [identify]): name, model (relative to the study
+/// file, must exist), threads, speed_window = [low, high], fixed = ["PATH=VALUE", ...].
+struct StudyCommon {
+  std::string name;
+  std::filesystem::path model;
+  int threads = 0;
+  double speed_window_min = 0.0, speed_window_max = 0.0;  ///< rad/s, 0 = not limited
+  std::vector<Override> fixed;
+};
+StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file);
 
 /// Reads and checks a study file; errors (ModelError) name file, line, key and cause.
 StudySpec load_study(const std::filesystem::path& file);
