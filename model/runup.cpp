@@ -32,9 +32,13 @@ struct RunupWorkspace {
   std::vector<Eigen::VectorXd> eout0, eout1;  // per element: outputs [f; zdot] for finite differences
   // Jacobian blocks of M v' = f(q, v, z), z' = g(q, v, z).
   Eigen::MatrixXd Fq, Fv, Fz, Gq, Gv, Gz;
-  // Newton matrix and its factorisation.
+  // Newton matrix: the n x n Schur complement on the rotor coordinates and its factorisation; per element with
+  // states, its block I - g G_zz, the factors, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), and scratch.
   Eigen::MatrixXd A;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  std::vector<Eigen::MatrixXd> eA, eY, eT, eJY, eRJY;
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> elu;
+  std::vector<Eigen::VectorXd> ew, ew0, eu;   // per element: m, m and d scratch
   Eigen::VectorXd rhs, sol;
   double jac_t = 0.0;
   SpinState jac_spin;
@@ -161,10 +165,23 @@ RunupWorkspacePtr RunupModel::make_workspace() const {
   ws->Gq.setZero(m, n);
   ws->Gv.setZero(m, n);
   ws->Gz.setZero(m, m);
-  ws->A.setZero(n + m, n + m);
-  ws->lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n + m);
-  ws->rhs.setZero(n + m);
-  ws->sol.setZero(n + m);
+  ws->A.setZero(n, n);
+  ws->lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+  for (const auto& e : elements_) {
+    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
+    ws->eA.emplace_back(Eigen::MatrixXd::Zero(me, me));
+    ws->elu.emplace_back(me);
+    ws->eY.emplace_back(Eigen::MatrixXd::Zero(me, d));
+    ws->eT.emplace_back(Eigen::MatrixXd::Zero(me, d));
+    ws->ew0.emplace_back(Eigen::VectorXd::Zero(me));
+    ws->eJY.emplace_back(Eigen::MatrixXd::Zero(d, d));
+    ws->eRJY.emplace_back(Eigen::MatrixXd::Zero(n, d));
+    ws->ew.emplace_back(Eigen::VectorXd::Zero(me));
+    ws->eu.emplace_back(Eigen::VectorXd::Zero(d));
+  }
+  (void)m;
+  ws->rhs.setZero(n);
+  ws->sol.setZero(n);
   return ws;
 }
 
@@ -330,6 +347,72 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
   }
 }
 
+bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
+  const int n = n_coordinates_;
+  const double g = gamma;
+  ws.A = M_ - g * ws.Fv - (g * g) * ws.Fq;
+  bool regular = true;
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
+    if (m == 0) continue;
+    const Eigen::MatrixXd& J = ws.ejac[k];  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
+    Eigen::MatrixXd& Ak = ws.eA[k];
+    Ak = -g * J.block(d, 2 * d, m, m);
+    Ak.diagonal().array() += 1.0;
+    ws.elu[k].compute(Ak);
+    regular = regular && ws.elu[k].rcond() > 0.0;
+    // Y = A_k^-1 (-g (G_zv + g G_zq)) in the element's local DOFs; the Schur term -(-g F_z) Y enters as g R' F_z Y R.
+    ws.eT[k] = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
+    ws.eY[k] = ws.elu[k].solve(ws.eT[k]);
+    ws.eJY[k].noalias() = J.block(0, 2 * d, d, m) * ws.eY[k];
+    ws.eRJY[k].noalias() = element_rows_[k].transpose() * ws.eJY[k];
+    ws.A.noalias() += g * (ws.eRJY[k] * element_rows_[k]);
+  }
+  (void)n;
+  ws.lu.compute(ws.A);
+  ++ws.factorisations;
+  return regular && ws.lu.rcond() > 0.0;
+}
+
+void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const {
+  const int n = n_coordinates_;
+  const double g = gamma;
+  const Eigen::Map<const Eigen::VectorXd> rq(b, n), rv(b + n, n);
+  ws.rhs.noalias() = M_ * rv;
+  ws.rhs.noalias() += g * (ws.Fq * rq);
+  // Forward elimination of each element's states: w_k = A_k^-1 (r_z + g G_zq r_q), rhs -= (-g F_z) w_k.
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
+    if (m == 0) continue;
+    const Eigen::MatrixXd& J = ws.ejac[k];
+    const int zoff = state_offsets_[k];
+    ws.eu[k].noalias() = element_rows_[k] * rq;
+    ws.ew0[k] = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
+    ws.ew0[k].noalias() += g * (J.block(d, 0, m, d) * ws.eu[k]);
+    ws.ew[k] = ws.elu[k].solve(ws.ew0[k]);
+    ws.eu[k].noalias() = J.block(0, 2 * d, d, m) * ws.ew[k];
+    ws.rhs.noalias() += g * (element_rows_[k].transpose() * ws.eu[k]);
+  }
+  ws.sol = ws.lu.solve(ws.rhs);
+  Eigen::Map<Eigen::VectorXd> dq(x, n), dv(x + n, n);
+  dv = ws.sol;
+  dq = rq + g * dv;
+  // Back substitution: dz_k = w_k - Y_k R_k dv.
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const int m = elements_[k]->n_states();
+    if (m == 0) continue;
+    const int zoff = state_offsets_[k];
+    ws.eu[k].noalias() = element_rows_[k] * ws.sol;
+    Eigen::Map<Eigen::VectorXd> dz(x + zoff, m);
+    dz = ws.ew[k];
+    dz.noalias() -= ws.eY[k] * ws.eu[k];
+  }
+  // Energy-accounting states: their equations do not depend on y through the Newton matrix.
+  const int ny = n_states();
+  x[ny - 2] = b[ny - 2];
+  x[ny - 1] = b[ny - 1];
+}
+
 Eigen::MatrixXd RunupModel::JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const {
   Jacobian(t, y, ws);
   const int n = n_coordinates_, m = n_element_states_;
@@ -470,22 +553,6 @@ void error_handler(int code, const char* module, const char* function, char* msg
   in->last_error = std::string(module) + "/" + function + ": " + msg;
 }
 
-// Newton matrix of the BDF corrector reduced to [dv; dz] (see the header of runup.h):
-//   [ M - g Fv - g^2 Fq      -g Fz   ] [dv]   [ M r_v + g Fq r_q ]
-//   [ -g (Gv + g Gq)      I - g Gz   ] [dz] = [ r_z + g Gq r_q   ],   dq = r_q + g dv.
-void factor_newton_matrix(const RunupModel& model, RunupWorkspace& ws, double gamma) {
-  const int n = model.n_dof(), m = model.n_element_states();
-  const double g = gamma;
-  ws.A.topLeftCorner(n, n) = model.mass() - g * ws.Fv - (g * g) * ws.Fq;
-  if (m > 0) {
-    ws.A.topRightCorner(n, m) = -g * ws.Fz;
-    ws.A.bottomLeftCorner(m, n) = -g * (ws.Gv + g * ws.Gq);
-    ws.A.bottomRightCorner(m, m) = Eigen::MatrixXd::Identity(m, m) - g * ws.Gz;
-  }
-  ws.lu.compute(ws.A);
-  ++ws.factorisations;
-}
-
 SUNLinearSolver_Type ls_type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
 
 int ls_setup(SUNLinearSolver S, SUNMatrix) {
@@ -501,9 +568,8 @@ int ls_setup(SUNLinearSolver S, SUNMatrix) {
     in->last_error = e.what();
     return 1;
   }
-  factor_newton_matrix(*in->model, *in->ws, gamma);
   in->gamma_factored = gamma;
-  return in->ws->lu.rcond() > 0.0 ? 0 : 1;
+  return in->model->FactorNewton(gamma, *in->ws) ? 0 : 1;
 }
 
 int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
@@ -539,26 +605,10 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
     in->gamma_factored = -1.0;
   }
   if (gamma != in->gamma_factored) {
-    factor_newton_matrix(model, ws, gamma);
     in->gamma_factored = gamma;
+    if (!model.FactorNewton(gamma, ws)) return 1;  // recoverable: CVODE retries with a smaller step
   }
-  const int n = model.n_dof(), m = model.n_element_states();
-  const double* bb = N_VGetArrayPointer(b);
-  double* xx = N_VGetArrayPointer(x);
-  const Eigen::Map<const Eigen::VectorXd> rq(bb, n), rv(bb + n, n), rz(bb + 2 * n, m);
-  ws.rhs.head(n).noalias() = model.mass() * rv;
-  ws.rhs.head(n).noalias() += gamma * (ws.Fq * rq);
-  if (m > 0) {
-    ws.rhs.tail(m) = rz;
-    ws.rhs.tail(m).noalias() += gamma * (ws.Gq * rq);
-  }
-  ws.sol = ws.lu.solve(ws.rhs);
-  Eigen::Map<Eigen::VectorXd> dq(xx, n), dv(xx + n, n), dz(xx + 2 * n, m);
-  dv = ws.sol.head(n);
-  dq = rq + gamma * dv;
-  if (m > 0) dz = ws.sol.tail(m);
-  // Energy-accounting states: their equations do not depend on y through the Newton matrix.
-  for (int i = 2 * n + m; i < 2 * n + m + 2; ++i) xx[i] = bb[i];
+  model.SolveNewton(gamma, N_VGetArrayPointer(b), N_VGetArrayPointer(x), ws);
   return 0;
 }
 

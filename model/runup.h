@@ -89,6 +89,18 @@ class RunupModel {
   void InitialState(double t, bool static_equilibrium, double* y, RunupWorkspace& ws) const;
   /// Kinetic + potential energy (gravity included) at (t, y), J.
   double MechanicalEnergy(double t, const double* y) const;
+  /// Factors the Newton matrix I - gamma dF/dy of the BDF corrector at the last Jacobian(). With dq = r_q + gamma dv
+  /// it reduces to
+  ///   [ M - g Fv - g^2 Fq      -g Fz   ] [dv]   [ M r_v + g Fq r_q ]
+  ///   [ -g (Gv + g Gq)      I - g Gz   ] [dz] = [ r_z + g Gq r_q   ]
+  /// whose lower-right block is block-diagonal (each element's states depend on its own states only). Each block is
+  /// factored on its own and eliminated, leaving an n x n Schur complement on the rotor coordinates: for two
+  /// 82-state ball bearings about 10x fewer operations than factoring the (n + m) matrix whole. Returns false if a
+  /// factor is singular. Allocation-free.
+  bool FactorNewton(double gamma, RunupWorkspace& ws) const;
+  /// Solves (I - gamma dF/dy) x = b with the factors of FactorNewton() (b, x: n_states() values; the two
+  /// energy-accounting states are passed through). Allocation-free.
+  void SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const;
   /// The Jacobian dF/dy (n_states x n_states) assembled from the blocks of Jacobian(); the rows of the two
   /// energy-accounting states are left zero. For tests and diagnostics.
   Eigen::MatrixXd JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const;

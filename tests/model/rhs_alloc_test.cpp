@@ -41,6 +41,18 @@ TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
     const long before = g_allocations.load();
     for (int i = 0; i < 100; ++i) model->Rhs(0.5 + 1e-4 * i, y.data(), ydot.data(), *ws);
     EXPECT_EQ(g_allocations.load() - before, 0) << (pedestal ? "with" : "without") << " pedestal";
+    // The Newton factorisation and solve of the BDF corrector, called at every step, allocate nothing either.
+    model->Jacobian(0.5, y.data(), *ws);
+    std::vector<double> x(model->n_states());
+    model->FactorNewton(1e-5, *ws);
+    model->SolveNewton(1e-5, ydot.data(), x.data(), *ws);  // warm-up
+    const long before_newton = g_allocations.load();
+    for (int i = 0; i < 10; ++i) {
+      model->FactorNewton(1e-5 * (1 + i), *ws);
+      model->SolveNewton(1e-5 * (1 + i), ydot.data(), x.data(), *ws);
+    }
+    EXPECT_EQ(g_allocations.load() - before_newton, 0) << "Newton solve, " << (pedestal ? "with" : "without")
+                                                       << " pedestal";
   }
   // The counter works: a vector allocates.
   const long before = g_allocations.load();
