@@ -526,6 +526,7 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     spec.solver.integrator = r.choice("integrator", {"auto", "cvode-bdf", "arkode-erk"}, spec.solver.integrator);
     spec.solver.rtol = r.quantity_or("rtol", dim::dimensionless, spec.solver.rtol, Bound::Positive);
     spec.solver.atol = r.quantity_or("atol", dim::dimensionless, spec.solver.atol, Bound::Positive);
+    spec.solver.atol_scaling = r.choice("atol_scaling", {"uniform", "typical"}, spec.solver.atol_scaling);
     spec.solver.max_step = r.quantity_or("max_step", dim::time, spec.solver.max_step, Bound::NonNegative);
     spec.solver.static_start = r.flag_or("static_start", spec.solver.static_start);
     spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1);

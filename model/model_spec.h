@@ -157,7 +157,11 @@ struct SolverSpec {
   /// (BDF for linear bearings; see bench/README.md and resolve_integrator()).
   std::string integrator = "auto";
   double rtol = 1e-6;                    ///< relative tolerance [-]
-  double atol = 1e-9;                    ///< absolute tolerance (SI units of each state)
+  /// Absolute tolerance of the displacements (m). With atol_scaling = "typical" every other state gets atol
+  /// times its typical magnitude over 1 um (velocities: 1 mm/s per um; element states as each element declares).
+  double atol = 1e-9;
+  /// "uniform": atol for every state in its own SI unit (m, m/s, rad, rad/s alike); "typical": scaled as above.
+  std::string atol_scaling = "uniform";
   double max_step = 0.0;                 ///< s; 0 = no limit
   long max_steps = 50'000'000;           ///< integrator steps before the run is declared failed
   int max_order = 5;                     ///< BDF: highest order (1..5)

@@ -413,6 +413,21 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
   x[ny - 1] = b[ny - 1];
 }
 
+Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
+  Eigen::VectorXd a = Eigen::VectorXd::Constant(n_states(), atol);
+  if (!scaled) return a;
+  constexpr double kDisplacement = 1e-6, kVelocity = 1e-3;  // m, m/s: as in the finite-difference Jacobian
+  const int n = n_coordinates_;
+  a.segment(n, n).setConstant(atol * kVelocity / kDisplacement);
+  for (std::size_t k = 0; k < elements_.size(); ++k)
+    for (int i = 0; i < elements_[k]->n_states(); ++i) {
+      const double typical = elements_[k]->state_scale(i);
+      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisplacement) / kDisplacement;
+    }
+  a.tail(2).setConstant(atol / kDisplacement);  // energy accounts (J)
+  return a;
+}
+
 Eigen::MatrixXd RunupModel::JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const {
   Jacobian(t, y, ws);
   const int n = n_coordinates_, m = n_element_states_;
@@ -631,6 +646,7 @@ RunupOptions runup_options(const MachineSpec& spec) {
   ro.integrator = spec.solver.integrator;
   ro.rtol = spec.solver.rtol;
   ro.atol = spec.solver.atol;
+  ro.atol_scaling = spec.solver.atol_scaling;
   ro.max_step = spec.solver.max_step;
   ro.max_steps = spec.solver.max_steps;
   ro.max_order = spec.solver.max_order;
@@ -687,6 +703,16 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   result.energy_initial = model.MechanicalEnergy(t0, N_VGetArrayPointer(y));
   record(t0);
 
+  if (options.atol_scaling != "uniform" && options.atol_scaling != "typical") {
+    N_VDestroy(y);
+    SUNContext_Free(&ctx);
+    throw std::invalid_argument("unknown atol_scaling '" + options.atol_scaling + "' (uniform or typical)");
+  }
+  N_Vector atol = N_VClone(y);
+  {
+    const Eigen::VectorXd a = model.AbsoluteTolerances(options.atol, options.atol_scaling == "typical");
+    for (int i = 0; i < ny; ++i) NV_Ith_S(atol, i) = a(i);
+  }
   Integration in;
   in.model = &model;
   in.ws = ws.get();
@@ -700,7 +726,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     CVodeInit(mem, rhs_callback, t0, y);
     CVodeSetUserData(mem, &in);
     CVodeSetErrHandlerFn(mem, error_handler, &in);
-    CVodeSStolerances(mem, options.rtol, options.atol);
+    CVodeSVtolerances(mem, options.rtol, atol);
     CVodeSetMaxNumSteps(mem, options.max_steps);
     if (options.max_step > 0) CVodeSetMaxStep(mem, options.max_step);
     CVodeSetStopTime(mem, t_end);
@@ -717,15 +743,17 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     mem = ERKStepCreate(rhs_callback, t0, y, ctx);
     ERKStepSetUserData(mem, &in);
     ERKStepSetErrHandlerFn(mem, error_handler, &in);
-    ERKStepSStolerances(mem, options.rtol, options.atol);
+    ERKStepSVtolerances(mem, options.rtol, atol);
     ERKStepSetMaxNumSteps(mem, options.max_steps);
     if (options.max_step > 0) ERKStepSetMaxStep(mem, options.max_step);
     ERKStepSetStopTime(mem, t_end);
   } else {
+    N_VDestroy(atol);
     N_VDestroy(y);
     SUNContext_Free(&ctx);
     throw std::invalid_argument("unknown integrator '" + options.integrator + "' (cvode-bdf or arkode-erk)");
   }
+  N_VDestroy(atol);  // the integrators keep copies
 
   double last_progress = 0.0;
   double t = t0;

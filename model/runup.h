@@ -101,6 +101,12 @@ class RunupModel {
   /// Solves (I - gamma dF/dy) x = b with the factors of FactorNewton() (b, x: n_states() values; the two
   /// energy-accounting states are passed through). Allocation-free.
   void SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const;
+  /// Absolute tolerance of each state (n_states() values) for a displacement tolerance atol (m). scaled: every
+  /// state's tolerance is atol times its typical magnitude over 1 um: rotor displacements 1 um, rotor velocities
+  /// 1 mm/s, element states ForceElement::state_scale() (the magnitudes the finite-difference Jacobian uses),
+  /// energy accounts 1 J per um, i.e. each state is resolved to the same fraction of its typical size. Otherwise
+  /// atol for every state.
+  Eigen::VectorXd AbsoluteTolerances(double atol, bool scaled) const;
   /// The Jacobian dF/dy (n_states x n_states) assembled from the blocks of Jacobian(); the rows of the two
   /// energy-accounting states are left zero. For tests and diagnostics.
   Eigen::MatrixXd JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const;
@@ -135,6 +141,7 @@ struct RunupOptions {
   std::string integrator = "auto";  ///< "auto", "cvode-bdf" or "arkode-erk" (see SolverSpec)
   double rtol = 1e-6;
   double atol = 1e-9;
+  std::string atol_scaling = "uniform";  ///< "uniform" or "typical" (see SolverSpec and AbsoluteTolerances())
   double max_step = 0.0;       ///< s, 0 = none
   double sample_rate = 20000;  ///< 1/s
   double t_start = 0.0;        ///< s

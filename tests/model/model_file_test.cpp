@@ -138,6 +138,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bearing_type_typo.toml", 11, {"bearings.compressor.type", "'lineer'", "did you mean 'linear'"}},
         BadCase{"negative_stiffness.toml", 13, {"bearings.compressor.kxx", "must not be negative"}},
         BadCase{"syntax_error.toml", 8, {"TOML syntax error"}},
+        BadCase{"atol_scaling_typo.toml", 12, {"solver.atol_scaling", "'typcal'", "did you mean 'typical'"}},
         BadCase{"wrong_type.toml", 7, {"shaft[0].length", "expected a length (m)", "got true"}}),
     [](const ::testing::TestParamInfo<BadCase>& info) {
       std::string n = info.param.file;

@@ -311,6 +311,45 @@ TEST(Runup, TighterToleranceChangesMaximaByLessThanOnePercent) {
   }
 }
 
+TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
+  // atol_scaling = "typical": displacements get atol, velocities atol x (1 mm/s / 1 um), element states atol x their
+  // typical magnitude / 1 um; "uniform" gives atol for every state.
+  MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
+                                {"bearings.compressor.pedestal_stiffness", "2e7"}});
+  const auto model = make_runup_model(spec);
+  const int n = model->n_dof(), ny = model->n_states();
+  const Eigen::VectorXd u = model->AbsoluteTolerances(1e-10, false);
+  EXPECT_EQ(u.minCoeff(), 1e-10);
+  EXPECT_EQ(u.maxCoeff(), 1e-10);
+  const Eigen::VectorXd a = model->AbsoluteTolerances(1e-10, true);
+  ASSERT_EQ(a.size(), ny);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_DOUBLE_EQ(a(i), 1e-10);
+    EXPECT_DOUBLE_EQ(a(n + i), 1e-7);
+  }
+  for (std::size_t k = 0; k < model->elements().size(); ++k)
+    for (int i = 0; i < model->elements()[k]->n_states(); ++i)
+      EXPECT_DOUBLE_EQ(a(model->state_offset(static_cast<int>(k)) + i),
+                       1e-10 * model->elements()[k]->state_scale(i) / 1e-6);
+  // A run with the scaled tolerances gives the same maxima as the default within the accuracy both ask for.
+  spec.speed.end = 30000 * kRpm;
+  spec.speed.duration = 0.8;
+  const auto m2 = make_runup_model(spec);
+  RunupOptions o = options_for(spec);
+  const RunupResult r0 = simulate_runup(*m2, o);
+  o.atol_scaling = "typical";
+  o.atol = 1e-10;
+  const RunupResult r1 = simulate_runup(*m2, o);
+  ASSERT_TRUE(r0.complete && r1.complete);
+  constexpr double kMaximaAgreement = 0.01;
+  for (const char* name : {"disk.compressor.x", "bearing.compressor.fx"}) {
+    const double ratio = max_abs(r1.columns[channel(r1, name)]) / max_abs(r0.columns[channel(r0, name)]);
+    EXPECT_NEAR(ratio, 1.0, kMaximaAgreement) << name;
+  }
+  o.atol_scaling = "typicl";
+  EXPECT_THROW(simulate_runup(*m2, o), std::invalid_argument);
+}
+
 TEST(Runup, EnergyBalanceCloses) {
   // Work of the unbalance and of the spin acceleration on the gyroscopic term = change of kinetic + potential
   // energy + energy dissipated in the bearings (with a damped pedestal as an internal-state element).
