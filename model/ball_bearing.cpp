@@ -292,6 +292,11 @@ void BallBearingElement::initial_states(double* z) const {
   z[outer_offset()] = zo_eq_;
 }
 
+void BallBearingElement::initial_states_at_speed(double speed, double* z) const {
+  initial_states(z);
+  if (speed != 0.0) steady_states(speed, z);
+}
+
 void BallBearingElement::steady_states(double speed, double* z) const {
   const double D = spec_.ball_diameter, dm = spec_.pitch_diameter;
   double cage = 0.0;

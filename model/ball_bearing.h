@@ -141,6 +141,8 @@ class BallBearingElement final : public ForceElement {
 
   /// Static preload equilibrium (no gravity, no speed), balls equally spaced, everything at rest.
   void initial_states(double* z) const override;
+  /// initial_states(), then (speed != 0) the no-slip ball and cage speeds of steady_states().
+  void initial_states_at_speed(double speed, double* z) const override;
   /// Sets the ball orbital and spin speeds and the cage speed to their no-slip values at rotor speed `speed`
   /// (rad/s): outer-race control, spin axis normal to the outer contact line (Jones 1960; Harris & Kotzalas 2007,
   /// ball kinematics), contact angle from the ball positions in z; positions are left as they are.

@@ -54,6 +54,11 @@ std::unique_ptr<ElementWorkspace> BallDamperElement::make_workspace() const {
                                                n_core_);
 }
 
+void BallDamperElement::initial_states_at_speed(double speed, double* z) const {
+  bearing_.initial_states_at_speed(speed, z);
+  for (int i = 0; i < 4; ++i) z[n_core_ + i] = 0.0;  // outer ring centred in the damper, at rest
+}
+
 void BallDamperElement::initial_states(double* z) const {
   bearing_.initial_states(z);
   for (int i = 0; i < 4; ++i) z[n_core_ + i] = 0.0;  // outer ring centred in the damper, at rest

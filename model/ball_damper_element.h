@@ -23,6 +23,7 @@ class BallDamperElement final : public ForceElement {
 
   std::unique_ptr<ElementWorkspace> make_workspace() const override;
   void initial_states(double* z) const override;
+  void initial_states_at_speed(double speed, double* z) const override;
   double state_scale(int i) const override;
   double fd_relative_step() const override { return 1e-6; }
   std::vector<ProbeInfo> probes() const override;

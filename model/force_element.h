@@ -48,6 +48,13 @@ class ForceElement {
   virtual std::unique_ptr<ElementWorkspace> make_workspace() const { return std::make_unique<ElementWorkspace>(); }
   /// Initial internal states (n_states values).
   virtual void initial_states(double* z) const { (void)z; }
+  /// Initial internal states for a run that starts with the rotor spinning at `speed` (rad/s), e.g. a study's
+  /// speed window in the middle of the ramp: by default initial_states(); elements with bodies that spin with
+  /// the rotor (balls, cage) start at their steady speeds instead of at rest on a spinning shaft.
+  virtual void initial_states_at_speed(double speed, double* z) const {
+    (void)speed;
+    initial_states(z);
+  }
 
   /// Adds the element's generalised forces on its rotor DOFs into f (local order, dofs().size() values) and writes
   /// the derivatives of its internal states into zdot. q and v are the rotor displacements and velocities at

@@ -460,7 +460,8 @@ double RunupModel::MechanicalEnergy(double t, const double* y) const {
 void RunupModel::InitialState(double t, bool static_equilibrium, double* y, RunupWorkspace& ws) const {
   const int n = n_coordinates_, m = n_element_states_;
   std::fill(y, y + n_states(), 0.0);
-  for (std::size_t k = 0; k < elements_.size(); ++k) elements_[k]->initial_states(y + state_offsets_[k]);
+  const double speed = spin(t).speed;
+  for (std::size_t k = 0; k < elements_.size(); ++k) elements_[k]->initial_states_at_speed(speed, y + state_offsets_[k]);
   if (!static_equilibrium) return;
   // Newton on [f(q, 0, z); g(q, 0, z)] = 0 with the exact rotor Jacobian and the element blocks.
   std::vector<double> ydot(n_states());
