@@ -66,8 +66,10 @@ std::size_t sample_at_speed(const std::vector<double>& speed_hz, double target) 
   return speed_hz.empty() ? 0 : speed_hz.size() - 1;
 }
 
+// Draws the pictures of a run. `spectral` receives, for every spectrogram drawn, its largest amplitude and where it
+// lies (the colour-scale maximum a reader takes off such a picture, as the paper quotes its maxima).
 void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
-                   std::vector<std::string>& written, std::vector<std::string>& warnings) {
+                   std::vector<std::string>& written, std::vector<std::string>& warnings, nlohmann::json& spectral) {
   const OutputSpec& out = spec.output;
   const double fs = out.sample_rate;
   int speed_col = -1, angle_col = -1;
@@ -119,12 +121,16 @@ void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::fil
       hm.x = xs;
       hm.z.resize(nb * keep.size());
       double zmax = 0.0;
+      std::size_t jmax = 0, imax = 0;
       for (std::size_t j = 0; j < nb; ++j)
         for (std::size_t i = 0; i < keep.size(); ++i) {
           const double a = sg.at(keep[i], j) * disp.factor;
           hm.z[j * keep.size() + i] = a;
-          zmax = std::max(zmax, a);
+          if (a > zmax) zmax = a, jmax = j, imax = i;
         }
+      if (zmax > 0.0)
+        spectral[ch.name] = {{"amplitude", zmax / disp.factor}, {"unit", ch.unit}, {"frequency_hz", hm.y[jmax]},
+                             {ascending ? "speed_hz" : "time_s", hm.x[imax]}};
       if (keep.size() < 2 || zmax <= 0.0) {
         warnings.push_back("no spectrogram of " + ch.name + ": nothing to show");
       } else {
@@ -264,14 +270,16 @@ int run_run_command(const RunCommandOptions& options) {
   const nlohmann::json& probes = j["probes"];
 
   std::vector<std::string> pictures, warnings;
+  nlohmann::json spectral = nlohmann::json::object();
   if (options.plots && r.time.size() > 1) {
     try {
-      draw_pictures(spec, r, options.output_dir, pictures, warnings);
+      draw_pictures(spec, r, options.output_dir, pictures, warnings, spectral);
     } catch (const std::exception& e) {
       warnings.push_back(std::string("pictures: ") + e.what());
     }
   }
   j["pictures"] = pictures;
+  j["spectrogram_maxima"] = spectral;
   j["warnings"] = warnings;
   {
     std::ofstream out(options.output_dir / "summary.json");

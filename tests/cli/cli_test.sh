@@ -44,6 +44,15 @@ case $case in
     for f in timeseries.h5 spectrogram_disk.compressor.x.png order1x_disk.compressor.png orbits_disk.compressor.png; do
       [ -s "$out/$f" ] || fail "missing $f"
     done
+    # The largest spectral line of each spectrogram drawn: here the vibration at the first forward natural
+    # frequency (512 Hz in the Campbell diagram) while and just after the rotor passes it.
+    python3 - "$out/summary.json" <<'EOF2' || fail "spectrogram_maxima: $(grep -A3 spectrogram_maxima "$out/summary.json")"
+import json, sys
+m = json.load(open(sys.argv[1]))["spectrogram_maxima"]["disk.compressor.x"]
+assert m["amplitude"] > 0 and m["unit"] == "m", m
+assert abs(m["frequency_hz"] - 512) < 0.05 * 512, m
+assert abs(m["speed_hz"] - 512) < 0.15 * 512, m
+EOF2
     ;;
   run_integrator_gives_up)
     # BDF takes few steps per output interval at low speed and more at high speed: a step limit of 30 per

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Convergence of the three reference variants in the numerical settings whose defaults the examples use: the
+# film grids, the integrator tolerances and the shaft's finite-element mesh. Each setting is run on a window of
+# the paper's ramp that contains the variant's characteristic behaviour (a full 4-s run per setting would take
+# hours):
+#   floating_ring  0 -> 22,500 rpm (0.6 s): inner-film whirl onset and its limit cycle
+#   ball           0 -> 15,000 rpm (0.4 s): rolling, cage and ball-pass dynamics, rising unbalance response
+#   ball_sfd       0 -> 15,000 rpm (0.4 s): the same with the damper films
+# and the maxima of the compressor-wheel displacement and of the compressor-bearing force (x and y) are compared
+# with the default. Prints a table (also out/convergence/table.txt).
+#
+# Usage: bench/convergence.sh [VARIANT ...]     (after scripts/build.sh; default all three)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+exe=build/app/turbodyn
+[[ -x $exe ]] || { echo "convergence: build first (scripts/build.sh)" >&2; exit 1; }
+variants=("$@")
+((${#variants[@]})) || variants=(floating_ring ball ball_sfd)
+out=out/convergence
+mkdir -p "$out"
+
+film() {  # film grid overrides for both bearings: KEYPREFIX NCIRC NAXIAL (KEYPREFIX like "" or "damper.")
+  local p=$1 nc=$2 na=$3
+  echo "--set bearings.compressor.${p}n_circ=$nc --set bearings.compressor.${p}n_axial=$na" \
+       "--set bearings.turbine.${p}n_circ=$nc --set bearings.turbine.${p}n_axial=$na"
+}
+
+cases_for() {
+  case $1 in
+    floating_ring)
+      echo "default|"
+      echo "film grid 36 x 8|$(film "" 36 8)"
+      echo "film grid 64 x 14|$(film "" 64 14)"
+      echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"
+      echo "mesh 5 mm|--set mesh.max_element_length=5mm"
+      ;;
+    ball)
+      echo "default|"
+      echo "rtol 1e-7, atol 1e-10|--set solver.rtol=1e-7 --set solver.atol=1e-10"
+      echo "mesh 5 mm|--set mesh.max_element_length=5mm"
+      ;;
+    ball_sfd)
+      echo "default|"
+      echo "damper grid 32 x 6|$(film damper. 32 6)"
+      echo "damper grid 64 x 12|$(film damper. 64 12)"
+      echo "rtol 1e-7, atol 1e-10|--set solver.rtol=1e-7 --set solver.atol=1e-10"
+      echo "mesh 5 mm|--set mesh.max_element_length=5mm"
+      ;;
+  esac
+}
+
+window_for() {
+  case $1 in
+    floating_ring) echo "--set speed.end=22500rpm --set speed.duration=0.6" ;;
+    *) echo "--set speed.end=15000rpm --set speed.duration=0.4" ;;
+  esac
+}
+
+row() {  # summary.json -> "x y fx fy steps wall"
+  python3 - "$1" <<'EOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+p = s["probes"]
+v = [p[k]["max_abs"] for k in ("disk.compressor.x", "disk.compressor.y", "bearing.compressor.fx", "bearing.compressor.fy")]
+print("%.4f %.4f %.3f %.3f %d %.1f %s" % (v[0] * 1e6, v[1] * 1e6, v[2], v[3], s["stats"]["steps"], s["stats"]["wall_time_s"], s["complete"]))
+EOF
+}
+
+{
+  printf "%-14s %-22s %10s %10s %9s %9s %9s %8s %9s\n" variant setting "x [um]" "y [um]" "fx [N]" "fy [N]" steps "wall [s]" "max dev"
+  for v in "${variants[@]}"; do
+    ref=""
+    while IFS='|' read -r name args; do
+      dir=$out/$v/$(echo "$name" | tr -c 'a-z0-9\n' '_')
+      # shellcheck disable=SC2086
+      "$exe" run "examples/reference_${v}.toml" $(window_for "$v") $args --no-plots -o "$dir" > "$dir.log" 2>&1 ||
+        echo "convergence: $v '$name' exited with $? (see $dir.log)" >&2
+      read -r x y fx fy steps wall complete < <(row "$dir/summary.json")
+      if [[ -z $ref ]]; then ref="$x $y $fx $fy"; dev="-"; else
+        dev=$(awk -v a="$ref" -v b="$x $y $fx $fy" 'BEGIN {split(a, r); split(b, c); m = 0;
+          for (i = 1; i <= 4; ++i) { d = (c[i] - r[i]) / r[i]; if (d < 0) d = -d; if (d > m) m = d }
+          printf "%.2f %%", 100 * m}')
+      fi
+      [[ $complete == True ]] || dev="$dev (incomplete)"
+      printf "%-14s %-22s %10s %10s %9s %9s %9s %8s %9s\n" "$v" "$name" "$x" "$y" "$fx" "$fy" "$steps" "$wall" "$dev"
+    done < <(cases_for "$v")
+  done
+} | tee "$out/table.txt"
