@@ -78,6 +78,11 @@ int main(int argc, char** argv) {
   run->add_flag("!--no-plots", run_options.plots, "Do not draw PNG pictures");
   add_sets(run);
 
+  turbodyn::app::PlotCommandOptions plot_options;
+  CLI::App* plot = app.add_subcommand("plot", "Redraw the pictures of a run from its timeseries.h5 (e.g. other spectrogram settings)");
+  plot->add_option("RUN_DIR", plot_options.run_dir, "Output directory of turbodyn run")->required();
+  add_sets(plot);
+
   turbodyn::app::ResponseCommandOptions response_options;
   CLI::App* response =
       app.add_subcommand("response", "Steady-state synchronous unbalance response of the linear rotor");
@@ -160,6 +165,10 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       run_options.overrides = overrides;
       return turbodyn::app::run_run_command(run_options);
+    }
+    if (plot->parsed()) {
+      plot_options.overrides = overrides;
+      return turbodyn::app::run_plot_command(plot_options);
     }
     if (response->parsed()) {
       response_options.overrides = overrides;

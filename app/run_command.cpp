@@ -222,6 +222,57 @@ void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::fil
 
 }  // namespace
 
+int run_plot_command(const PlotCommandOptions& options) {
+  const std::filesystem::path summary_file = options.run_dir / "summary.json";
+  std::ifstream in(summary_file);
+  if (!in) throw ModelError(summary_file.string() + ": cannot be read (not the output directory of turbodyn run?)");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw ModelError(summary_file.string() + ": not a summary.json: " + e.what());
+  }
+  if (!j.contains("model") || !j["model"].contains("source") || !j.contains("overrides"))
+    throw ModelError(summary_file.string() + ": no model.source or overrides (not written by turbodyn run)");
+  std::vector<Override> overrides;
+  for (const auto& o : j["overrides"]) overrides.push_back(parse_override(o.get<std::string>()));
+  overrides.insert(overrides.end(), options.overrides.begin(), options.overrides.end());
+  const MachineSpec spec = load_model(j["model"]["source"].get<std::string>(), overrides);
+  const std::unique_ptr<RunupModel> model = make_runup_model(spec);
+  const TimeSeriesData data = read_hdf5_timeseries(options.run_dir / "timeseries.h5");
+
+  // The run's channels in the model's order, matched by name with the file's.
+  RunupResult r;
+  r.time = data.time;
+  r.complete = data.complete;
+  for (const ProbeChannel& c : model->channels()) {
+    std::size_t k = 0;
+    while (k < data.channels.size() && data.channels[k].name != c.name) ++k;
+    if (k == data.channels.size())
+      throw ModelError((options.run_dir / "timeseries.h5").string() + ": no channel '" + c.name + "' of the model " +
+                       j["model"]["source"].get<std::string>() + " (the run was made with another model)");
+    r.channels.push_back(c);
+    r.columns.push_back(data.columns[k]);
+  }
+  std::vector<std::string> pictures, warnings;
+  nlohmann::json spectral = nlohmann::json::object();
+  if (r.time.size() > 1) draw_pictures(spec, r, options.run_dir, pictures, warnings, spectral);
+  j["pictures"] = pictures;
+  j["spectrogram_maxima"] = spectral;
+  j["warnings"] = warnings;
+  nlohmann::json plot_overrides = nlohmann::json::array();
+  for (const Override& o : options.overrides) plot_overrides.push_back(o.path + "=" + o.value);
+  j["plot_overrides"] = plot_overrides;  // the pictures were drawn with these on top of `overrides`
+  {
+    std::ofstream out(summary_file);
+    out << std::setw(1) << j << "\n";
+  }
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+  std::cout << "Redrew " << pictures.size() << " pictures of " << options.run_dir.string()
+            << (r.complete ? "" : " (the run is incomplete)") << "\n";
+  return 0;
+}
+
 int run_run_command(const RunCommandOptions& options) {
   MachineSpec spec = load_model(options.model_file, options.overrides);
   if (!(spec.speed.duration > 0.0))

@@ -19,4 +19,14 @@ struct RunCommandOptions {
 /// Returns 0 on success, 3 if the integrator gave up, 130 if interrupted (results up to then are written).
 int run_run_command(const RunCommandOptions& options);
 
+struct PlotCommandOptions {
+  std::filesystem::path run_dir;    ///< output directory of an earlier `turbodyn run`
+  std::vector<Override> overrides;  ///< applied after the run's own, e.g. output.spectrogram_segment=4096
+};
+
+/// Redraws the pictures of an earlier run from its timeseries.h5 (also a partial one), with the model file and
+/// overrides recorded in its summary.json plus `overrides`; rewrites the pictures and spectrogram maxima of
+/// summary.json. Throws ModelError / TimeSeriesError naming the file on a missing or foreign run directory.
+int run_plot_command(const PlotCommandOptions& options);
+
 }  // namespace turbodyn::app

@@ -54,6 +54,24 @@ assert abs(m["frequency_hz"] - 512) < 0.05 * 512, m
 assert abs(m["speed_hz"] - 512) < 0.15 * 512, m
 EOF2
     ;;
+  plot_redraws)
+    # turbodyn plot redraws a run's pictures from its timeseries.h5: the same pictures and spectral maxima.
+    "$exe" run "$src/examples/reference_linear.toml" --set "speed.end=40000 rpm" --set speed.duration=0.5 \
+      -o "$out/run" > "$out/log" 2>&1 || fail "run: exit $?: $(cat "$out/log")"
+    cp "$out/run/summary.json" "$out/summary.orig.json"
+    rm "$out/run/"*.png
+    "$exe" plot "$out/run" > "$out/log" 2>&1 || fail "plot: exit $?: $(cat "$out/log")"
+    [ -s "$out/run/spectrogram_disk.compressor.x.png" ] || fail "no spectrogram redrawn"
+    python3 - "$out/summary.orig.json" "$out/run/summary.json" <<'EOF2' || fail "redrawn summary differs"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["pictures"] == b["pictures"] and a["spectrogram_maxima"] == b["spectrogram_maxima"]
+EOF2
+    "$exe" plot "$out/nowhere" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || fail "plot of a missing directory: exit $rc, expected 2"
+    grep -q "nowhere/summary.json" "$out/log" || fail "the message does not name the file: $(cat "$out/log")"
+    ;;
   run_integrator_gives_up)
     # BDF takes few steps per output interval at low speed and more at high speed: a step limit of 30 per
     # 0.5 ms interval makes it give up part-way through the run.
