@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
   turbodyn::app::PlotCommandOptions plot_options;
   CLI::App* plot = app.add_subcommand("plot", "Redraw the pictures of a run from its timeseries.h5 (e.g. other spectrogram settings)");
   plot->add_option("RUN_DIR", plot_options.run_dir, "Output directory of turbodyn run")->required();
+  plot->add_option("--campbell", plot_options.campbell_csv,
+                   "campbell.csv of turbodyn modal: draw its natural frequencies on the spectrograms");
   add_sets(plot);
 
   turbodyn::app::ResponseCommandOptions response_options;

@@ -68,8 +68,47 @@ std::size_t sample_at_speed(const std::vector<double>& speed_hz, double target) 
 
 // Draws the pictures of a run. `spectral` receives, for every spectrogram drawn, its largest amplitude and where it
 // lies (the colour-scale maximum a reader takes off such a picture, as the paper quotes its maxima).
+// Natural frequencies of a linearised model (campbell.csv of `turbodyn modal`) as point series against rotor speed
+// in Hz, one per whirl direction, for the spectrograms.
+std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw ModelError(file.string() + ": cannot be read");
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("speed_rad_s,speed_rpm,mode,frequency_hz,damping_ratio,whirl", 0) != 0)
+    throw ModelError(file.string() + ": not a campbell.csv of turbodyn modal (header '" + line + "')");
+  plot::Series fwd{"forward modes (linear model)", {}, {}, plot::Series::Style::Points, "#ff5050", 1.2};
+  plot::Series bwd{"backward modes (linear model)", {}, {}, plot::Series::Style::Points, "#40a0ff", 1.2};
+  int row = 1;
+  while (std::getline(in, line)) {
+    ++row;
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    double rpm = 0.0, hz = 0.0;
+    try {
+      if (f.size() != 6) throw std::invalid_argument("fields");
+      rpm = std::stod(f[1]);
+      hz = std::stod(f[3]);
+    } catch (const std::exception&) {
+      throw ModelError(file.string() + ":" + std::to_string(row) + ": expected 6 fields with numbers, got '" + line + "'");
+    }
+    plot::Series* s = f[5] == "forward" ? &fwd : f[5] == "backward" ? &bwd : nullptr;
+    if (!s) continue;  // planar, mixed, torsional: no whirl direction to draw
+    s->x.push_back(rpm / 60.0);
+    s->y.push_back(hz);
+  }
+  std::vector<plot::Series> out;
+  for (plot::Series* s : {&fwd, &bwd})
+    if (!s->x.empty()) out.push_back(*s);
+  if (out.empty()) throw ModelError(file.string() + ": no forward or backward modes");
+  return out;
+}
+
 void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
-                   std::vector<std::string>& written, std::vector<std::string>& warnings, nlohmann::json& spectral) {
+                   std::vector<std::string>& written, std::vector<std::string>& warnings, nlohmann::json& spectral,
+                   const std::vector<plot::Series>& campbell = {}) {
   const OutputSpec& out = spec.output;
   const double fs = out.sample_rate;
   int speed_col = -1, angle_col = -1;
@@ -140,6 +179,14 @@ void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::fil
           const double x0 = hm.x.front(), x1 = hm.x.back();
           hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Dashed, "white", 1.0});
           hm.overlays.push_back({"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, "#bbbbbb", 1.0});
+          for (const plot::Series& c : campbell) {
+            plot::Series s = c;
+            s.x.clear();
+            s.y.clear();
+            for (std::size_t i = 0; i < c.x.size(); ++i)
+              if (c.x[i] >= x0 && c.x[i] <= x1 && c.y[i] <= fmax) s.x.push_back(c.x[i]), s.y.push_back(c.y[i]);
+            if (!s.x.empty()) hm.overlays.push_back(s);
+          }
         }
         const std::string file = "spectrogram_" + ch.name + ".png";
         plot::render_png(hm, dir / file);
@@ -256,7 +303,9 @@ int run_plot_command(const PlotCommandOptions& options) {
   }
   std::vector<std::string> pictures, warnings;
   nlohmann::json spectral = nlohmann::json::object();
-  if (r.time.size() > 1) draw_pictures(spec, r, options.run_dir, pictures, warnings, spectral);
+  const std::vector<plot::Series> campbell =
+      options.campbell_csv.empty() ? std::vector<plot::Series>{} : read_campbell_overlay(options.campbell_csv);
+  if (r.time.size() > 1) draw_pictures(spec, r, options.run_dir, pictures, warnings, spectral, campbell);
   j["pictures"] = pictures;
   j["spectrogram_maxima"] = spectral;
   j["warnings"] = warnings;

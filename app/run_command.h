@@ -22,6 +22,8 @@ int run_run_command(const RunCommandOptions& options);
 struct PlotCommandOptions {
   std::filesystem::path run_dir;    ///< output directory of an earlier `turbodyn run`
   std::vector<Override> overrides;  ///< applied after the run's own, e.g. output.spectrogram_segment=4096
+  /// campbell.csv of `turbodyn modal`: its forward and backward natural frequencies are drawn on the spectrograms.
+  std::filesystem::path campbell_csv;
 };
 
 /// Redraws the pictures of an earlier run from its timeseries.h5 (also a partial one), with the model file and

@@ -67,6 +67,11 @@ import json, sys
 a, b = (json.load(open(f)) for f in sys.argv[1:3])
 assert a["pictures"] == b["pictures"] and a["spectrogram_maxima"] == b["spectrogram_maxima"]
 EOF2
+    # With the natural frequencies of the linear model drawn on the spectrograms; a foreign file is refused.
+    "$exe" modal "$src/examples/reference_linear.toml" --no-plots -o "$out/modal" > "$out/log" 2>&1 || fail "modal"
+    "$exe" plot "$out/run" --campbell "$out/modal/campbell.csv" > "$out/log" 2>&1 || fail "plot --campbell: $(cat "$out/log")"
+    "$exe" plot "$out/run" --campbell "$out/run/summary.json" > "$out/log" 2>&1
+    [ $? -eq 2 ] && grep -q "not a campbell.csv" "$out/log" || fail "bad --campbell file: $(cat "$out/log")"
     "$exe" plot "$out/nowhere" > "$out/log" 2>&1
     rc=$?
     [ $rc -eq 2 ] || fail "plot of a missing directory: exit $rc, expected 2"
