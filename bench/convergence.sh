@@ -12,7 +12,7 @@
 # Usage: bench/convergence.sh [VARIANT ...]     (after scripts/build.sh; default all three)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-exe=build/app/turbodyn
+exe=${TURBODYN:-build/app/turbodyn}
 [[ -x $exe ]] || { echo "convergence: build first (scripts/build.sh)" >&2; exit 1; }
 variants=("$@")
 ((${#variants[@]})) || variants=(floating_ring ball ball_sfd)
@@ -72,6 +72,7 @@ EOF
     ref=""
     while IFS='|' read -r name args; do
       dir=$out/$v/$(echo "$name" | tr -c 'a-z0-9\n' '_')
+      mkdir -p "$out/$v"
       # shellcheck disable=SC2086
       "$exe" run "examples/reference_${v}.toml" $(window_for "$v") $args --no-plots -o "$dir" > "$dir.log" 2>&1 ||
         echo "convergence: $v '$name' exited with $? (see $dir.log)" >&2
