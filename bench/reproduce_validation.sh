@@ -47,6 +47,14 @@ for v in "${variants[@]}"; do
     "s['stats']['steps'], s['stats']['rhs_calls'], s['stats']['force_element_calls'], s['complete']")
   printf "%-15s %10.1f %22s %10s %10s %12s %9s\n" "$v" "$median" "${runs%,}" "$steps" "$rhs" "$calls" "$complete" |
     tee -a out/validation/timings.txt
+  # Ball-bearing variants: the natural frequencies of the rotor on linear bearings of the ball bearing's static
+  # radial stiffness (5.0e7 N/m at 40 N preload, BallBearing.StaticStiffness...) drawn on the spectrograms.
+  if [[ $v == ball || $v == ball_sfd ]]; then
+    [[ -f out/validation/modal_ball/campbell.csv ]] ||
+      "$exe" modal examples/reference_linear.toml --speeds "0:150000 rpm:61" --no-plots \
+        --set bearings.compressor.k=5e7 --set bearings.turbine.k=5e7 -o out/validation/modal_ball > /dev/null
+    "$exe" plot "$dir" --campbell out/validation/modal_ball/campbell.csv > /dev/null
+  fi
   # The two pictures per variant that docs/validation.md shows beside the paper's Figs. 4-6.
   cp "$dir/spectrogram_disk.compressor.x.png" "docs/images/variant_${v}_compressor_x.png"
   cp "$dir/spectrogram_bearing.compressor.fx.png" "docs/images/variant_${v}_compressor_force.png"
