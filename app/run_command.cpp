@@ -66,8 +66,6 @@ std::size_t sample_at_speed(const std::vector<double>& speed_hz, double target) 
   return speed_hz.empty() ? 0 : speed_hz.size() - 1;
 }
 
-// Draws the pictures of a run. `spectral` receives, for every spectrogram drawn, its largest amplitude and where it
-// lies (the colour-scale maximum a reader takes off such a picture, as the paper quotes its maxima).
 // Natural frequencies of a linearised model (campbell.csv of `turbodyn modal`) as point series against rotor speed
 // in Hz, one per whirl direction, for the spectrograms.
 std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& file) {
@@ -106,6 +104,9 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
   return out;
 }
 
+// Draws the pictures of a run. `spectral` receives, for every spectrogram drawn, its largest amplitude and where it
+// lies (the colour-scale maximum a reader takes off such a picture, as the paper quotes its maxima); `campbell`
+// point series are drawn on the spectrograms against rotor speed.
 void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
                    std::vector<std::string>& written, std::vector<std::string>& warnings, nlohmann::json& spectral,
                    const std::vector<plot::Series>& campbell = {}) {
@@ -270,6 +271,9 @@ void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::fil
 }  // namespace
 
 int run_plot_command(const PlotCommandOptions& options) {
+  // The overlay file first: a bad one is reported before the model and the time series are read.
+  const std::vector<plot::Series> campbell =
+      options.campbell_csv.empty() ? std::vector<plot::Series>{} : read_campbell_overlay(options.campbell_csv);
   const std::filesystem::path summary_file = options.run_dir / "summary.json";
   std::ifstream in(summary_file);
   if (!in) throw ModelError(summary_file.string() + ": cannot be read (not the output directory of turbodyn run?)");
@@ -303,8 +307,6 @@ int run_plot_command(const PlotCommandOptions& options) {
   }
   std::vector<std::string> pictures, warnings;
   nlohmann::json spectral = nlohmann::json::object();
-  const std::vector<plot::Series> campbell =
-      options.campbell_csv.empty() ? std::vector<plot::Series>{} : read_campbell_overlay(options.campbell_csv);
   if (r.time.size() > 1) draw_pictures(spec, r, options.run_dir, pictures, warnings, spectral, campbell);
   j["pictures"] = pictures;
   j["spectrogram_maxima"] = spectral;

@@ -59,10 +59,7 @@ void BallDamperElement::initial_states_at_speed(double speed, double* z) const {
   for (int i = 0; i < 4; ++i) z[n_core_ + i] = 0.0;  // outer ring centred in the damper, at rest
 }
 
-void BallDamperElement::initial_states(double* z) const {
-  bearing_.initial_states(z);
-  for (int i = 0; i < 4; ++i) z[n_core_ + i] = 0.0;  // outer ring centred in the damper, at rest
-}
+void BallDamperElement::initial_states(double* z) const { initial_states_at_speed(0.0, z); }
 
 double BallDamperElement::state_scale(int i) const {
   if (i < n_core_) return bearing_.state_scale(i);

@@ -21,6 +21,11 @@
 
 namespace turbodyn {
 
+// Typical magnitudes of the rotor coordinates: below them an input is perturbed in the finite-difference Jacobian
+// as if it had that size, and with atol_scaling = "typical" they scale the absolute tolerances. Displacements
+// 1 um, velocities 1 mm/s (1 um at 1000 rad/s).
+constexpr double kDisplacementScale = 1e-6, kVelocityScale = 1e-3;
+
 // Per-simulation scratch space: sized once, reused by every right-hand-side and Jacobian call.
 struct RunupWorkspace {
   Eigen::VectorXd f;                     // generalised force (n)
@@ -179,7 +184,6 @@ RunupWorkspacePtr RunupModel::make_workspace() const {
     ws->ew.emplace_back(Eigen::VectorXd::Zero(me));
     ws->eu.emplace_back(Eigen::VectorXd::Zero(d));
   }
-  (void)m;
   ws->rhs.setZero(n);
   ws->sol.setZero(n);
   return ws;
@@ -320,9 +324,8 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
         ++ws.element_calls;
       };
       eval(ws.eout0[k]);
-      // Typical magnitudes below which an input is perturbed as if it had that size: rotor displacements 1 um,
-      // velocities 1 mm/s (1 um at 1000 rad/s), element states as the element says.
-      constexpr double kDisplacementScale = 1e-6, kVelocityScale = 1e-3;
+      // Inputs smaller than their typical magnitude are perturbed as if they had that size (element states: as
+      // the element says).
       const double rel = e.fd_relative_step();
       for (int j = 0; j < 2 * d + m; ++j) {
         const double saved = in(j);
@@ -348,7 +351,6 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
 }
 
 bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
-  const int n = n_coordinates_;
   const double g = gamma;
   ws.A = M_ - g * ws.Fv - (g * g) * ws.Fq;
   bool regular = true;
@@ -368,7 +370,6 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
     ws.eRJY[k].noalias() = element_rows_[k].transpose() * ws.eJY[k];
     ws.A.noalias() += g * (ws.eRJY[k] * element_rows_[k]);
   }
-  (void)n;
   ws.lu.compute(ws.A);
   ++ws.factorisations;
   return regular && ws.lu.rcond() > 0.0;
@@ -416,15 +417,14 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
 Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
   Eigen::VectorXd a = Eigen::VectorXd::Constant(n_states(), atol);
   if (!scaled) return a;
-  constexpr double kDisplacement = 1e-6, kVelocity = 1e-3;  // m, m/s: as in the finite-difference Jacobian
   const int n = n_coordinates_;
-  a.segment(n, n).setConstant(atol * kVelocity / kDisplacement);
+  a.segment(n, n).setConstant(atol * kVelocityScale / kDisplacementScale);
   for (std::size_t k = 0; k < elements_.size(); ++k)
     for (int i = 0; i < elements_[k]->n_states(); ++i) {
       const double typical = elements_[k]->state_scale(i);
-      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisplacement) / kDisplacement;
+      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisplacementScale) / kDisplacementScale;
     }
-  a.tail(2).setConstant(atol / kDisplacement);  // energy accounts (J)
+  a.tail(2).setConstant(atol / kDisplacementScale);  // energy accounts (J)
   return a;
 }
 
@@ -666,6 +666,8 @@ std::string resolve_integrator(const RunupModel& model, const std::string& reque
 }
 
 RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options) {
+  if (options.atol_scaling != "uniform" && options.atol_scaling != "typical")
+    throw std::invalid_argument("unknown atol_scaling '" + options.atol_scaling + "' (uniform or typical)");
   const auto wall0 = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(); };
   RunupResult result;
@@ -704,11 +706,6 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   result.energy_initial = model.MechanicalEnergy(t0, N_VGetArrayPointer(y));
   record(t0);
 
-  if (options.atol_scaling != "uniform" && options.atol_scaling != "typical") {
-    N_VDestroy(y);
-    SUNContext_Free(&ctx);
-    throw std::invalid_argument("unknown atol_scaling '" + options.atol_scaling + "' (uniform or typical)");
-  }
   N_Vector atol = N_VClone(y);
   {
     const Eigen::VectorXd a = model.AbsoluteTolerances(options.atol, options.atol_scaling == "typical");
