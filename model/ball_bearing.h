@@ -150,6 +150,10 @@ class BallBearingElement final : public ForceElement {
 
   std::unique_ptr<ElementWorkspace> make_workspace() const override;
   double state_scale(int i) const override;
+  /// The balls: each ball's equations involve only itself, the cage, the outer ring and the shaft.
+  std::vector<int> independent_state_blocks() const override {
+    return std::vector<int>(static_cast<std::size_t>(spec_.n_balls), kBallStates);
+  }
   std::vector<ProbeInfo> probes() const override;
   void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;

@@ -25,6 +25,8 @@ class BallDamperElement final : public ForceElement {
   void initial_states(double* z) const override;
   void initial_states_at_speed(double speed, double* z) const override;
   double state_scale(int i) const override;
+  /// The bearing's balls (the damper ring's states join the border).
+  std::vector<int> independent_state_blocks() const override { return bearing_.independent_state_blocks(); }
   double fd_relative_step() const override { return 1e-6; }
   std::vector<ProbeInfo> probes() const override;
   void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,

@@ -75,6 +75,11 @@ class ForceElement {
   /// sqrt(eps) to stay above their solver tolerance.
   virtual double fd_relative_step() const { return 1.4901161193847656e-08; }
 
+  /// Sizes of leading blocks of the internal states that do not depend on one another: the derivatives of the
+  /// states of one block depend on that block, the states after all blocks (the border) and the rotor only. The
+  /// engine then factors the element's Newton block by block (BlockArrowLU). Empty: one dense block.
+  virtual std::vector<int> independent_state_blocks() const { return {}; }
+
   /// True if AddJacobian() is implemented; otherwise the engine differentiates numerically.
   virtual bool has_jacobian() const { return false; }
   /// Jacobian of [f; zdot] with respect to [q; v; z] (local numbering), column-major, of size

@@ -15,6 +15,7 @@
 #include "model/damper_element.h"
 #include "model/ball_bearing.h"
 #include "model/ball_damper_element.h"
+#include "model/block_arrow_lu.h"
 #include "model/floating_ring_element.h"
 #include "model/journal_bearing_element.h"
 #include "model/linear_bearing_element.h"
@@ -42,7 +43,7 @@ struct RunupWorkspace {
   Eigen::MatrixXd A;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   std::vector<Eigen::MatrixXd> eA, eY, eT, eJY, eRJY;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> elu;
+  std::vector<BlockArrowLU> elu;               // per element: factors of its Newton block
   std::vector<Eigen::VectorXd> ew, ew0, eu;   // per element: m, m and d scratch
   Eigen::VectorXd rhs, sol;
   double jac_t = 0.0;
@@ -175,7 +176,7 @@ RunupWorkspacePtr RunupModel::make_workspace() const {
   for (const auto& e : elements_) {
     const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
     ws->eA.emplace_back(Eigen::MatrixXd::Zero(me, me));
-    ws->elu.emplace_back(me);
+    ws->elu.emplace_back(me, e->independent_state_blocks(), std::max(d, 1));
     ws->eY.emplace_back(Eigen::MatrixXd::Zero(me, d));
     ws->eT.emplace_back(Eigen::MatrixXd::Zero(me, d));
     ws->ew0.emplace_back(Eigen::VectorXd::Zero(me));
@@ -361,11 +362,11 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
     Eigen::MatrixXd& Ak = ws.eA[k];
     Ak = -g * J.block(d, 2 * d, m, m);
     Ak.diagonal().array() += 1.0;
-    ws.elu[k].compute(Ak);
-    regular = regular && ws.elu[k].rcond() > 0.0;
+    regular = ws.elu[k].compute(Ak) && regular;
     // Y = A_k^-1 (-g (G_zv + g G_zq)) in the element's local DOFs; the Schur term -(-g F_z) Y enters as g R' F_z Y R.
     ws.eT[k] = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
-    ws.eY[k] = ws.elu[k].solve(ws.eT[k]);
+    ws.eY[k] = ws.eT[k];
+    ws.elu[k].solve_in_place(ws.eY[k]);
     ws.eJY[k].noalias() = J.block(0, 2 * d, d, m) * ws.eY[k];
     ws.eRJY[k].noalias() = element_rows_[k].transpose() * ws.eJY[k];
     ws.A.noalias() += g * (ws.eRJY[k] * element_rows_[k]);
@@ -390,7 +391,8 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
     ws.eu[k].noalias() = element_rows_[k] * rq;
     ws.ew0[k] = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
     ws.ew0[k].noalias() += g * (J.block(d, 0, m, d) * ws.eu[k]);
-    ws.ew[k] = ws.elu[k].solve(ws.ew0[k]);
+    ws.ew[k] = ws.ew0[k];
+    ws.elu[k].solve_in_place(ws.ew[k]);
     ws.eu[k].noalias() = J.block(0, 2 * d, d, m) * ws.ew[k];
     ws.rhs.noalias() += g * (element_rows_[k].transpose() * ws.eu[k]);
   }

@@ -95,8 +95,9 @@ class RunupModel {
   ///   [ -g (Gv + g Gq)      I - g Gz   ] [dz] = [ r_z + g Gq r_q   ]
   /// whose lower-right block is block-diagonal (each element's states depend on its own states only). Each block is
   /// factored on its own and eliminated, leaving an n x n Schur complement on the rotor coordinates: for two
-  /// 82-state ball bearings about 10x fewer operations than factoring the (n + m) matrix whole. Returns false if a
-  /// factor is singular. Allocation-free.
+  /// 82-state ball bearings about 10x fewer operations than factoring the (n + m) matrix whole. Within an element,
+  /// independent state blocks (ForceElement::independent_state_blocks(): a ball bearing's balls) are eliminated one
+  /// by one onto the element's border (BlockArrowLU). Returns false if a factor is singular. Allocation-free.
   bool FactorNewton(double gamma, RunupWorkspace& ws) const;
   /// Solves (I - gamma dF/dy) x = b with the factors of FactorNewton() (b, x: n_states() values; the two
   /// energy-accounting states are passed through). Allocation-free.

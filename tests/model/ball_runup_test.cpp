@@ -89,3 +89,43 @@ TEST(BallRunup, BallBearingsInDampersRunAndBalanceTheirEnergy) {
 
 }  // namespace
 }  // namespace turbodyn
+
+namespace turbodyn {
+namespace {
+
+// The Newton solve eliminates each ball's 9 states on their own (BallBearingElement::independent_state_blocks)
+// and then the cage and outer ring. That rests on the balls' equations not involving one another: the
+// finite-difference Jacobian must have exact zeros there, and the block solve must satisfy the full system
+// (I - gamma dF/dy) x = b to round-off, for the bearing and for the bearing in a damper.
+TEST(BallNewton, BallBlocksAreIndependentAndTheBlockSolveMatchesTheFullSystem) {
+  constexpr double kResidualTolerance = 1e-10;
+  for (const std::string example : {"reference_ball.toml", "reference_ball_sfd.toml"}) {
+    const MachineSpec spec =
+        load_model(testing::source_dir() + "/examples/" + example, {{"speed.start", "60000 rpm"}});
+    const auto model = make_runup_model(spec);
+    auto ws = model->make_workspace();
+    const int ny = model->n_states();
+    Eigen::VectorXd y(ny);
+    model->InitialState(0.0, false, y.data(), *ws);
+    y.head(2 * model->n_dof()) += Eigen::VectorXd::Random(2 * model->n_dof()) * 1e-6;  // off the rest state
+    const Eigen::MatrixXd J = model->JacobianMatrix(0.0, y.data(), *ws);
+    for (std::size_t k = 0; k < model->elements().size(); ++k) {
+      const std::vector<int> blocks = model->elements()[k]->independent_state_blocks();
+      ASSERT_FALSE(blocks.empty()) << example;
+      const int z0 = model->state_offset(static_cast<int>(k));
+      for (std::size_t a = 0, oa = 0; a < blocks.size(); oa += blocks[a], ++a)
+        for (std::size_t b = 0, ob = 0; b < blocks.size(); ob += blocks[b], ++b)
+          if (a != b) {
+            EXPECT_EQ(J.block(z0 + oa, z0 + ob, blocks[a], blocks[b]).cwiseAbs().maxCoeff(), 0.0)
+                << example << ": ball " << a << " depends on ball " << b;
+          }
+      EXPECT_GT(J.block(z0, z0, blocks[0], blocks[0]).cwiseAbs().maxCoeff(), 0.0);
+    }
+    for (const double gamma : {1e-7, 1e-5})
+      EXPECT_LT(testing::newton_solve_residual(*model, *ws, J, gamma), kResidualTolerance)
+          << example << ", gamma " << gamma;
+  }
+}
+
+}  // namespace
+}  // namespace turbodyn

@@ -29,18 +29,25 @@ namespace turbodyn {
 namespace {
 
 TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
-  for (bool pedestal : {false, true}) {
+  struct Case {
+    std::string file, label;
     std::vector<Override> overrides;
-    if (pedestal)
-      overrides = {{"bearings.turbine.pedestal_mass", "0.5"}, {"bearings.turbine.pedestal_stiffness", "2e7"}};
-    const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_linear.toml", overrides);
+  };
+  // Linear bearings; a pedestal (element states); ball bearings (element states factored ball by ball).
+  const std::vector<Case> cases = {
+      {"reference_linear.toml", "without pedestal", {}},
+      {"reference_linear.toml", "with pedestal",
+       {{"bearings.turbine.pedestal_mass", "0.5"}, {"bearings.turbine.pedestal_stiffness", "2e7"}}},
+      {"reference_ball.toml", "ball bearings", {}}};
+  for (const Case& c : cases) {
+    const MachineSpec spec = load_model(testing::source_dir() + "/examples/" + c.file, c.overrides);
     const auto model = make_runup_model(spec);
     auto ws = model->make_workspace();
     std::vector<double> y(model->n_states(), 1e-6), ydot(model->n_states());
     model->Rhs(0.5, y.data(), ydot.data(), *ws);  // warm-up
     const long before = g_allocations.load();
     for (int i = 0; i < 100; ++i) model->Rhs(0.5 + 1e-4 * i, y.data(), ydot.data(), *ws);
-    EXPECT_EQ(g_allocations.load() - before, 0) << (pedestal ? "with" : "without") << " pedestal";
+    EXPECT_EQ(g_allocations.load() - before, 0) << c.label;
     // The Newton factorisation and solve of the BDF corrector, called at every step, allocate nothing either.
     model->Jacobian(0.5, y.data(), *ws);
     std::vector<double> x(model->n_states());
@@ -51,8 +58,7 @@ TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
       model->FactorNewton(1e-5 * (1 + i), *ws);
       model->SolveNewton(1e-5 * (1 + i), ydot.data(), x.data(), *ws);
     }
-    EXPECT_EQ(g_allocations.load() - before_newton, 0) << "Newton solve, " << (pedestal ? "with" : "without")
-                                                       << " pedestal";
+    EXPECT_EQ(g_allocations.load() - before_newton, 0) << "Newton solve, " << c.label;
   }
   // The counter works: a vector allocates.
   const long before = g_allocations.load();

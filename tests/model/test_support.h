@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "model/model_spec.h"
 #include "model/rotor.h"
+#include "model/runup.h"
 
 namespace turbodyn::testing {
 
@@ -49,6 +51,22 @@ inline std::vector<double> planar_frequencies(const Rotor& r, const std::vector<
   for (int i = 0; i < m; ++i)
     if (es.eigenvalues()(i) > omega_min * omega_min) w.push_back(std::sqrt(es.eigenvalues()(i)));
   return w;
+}
+
+/// Largest residual of the block-eliminated Newton solve, |(I - gamma J) x - b|, relative to the size of the terms
+/// of (I - gamma J) x, for a random b (J: the model's JacobianMatrix at the last Jacobian(); the two
+/// energy-accounting states are passed through and must come back unchanged).
+inline double newton_solve_residual(const RunupModel& model, RunupWorkspace& ws, const Eigen::MatrixXd& J,
+                                    double gamma) {
+  const int ny = model.n_states(), nn = ny - 2;
+  if (!model.FactorNewton(gamma, ws)) return INFINITY;
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(ny);
+  Eigen::VectorXd x(ny);
+  model.SolveNewton(gamma, b.data(), x.data(), ws);
+  if (x(ny - 2) != b(ny - 2) || x(ny - 1) != b(ny - 1)) return INFINITY;
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(nn, nn) - gamma * J.topLeftCorner(nn, nn);
+  const Eigen::VectorXd r = A * x.head(nn) - b.head(nn);
+  return r.cwiseAbs().maxCoeff() / (A.cwiseAbs() * x.head(nn).cwiseAbs()).maxCoeff();
 }
 
 }  // namespace turbodyn::testing
