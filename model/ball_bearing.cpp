@@ -128,8 +128,14 @@ void RaceCurvatures(double D, double d_m, double f, double alpha, bool inner, do
 namespace {
 
 struct BallBearingWorkspace : ElementWorkspace {
-  explicit BallBearingWorkspace(int n) : zdot(n, 0.0) {}
+  BallBearingWorkspace(int n, int n_balls)
+      : zdot(n, 0.0), in(8 + n, 0.0), out0(4 + n, 0.0), out1(4 + n, 0.0), share0(n_balls), share1(n_balls),
+        step(n_balls, 0.0) {}
   std::vector<double> zdot;
+  // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps.
+  std::vector<double> in, out0, out1;
+  std::vector<BallShare> share0, share1;
+  std::vector<double> step;
 };
 
 // One race as the balls see it, all vectors in the orbital basis (e_r, e_psi, e_z) of the current ball.
@@ -323,7 +329,7 @@ void BallBearingElement::steady_states(double speed, double* z) const {
 }
 
 std::unique_ptr<ElementWorkspace> BallBearingElement::make_workspace() const {
-  return std::make_unique<BallBearingWorkspace>(n_states());
+  return std::make_unique<BallBearingWorkspace>(n_states(), spec_.n_balls);
 }
 
 double BallBearingElement::state_scale(int i) const {
@@ -350,8 +356,8 @@ double BallBearingElement::state_scale(int i) const {
 }
 
 void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const double* v, const double* z,
-                                     const OuterRingKinematics& outer, BallBearingLoads& loads,
-                                     double* zdot) const {
+                                     const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
+                                     BallShare* shares) const {
   loads = BallBearingLoads{};
   const int Z = spec_.n_balls;
   const double Rp = pitch_radius_, Rb = 0.5 * spec_.ball_diameter, m = m_ball_, I = i_ball_, g = gravity_;
@@ -388,6 +394,8 @@ void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const
   for (int j = 0; j < Z; ++j) {
     const double* b = z + ball_offset(j);
     double* bd = zdot + ball_offset(j);
+    const Vec3 F_shaft0 = F_shaft, M_shaft0 = M_shaft, F_outer0 = F_outer, F_cage0 = F_cage;
+    const double T_cage0 = T_cage;
     const double psi = b[0], rho = b[1], zeta = b[2], psid = b[3];
     const double c = std::cos(psi), sn = std::sin(psi);
     const double R = Rp + rho;
@@ -495,6 +503,17 @@ void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const
     bd[6] = M.x() / I + psid * wb.y();
     bd[7] = M.y() / I - psid * wb.x();
     bd[8] = M.z() / I;
+
+    if (shares) {
+      BallShare& sh = shares[j];
+      sh.shaft[0] = F_shaft.x() - F_shaft0.x();
+      sh.shaft[1] = F_shaft.y() - F_shaft0.y();
+      sh.shaft[2] = M_shaft.x() - M_shaft0.x();
+      sh.shaft[3] = M_shaft.y() - M_shaft0.y();
+      sh.shaft[4] = M_shaft.z() - M_shaft0.z();
+      for (int i = 0; i < 3; ++i) sh.outer[i] = F_outer(i) - F_outer0(i), sh.cage[i] = F_cage(i) - F_cage0(i);
+      sh.cage[3] = T_cage - T_cage0;
+    }
   }
 
   // Cage: translation and spin (tilt neglected).
@@ -530,8 +549,77 @@ void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const
 
 void BallBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
                                             ElementWorkspace&, double* f, double* zdot) const {
+  Evaluate(s, q, v, z, f, zdot, nullptr);
+}
+
+void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
+                                     ElementWorkspace& ws, double* J) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  constexpr int d = 4;
+  const int m = n_states(), rows = d + m, Z = spec_.n_balls, nb = kBallStates * Z;
+  double* in = w.in.data();
+  std::copy(q, q + d, in);
+  std::copy(v, v + d, in + d);
+  std::copy(z, z + m, in + 2 * d);
+  const auto eval = [&](std::vector<double>& out, BallShare* shares) {
+    std::fill(out.begin(), out.end(), 0.0);
+    Evaluate(s, in, in + d, in + 2 * d, out.data(), out.data() + d, shares);
+  };
+  const auto column = [&](int j) { return J + static_cast<std::size_t>(j) * rows; };
+  const double rel = fd_relative_step();
+  eval(w.out0, w.share0.data());
+
+  // The shaft's displacements and velocities, the cage and the outer ring: one input at a time.
+  for (int j = 0; j < 2 * d + m; ++j) {
+    if (j == 2 * d) j += nb;  // the balls' states: below
+    if (j >= 2 * d + m) break;
+    const double saved = in[j];
+    const double typical = j < d ? kTypicalDisplacement : j < 2 * d ? kTypicalVelocity : state_scale(j - 2 * d);
+    const double h = rel * std::max(std::abs(saved), typical);
+    in[j] = saved + h;
+    eval(w.out1, nullptr);
+    in[j] = saved;
+    double* col = column(j);
+    for (int r = 0; r < rows; ++r) col[r] += (w.out1[r] - w.out0[r]) / h;
+  }
+
+  // State i of every ball at once: a ball's own rows depend on no other ball, and the rows of the sums (shaft
+  // forces, cage, outer ring) are told apart by each ball's share.
+  const double mc = spec_.cage_mass, mo = spec_.outer_ring_mass;
+  const int rc = d + cage_offset(), ro = d + outer_offset(), rs = d + n_core_;
+  const bool spring = spec_.outer_ring_mode == OuterRingMode::kSpring;
+  for (int i = 0; i < kBallStates; ++i) {
+    for (int b = 0; b < Z; ++b) {
+      const int k = ball_offset(b) + i;
+      w.step[b] = rel * std::max(std::abs(z[k]), state_scale(k));
+      in[2 * d + k] = z[k] + w.step[b];
+    }
+    eval(w.out1, w.share1.data());
+    for (int b = 0; b < Z; ++b) {
+      const int k = ball_offset(b) + i;
+      in[2 * d + k] = z[k];
+      const double h = w.step[b];
+      double* col = column(2 * d + k);
+      for (int r = d + ball_offset(b); r < d + ball_offset(b) + kBallStates; ++r)
+        col[r] += (w.out1[r] - w.out0[r]) / h;
+      const BallShare& p = w.share1[b];
+      const BallShare& p0 = w.share0[b];
+      for (int r = 0; r < 4; ++r) col[r] += (p.shaft[r] - p0.shaft[r]) / h;
+      for (int r = 0; r < 3; ++r) col[rc + 4 + r] += (p.cage[r] - p0.cage[r]) / (mc * h);
+      col[rc + 7] += (p.cage[3] - p0.cage[3]) / (i_cage_ * h);
+      col[ro + 1] += (p.outer[2] - p0.outer[2]) / (mo * h);
+      if (spring) {
+        col[rs + 2] += (p.outer[0] - p0.outer[0]) / (mo * h);
+        col[rs + 3] += (p.outer[1] - p0.outer[1]) / (mo * h);
+      }
+    }
+  }
+}
+
+void BallBearingElement::Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f,
+                                  double* zdot, BallShare* shares) const {
   BallBearingLoads loads;
-  CalcBearing(s, q, v, z, OuterFromStates(z), loads, zdot);
+  CalcBearing(s, q, v, z, OuterFromStates(z), loads, zdot, shares);
   for (int i = 0; i < 4; ++i) f[i] += loads.shaft[i];
   if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
     const double* o = z + n_core_;

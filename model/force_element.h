@@ -64,6 +64,10 @@ class ForceElement {
     DoCalcAndAddForces(s, q, v, z, ws, f, zdot);
   }
 
+  /// Typical magnitudes of the rotor displacements (m) and velocities (m/s): the smallest step scales of
+  /// finite-difference Jacobians (the engine's and an element's own) and the units of scaled tolerances.
+  static constexpr double kTypicalDisplacement = 1e-6, kTypicalVelocity = 1e-3;
+
   /// Typical magnitude of internal state i (SI), used as the smallest step scale when the engine differentiates
   /// the element numerically.
   virtual double state_scale(int i) const {

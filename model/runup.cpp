@@ -22,10 +22,11 @@
 
 namespace turbodyn {
 
-// Typical magnitudes of the rotor coordinates: below them an input is perturbed in the finite-difference Jacobian
-// as if it had that size, and with atol_scaling = "typical" they scale the absolute tolerances. Displacements
-// 1 um, velocities 1 mm/s (1 um at 1000 rad/s).
-constexpr double kDisplacementScale = 1e-6, kVelocityScale = 1e-3;
+// Typical magnitudes of the rotor coordinates (ForceElement: 1 um, 1 mm/s): below them an input is perturbed in the
+// finite-difference Jacobian as if it had that size, and with atol_scaling = "typical" they scale the absolute
+// tolerances.
+constexpr double kDisplacementScale = ForceElement::kTypicalDisplacement;
+constexpr double kVelocityScale = ForceElement::kTypicalVelocity;
 
 // Per-simulation scratch space: sized once, reused by every right-hand-side and Jacobian call.
 struct RunupWorkspace {

@@ -2,11 +2,13 @@
 // (variant III): short run-ups through the engine, checked against the bearing kinematics and the energy balance.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "model/ball_bearing.h"
 #include "model/model_file.h"
 #include "model/runup.h"
 #include "tests/model/test_support.h"
@@ -124,6 +126,70 @@ TEST(BallNewton, BallBlocksAreIndependentAndTheBlockSolveMatchesTheFullSystem) {
     for (const double gamma : {1e-7, 1e-5})
       EXPECT_LT(testing::newton_solve_residual(*model, *ws, J, gamma), kResidualTolerance)
           << example << ", gamma " << gamma;
+  }
+}
+
+}  // namespace
+}  // namespace turbodyn
+
+namespace turbodyn {
+namespace {
+
+// The ball bearing's own finite differences (all balls' state i perturbed at once, told apart by their shares of the
+// sums) against plain forward differences, one input at a time, with the same steps: the same Jacobian to
+// round-off, for rings held fixed and for rings on the housing spring.
+TEST(BallNewton, BallBearingJacobianMatchesPlainFiniteDifferences) {
+  constexpr double kTolerance = 1e-6;  // relative to the largest entry of the column
+  for (const std::string outer : {"fixed", "spring"}) {
+    const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball.toml",
+                                        {{"speed.start", "60000 rpm"},
+                                         {"bearings.compressor.outer_ring", outer},
+                                         {"bearings.turbine.outer_ring", outer}});
+    const auto model = make_runup_model(spec);
+    auto rws = model->make_workspace();
+    Eigen::VectorXd y(model->n_states());
+    model->InitialState(0.0, false, y.data(), *rws);
+    const SpinState s = model->spin(0.0);
+    const ForceElement& e = *model->elements()[0];
+    ASSERT_TRUE(e.has_jacobian());
+    auto ws = e.make_workspace();
+    const int d = static_cast<int>(e.dofs().size()), m = e.n_states(), rows = d + m, cols = 2 * d + m;
+    Eigen::VectorXd in(cols);
+    in << Eigen::VectorXd::Random(d) * 2e-6, Eigen::VectorXd::Random(d) * 1e-3,
+        y.segment(model->state_offset(0), m);
+    // Turn the cage ahead by more than the pocket clearance over the pitch radius, so that every ball touches its
+    // pocket and the cage's rows depend on the balls.
+    const auto* bearing = dynamic_cast<const BallBearingElement*>(&e);
+    ASSERT_NE(bearing, nullptr);
+    in(2 * d + bearing->cage_offset() + 3) += 1.3 * spec.bearings.at(0).ball.pocket_clearance /
+                                              (0.5 * spec.bearings.at(0).ball.pitch_diameter);
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, cols);
+    e.AddJacobian(s, in.data(), in.data() + d, in.data() + 2 * d, *ws, J.data());
+    const auto eval = [&](const Eigen::VectorXd& x) {
+      Eigen::VectorXd out = Eigen::VectorXd::Zero(rows);
+      e.CalcAndAddForces(s, x.data(), x.data() + d, x.data() + 2 * d, *ws, out.data(), out.data() + d);
+      return out;
+    };
+    const Eigen::VectorXd out0 = eval(in);
+    for (int j = 0; j < cols; ++j) {
+      const double typical = j < d ? ForceElement::kTypicalDisplacement
+                             : j < 2 * d ? ForceElement::kTypicalVelocity
+                                         : e.state_scale(j - 2 * d);
+      const double h = e.fd_relative_step() * std::max(std::abs(in(j)), typical);
+      Eigen::VectorXd x = in;
+      x(j) += h;
+      const Eigen::VectorXd out1 = eval(x);
+      const Eigen::VectorXd col = (out1 - out0) / h;
+      // The plain differences carry the round-off of the whole sum: one ball's share of the cage's torque is
+      // resolved only to eps |T_cage| / h. The shares resolve it better, so the bound is the plain one's noise.
+      const Eigen::VectorXd noise =
+          (16.0 * std::numeric_limits<double>::epsilon() / h) * out0.cwiseAbs().cwiseMax(out1.cwiseAbs());
+      const double scale = col.cwiseAbs().maxCoeff();
+      const Eigen::VectorXd excess = (J.col(j) - col).cwiseAbs() - noise;
+      Eigen::Index worst = 0;
+      EXPECT_LT(excess.maxCoeff(&worst), kTolerance * scale)
+          << outer << ", input " << j << ", row " << worst << ": " << J(worst, j) << " against " << col(worst);
+    }
   }
 }
 
