@@ -199,6 +199,28 @@ double resolution_of(const IdentifyStudy& s, const MeasuredData& m) {
 
 }  // namespace
 
+std::vector<Override> measured_speed_table(const Record& record, std::size_t max_points) {
+  const std::size_t n = record.time.size();
+  if (n < 2 || record.speed_hz.size() != n)
+    throw ModelError("identify.speed = \"measured\": the measured record has no speed history");
+  const std::size_t points = std::max<std::size_t>(2, std::min(max_points, n));
+  std::string times = "[", speeds = "[";
+  for (std::size_t k = 0; k < points; ++k) {
+    // Point k: the first and last samples exactly in time; the speed a mean over the block around the point (tacho
+    // speeds jitter from pulse to pulse), clamped at zero.
+    const std::size_t i = k * (n - 1) / (points - 1);
+    const std::size_t half = (n / points) / 2;
+    const std::size_t a = i > half ? i - half : 0, b = std::min(n - 1, i + half);
+    double mean = 0.0;
+    for (std::size_t j = a; j <= b; ++j) mean += record.speed_hz[j];
+    mean /= static_cast<double>(b - a + 1);
+    times += (k ? ", " : "") + format_value(record.time[i] - record.time.front(), "");
+    speeds += (k ? ", " : "") + format_value(2.0 * M_PI * std::max(0.0, mean), "");
+  }
+  // The whole [speed] table is replaced (a ramp's start, end and duration do not belong in a table profile).
+  return {{"speed", "{profile = \"table\", times = " + times + "], speeds = " + speeds + "]}"}};
+}
+
 IdentifyResult identify(const IdentifyStudy& study, const IdentifyOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   IdentifyResult out;
@@ -233,7 +255,13 @@ IdentifyResult identify(const IdentifyStudy& study, const IdentifyOptions& optio
     throw ModelError(study.source.string() + ": " + std::to_string(residuals.size()) + " residuals for " +
                      std::to_string(n) + " parameters; compare more speeds or features");
 
-  const Evaluator evaluator(study);
+  // With identify.speed = "measured", every run-up follows the measured speed: the study as run carries it.
+  IdentifyStudy run_study = study;
+  if (study.speed_from_measurement) {
+    out.added_fixed = measured_speed_table(out.measured.record);
+    run_study.fixed.insert(run_study.fixed.end(), out.added_fixed.begin(), out.added_fixed.end());
+  }
+  const Evaluator evaluator(run_study);
   const ParameterScaling scaling(study);
   int threads = options.threads > 0 ? options.threads : study.threads;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

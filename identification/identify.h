@@ -61,7 +61,14 @@ struct IdentifyResult {
   std::vector<double> fitted_residuals;          ///< at the estimate
   std::vector<double> amplitude_scales;          ///< per feature (see Residuals)
   std::vector<std::string> warnings;
+  /// Overrides identify() added to the study's fixed ones for every model run (identify.speed = "measured": the
+  /// measured speed as a [speed] table); fitted.toml carries them too.
+  std::vector<Override> added_fixed;
 };
+
+/// The measured speed as a model-file override: the [speed] table replaced by profile = "table" with at most
+/// `max_points` points (block means of the measured speed, times from the record's first sample), SI values.
+std::vector<Override> measured_speed_table(const Record& record, std::size_t max_points = 400);
 
 /// Reads the measurement, extracts its features, and fits the parameters. Throws ModelError for a bad study or
 /// measured file, or when the model cannot be evaluated at the start values.

@@ -234,6 +234,9 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
     s.speed_window_max = c.speed_window_max;
     s.fixed = c.fixed;
     s.method = r.choice("method", {"runup", "response"}, "runup") == "response" ? Method::Response : Method::Runup;
+    s.speed_from_measurement = r.choice("speed", {"model", "measured"}, "model") == "measured";
+    if (s.speed_from_measurement && s.method != Method::Runup)
+      r.fail("speed", "\"measured\" drives run-ups; the steady-state response (method = \"response\") has none");
     r.finish();
   }
   const toml::table* meas = top.table("measurement");
@@ -242,6 +245,9 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
     Reader r(*meas, "measurement", src);
     read_measurement_table(r, file, s.measurement);
   }
+  if (s.speed_from_measurement && s.measurement.format != MeasurementFormat::TimeSeries)
+    top.fail_table("identify.speed = \"measured\" needs a measured time series (format = \"timeseries\"): processed "
+                   "spectra carry no speed history");
   if (s.method == Method::Response && s.measurement.format == MeasurementFormat::TimeSeries)
     top.fail_table("method = \"response\" (steady state) compares with processed spectra only; use format = "
                    "\"spectra\" or method = \"runup\"");

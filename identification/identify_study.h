@@ -55,6 +55,7 @@ struct IdentifyStudy {
   std::filesystem::path model;       ///< base model file (relative to the study file)
   Method method = Method::Runup;
   std::vector<Override> fixed;       ///< overrides applied to every model run before the parameters
+  bool speed_from_measurement = false;  ///< run-ups follow the measured speed (a table), not the model's [speed]
   double speed_window_min = 0.0;     ///< rad/s: run-ups start where the ramp reaches this speed (0 = start)
   double speed_window_max = 0.0;     ///< rad/s: and stop here (0 = end)
   int threads = 0;                   ///< parallel model runs, 0 = all cores

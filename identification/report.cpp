@@ -257,6 +257,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
   }
   {
     std::vector<Override> o = study.fixed;
+    o.insert(o.end(), r.added_fixed.begin(), r.added_fixed.end());
     std::ostringstream header;
     header << "Fitted by `turbodyn identify " << study.source.string() << "` from " << study.model.string() << "\n"
            << "(comments of the base model are not kept). Estimates:\n";

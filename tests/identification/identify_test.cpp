@@ -171,9 +171,11 @@ upper = "20 mPa*s"
 true = "10 mPa*s"
 )";
 
+// truth: overrides of the bench run (e.g. its speed history); identify_keys: extra lines of the [identify] table.
 std::filesystem::path runup_study(const std::filesystem::path& dir, const std::string& model_file,
-                                  const std::string& parameters, int max_iterations) {
-  const MachineSpec spec = load_model(source(model_file));
+                                  const std::string& parameters, int max_iterations,
+                                  const std::vector<Override>& truth = {}, const std::string& identify_keys = "") {
+  const MachineSpec spec = load_model(source(model_file), truth);
   const auto model = make_runup_model(spec);
   const RunupResult r = simulate_runup(*model, runup_options(spec));
   EXPECT_TRUE(r.complete) << r.message;
@@ -202,6 +204,7 @@ std::filesystem::path runup_study(const std::filesystem::path& dir, const std::s
   }
   const std::string study = R"([identify]
 model = ")" + source(model_file).string() + R"("
+)" + identify_keys + R"(
 
 [measurement]
 file = "journal_runup.h5"
@@ -255,6 +258,53 @@ TEST(Identify, NonlinearJournalBearingClearanceAndViscosityFromNoisyRunup) {
   EXPECT_LT(std::abs(r.estimate[0] - kTrueClearanceUm), 0.25 * std::abs(34.0 - kTrueClearanceUm));
   EXPECT_LT(std::abs(r.estimate[1] - kTrueViscosityMPas), 0.25 * std::abs(12.0 - kTrueViscosityMPas));
   EXPECT_LT(r.final_cost, 0.01 * r.initial_cost);
+}
+
+// The bench ran up faster than the model file's ramp and not linearly (4000 -> 9000 rpm in 0.08 s, on to 12,000 rpm
+// at 0.2 s, against the file's 4000 -> 12000 rpm in 0.25 s). With identify.speed = "measured" every run-up follows
+// the measured speed (a table from the tacho-derived record): the estimates come back within 3 sigma, the model
+// runs span the measured record, and fitted.toml carries the table.
+TEST(Identify, RunupsFollowTheMeasuredSpeedWhenAsked) {
+  const auto dir = scratch("measured_speed");
+  const std::vector<Override> bench = {
+      {"speed", R"({profile = "table", times = ["0 s", "0.08 s", "0.2 s"], speeds = ["4000 rpm", "9000 rpm", "12000 rpm"]})"}};
+  const IdentifyStudy study = load_identify_study(runup_study(
+      dir, "tests/data/identification/journal_rotor.toml", kJournalParameters, 15, bench, R"(speed = "measured")"));
+  ASSERT_TRUE(study.speed_from_measurement);
+  IdentifyOptions o;
+  o.threads = 2;
+  const IdentifyResult r = identify(study, o);
+  ASSERT_TRUE(r.covariance_ok) << r.covariance_message;
+  std::cout << "clearance = " << r.estimate[0] << " +- " << r.std_dev[0] << " um, viscosity = " << r.estimate[1]
+            << " +- " << r.std_dev[1] << " mPa s, " << r.model_runs << " model runs\n";
+  EXPECT_LT(std::abs(r.estimate[0] - kTrueClearanceUm), kSigmas * r.std_dev[0]);
+  EXPECT_LT(std::abs(r.estimate[1] - kTrueViscosityMPas), kSigmas * r.std_dev[1]);
+  EXPECT_LT(std::abs(r.estimate[0] - kTrueClearanceUm), 0.25 * std::abs(34.0 - kTrueClearanceUm));
+  ASSERT_FALSE(r.fitted_record.time.empty());
+  EXPECT_NEAR(r.fitted_record.time.back(), 0.2, 1e-3);                // the measured duration, not the file's 0.25 s
+  EXPECT_NEAR(r.fitted_record.speed_hz.back() * 60.0, 12000.0, 30.0);  // the measured end speed
+  std::vector<std::string> warnings;
+  write_identify_results(study, r, dir / "out", false, warnings);
+  const MachineSpec fitted = load_model(dir / "out" / "fitted.toml");
+  EXPECT_EQ(fitted.speed.kind, SpeedProfile::Kind::Table);
+  EXPECT_NEAR(fitted.speed.duration, 0.2, 1e-3);
+}
+
+TEST(Identify, MeasuredSpeedNeedsATimeSeries) {
+  // The Jeffcott study compares processed spectra, which carry no speed history.
+  const auto dir = scratch("measured_speed_spectra");
+  const std::filesystem::path file = jeffcott_study(dir);
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("method = \"response\""), 19, "method = \"runup\"\nspeed = \"measured\"");
+  write(file, text);
+  try {
+    (void)load_identify_study(dir / "study.toml");
+    FAIL() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs a measured time series"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("study.toml"), std::string::npos) << e.what();
+  }
 }
 
 // The floating-ring variant: inner and outer film clearances of both bearings (true 30 and 60 um).
