@@ -235,6 +235,14 @@ void read_damper(Reader& r, DamperSpec& d, bool needs_ring_mass) {
   else if (r.has("ring_mass"))
     r.fail("ring_mass", "the damper's ring is the ball bearing's outer ring: give its outer_ring_mass instead");
   d.centring_stiffness = r.quantity_or("centring_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
+  d.end_seal_gap = r.quantity_or("end_seal_gap", dim::length, 0.0, Bound::NonNegative);
+  d.end_seal_length = r.quantity_or("end_seal_length", dim::length, 0.0, Bound::NonNegative);
+  if (d.end_seal_gap > 0.0 && d.end_seal_length == 0.0)
+    r.fail("end_seal_gap", "an end seal needs its axial length too (end_seal_length)");
+  if (d.end_seal_length > 0.0 && d.end_seal_gap == 0.0)
+    r.fail("end_seal_length", "an end seal needs its radial gap too (end_seal_gap; open ends: give neither)");
+  if (d.end_seal_gap > d.clearance)
+    r.fail("end_seal_gap", "is larger than the damper clearance: such a seal seals nothing (open ends: give neither)");
   r.finish();
 }
 

@@ -125,6 +125,8 @@ struct DamperSpec {
   double supply_pressure = 0.0;     ///< Pa gauge at the feed hole
   double feed_hole_diameter = 0.0;  ///< m; 0 = none
   double feed_hole_angle = M_PI / 2;
+  double end_seal_gap = 0.0;        ///< m, radial gap of the end seals at both ends; 0 = open ends
+  double end_seal_length = 0.0;     ///< m, axial length of the seals' gap
 };
 
 struct BearingSpec {

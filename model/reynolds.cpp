@@ -295,6 +295,7 @@ struct FilmSolver::Impl {
   SolverOptions o;
   int n = 0, nz = 0, nzf = 0;  // circumferential nodes, axial nodes, axial faces (nz + 1)
   double dth = 0, dx = 0, dz = 0;
+  double seal_conductance = 0;  // m^3/(Pa s) per grid column of an end seal's slot (0: open ends)
   std::vector<double> th, ct, st, cte, ste, zn, zf;  // node angles, cos/sin at nodes and east faces, z nodes/faces
   std::vector<int> iwest, ieast;                     // neighbouring columns (periodic)
   // Dirichlet nodes (full grid): kind -1 free, h >= 0 hole h, -2 - k groove k.
@@ -352,6 +353,13 @@ struct FilmSolver::Impl {
     dth = kTwoPi / n;
     dx = g.radius * dth;
     dz = g.length / (nz + 1);
+    if (!(g.end_seal_gap >= 0.0) || !std::isfinite(g.end_seal_gap)) bad("end_seal_gap must be >= 0");
+    if (g.end_seal_gap > 0.0) {
+      if (!(g.end_seal_length > 0.0) || !std::isfinite(g.end_seal_length))
+        bad("an end seal needs end_seal_length > 0");
+      const double gap = g.end_seal_gap;
+      seal_conductance = dx * gap * gap * gap / (12.0 * eta * g.end_seal_length);
+    }
     th.resize(n);
     ct.resize(n);
     st.resize(n);
@@ -502,10 +510,13 @@ struct FilmSolver::Impl {
     for (int jf = 0; jf < jfn; ++jf) {
       const double z = zf[jf];
       const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
+      const bool end = jf == 0 || jf == nzf - 1;
       for (int i = 0; i < n; ++i) {
         const double h = c - exz * ct[i] - eyz * st[i];
         hF[i * nzf + jf] = h;
-        aF[i * nzf + jf] = kz * h * h * h;
+        const double a = kz * h * h * h;
+        // An end face with a seal: the land's last half cell and the seal's slot in series.
+        aF[i * nzf + jf] = end && seal_conductance > 0.0 ? a * seal_conductance / (a + seal_conductance) : a;
       }
     }
     if (sym) {
@@ -1166,6 +1177,18 @@ struct FilmSolver::Impl {
         rc += theta[k] / hN[k];
         rz += hE[k] * (p[ie * nz + j] - pk);
         pmax = std::max(pmax, pk);
+      }
+      if (seal_conductance > 0.0) {
+        // Behind a seal the land's ends carry p_end = p_amb + (a / c_s) (p_node - p_amb) (flow continuity through
+        // the end face a, in series, and the slot c_s); the end strips of width dz/2 between the first node's cell
+        // and the land end, negligible at open ends, are integrated with p linear from p_end to the face.
+        const double zend = 0.5 * g.length - 0.25 * dz;
+        const double p0 = p[i * nz], p1 = p[i * nz + nz - 1];
+        const double e0 = pamb + aF[i * nzf] / seal_conductance * (p0 - pamb);
+        const double e1 = pamb + aF[i * nzf + nz] / seal_conductance * (p1 - pamb);
+        const double s0 = (3.0 * e0 + p0) / 8.0, s1 = (3.0 * e1 + p1) / 8.0;  // strip integral / dz
+        rp += s0 + s1;
+        rpz += zend * (s1 - s0);
       }
       sc += rp * ct[i];
       ss += rp * st[i];

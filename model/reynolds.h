@@ -6,7 +6,8 @@
 // x = R theta along the circumference, z axial in [-L/2, L/2], U1 = R omega_inner, U2 = R omega_outer, and the film
 // thickness h(theta, z) = c - (ex + z sx) cos(theta) - (ey + z sy) sin(theta) (journal centre relative to bush
 // centre at axial position z; sx, sy the relative slopes of the journal axis). Periodic in theta; Dirichlet at
-// both ends (ambient pressure) and at the nodes inside supply/coupling holes and grooves.
+// both ends (ambient pressure, behind an end-seal slot if there is one) and at the nodes inside supply/coupling holes
+// and grooves.
 //
 // Discretisation: second-order finite volumes on a node-centred grid (n_circ nodes in theta, n_axial interior nodes
 // in z, the ends one axial step beyond the first and last node), h evaluated exactly at nodes and faces.
@@ -62,6 +63,10 @@ struct FilmGeometry {
   int n_circ = 60;       ///< grid nodes around the circumference (>= 8)
   int n_axial = 12;      ///< interior grid nodes along the axis (>= 4); the ends are one step beyond
   double ambient_pressure = 0;     ///< Pa gauge, both ends
+  /// End seals (e.g. piston rings) at both ends: the oil leaves each end through a slot of this radial gap and
+  /// axial length, q' = gap^3 / (12 eta length) (p_end - p_ambient) per unit circumference, in series with the
+  /// land. gap = 0: open ends (p = p_ambient at the ends).
+  double end_seal_gap = 0, end_seal_length = 0;
   double cavitation_pressure = 0;  ///< Pa gauge, p_cav of the Gumbel and mass-conserving models
   std::vector<Hole> holes;         ///< at most 8 (FilmState::hole_pressure_override)
   std::vector<Groove> grooves;

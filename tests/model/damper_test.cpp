@@ -13,43 +13,83 @@
 namespace turbodyn {
 namespace {
 
+// A damper land of diameter 20 mm and clearance 50 um, width `length`, on a 90 x 12 grid.
+DamperSpec test_damper(double length) {
+  DamperSpec d;
+  d.enabled = true;
+  d.diameter = 0.02;
+  d.length = length;
+  d.clearance = 50e-6;
+  d.ring_mass = 0.015;
+  d.n_circ = 90;
+  d.n_axial = 12;
+  return d;
+}
+
+// Tangential and radial force on the housing of a damper whose ring runs a centred circular orbit.
+struct OrbitForce {
+  double radial, tangential, eccentricity;
+};
+OrbitForce orbit_force(const DamperSpec& d, double eta, double eps, double w) {
+  LinearBearing b;
+  b.name = "test";
+  b.table.k = {{{3e7}, {0.0}, {0.0}, {3e7}}};
+  b.table.c = {{{0.0}, {0.0}, {0.0}, {0.0}}};
+  OilSpec oil;
+  oil.viscosity = eta;
+  const DamperElement e(b, 0, d, oil, 0.0);
+  auto ws = e.make_workspace();
+  const double c = d.clearance, phase = 0.7;
+  const double z[4] = {eps * c * std::cos(phase), eps * c * std::sin(phase), -eps * c * w * std::sin(phase),
+                       eps * c * w * std::cos(phase)};
+  double out[5];
+  const double q[2] = {0, 0}, v[2] = {0, 0};
+  e.EvalProbes(SpinState{}, q, v, z, *ws, out);
+  // Force on the housing = -film force on the ring; projected on the radial and tangential directions.
+  return {-(out[0] * std::cos(phase) + out[1] * std::sin(phase)),
+          -(-out[0] * std::sin(phase) + out[1] * std::cos(phase)), out[4]};
+}
+
 TEST(Damper, CircularOrbitAgainstTheShortDamperClosedForms) {
   // validation-references.md §3: open-ended short damper, centred circular orbit of radius e = eps c at whirl
   // speed w; pi-film (Swift-Stieber): C_tt = pi eta R L^3 / (2 c^3 (1-eps^2)^1.5), K_rr = 2 eta R L^3 w eps /
   // (c^3 (1-eps^2)^2); tangential force -C_tt eps c w, radial -K_rr eps c. The element transmits these (and the
   // centring spring, zero here) to the housing.
   constexpr double kShortDamperTolerance = 0.05;  // L/D = 0.1 film against the short-damper limit
-  LinearBearing b;
-  b.name = "test";
-  b.table.k = {{{3e7}, {0.0}, {0.0}, {3e7}}};
-  b.table.c = {{{0.0}, {0.0}, {0.0}, {0.0}}};
-  DamperSpec d;
-  d.enabled = true;
-  d.diameter = 0.02;
-  d.length = 0.002;
-  d.clearance = 50e-6;
-  d.ring_mass = 0.015;
-  d.n_circ = 90;
-  d.n_axial = 12;
-  OilSpec oil;
-  oil.viscosity = 0.01;
-  const DamperElement e(b, 0, d, oil, 0.0);
-  auto ws = e.make_workspace();
-  const double eps = 0.4, w = 1000.0, R = 0.01, L = d.length, c = d.clearance, eta = oil.viscosity;
-  const double phase = 0.7;  // anywhere on the orbit
-  const double z[4] = {eps * c * std::cos(phase), eps * c * std::sin(phase), -eps * c * w * std::sin(phase),
-                       eps * c * w * std::cos(phase)};
-  double out[5];
-  const double q[2] = {0, 0}, v[2] = {0, 0};
-  e.EvalProbes(SpinState{}, q, v, z, *ws, out);
-  // Force on the housing = -film force on the ring; project on the radial and tangential directions.
-  const double radial = -(out[0] * std::cos(phase) + out[1] * std::sin(phase));
-  const double tangential = -(-out[0] * std::sin(phase) + out[1] * std::cos(phase));
+  DamperSpec d = test_damper(0.002);
+  const double eps = 0.4, w = 1000.0, R = 0.01, L = d.length, c = d.clearance, eta = 0.01;
+  const OrbitForce f = orbit_force(d, eta, eps, w);  // anywhere on the orbit
   const double Ctt = M_PI * eta * R * std::pow(L, 3) / (2 * std::pow(c, 3) * std::pow(1 - eps * eps, 1.5));
   const double Krr = 2 * eta * R * std::pow(L, 3) * w * eps / (std::pow(c, 3) * std::pow(1 - eps * eps, 2));
-  EXPECT_NEAR(tangential / (-Ctt * eps * c * w), 1.0, kShortDamperTolerance);
-  EXPECT_NEAR(radial / (-Krr * eps * c), 1.0, kShortDamperTolerance);
-  EXPECT_NEAR(out[4], eps, 1e-12);
+  EXPECT_NEAR(f.tangential / (-Ctt * eps * c * w), 1.0, kShortDamperTolerance);
+  EXPECT_NEAR(f.radial / (-Krr * eps * c), 1.0, kShortDamperTolerance);
+  EXPECT_NEAR(f.eccentricity, eps, 1e-12);
+}
+
+TEST(Damper, SealedEndsGiveTheLongDamperAndALeakySealLiesBetween) {
+  // End seals (end_seal_gap, end_seal_length): a slot in series with each end of the land. Nearly closed (gap
+  // 1e-3 c), no oil leaves axially and the full-film damper is the long (infinitely long) damper of the same land:
+  // C_tt = 24 pi eta R^3 L / (c^3 (2 + eps^2) sqrt(1 - eps^2)), no radial force (San Andres, Modern Lubrication
+  // Theory, Notes 13, full 2-pi film). A seal as wide as the clearance and as long as the land adds the slot's
+  // resistance to the land's: the force lies between the open and the closed damper.
+  constexpr double kLongDamperTolerance = 0.01;
+  DamperSpec d = test_damper(0.006);
+  d.cavitation = "none";
+  const double eps = 0.3, w = 1000.0, R = 0.01, L = d.length, c = d.clearance, eta = 0.01;
+  const OrbitForce open = orbit_force(d, eta, eps, w);
+  d.end_seal_gap = 1e-3 * c;
+  d.end_seal_length = 1e-3;
+  const OrbitForce sealed = orbit_force(d, eta, eps, w);
+  const double Ctt = 24 * M_PI * eta * std::pow(R, 3) * L / (std::pow(c, 3) * (2 + eps * eps) * std::sqrt(1 - eps * eps));
+  EXPECT_NEAR(sealed.tangential / (-Ctt * eps * c * w), 1.0, kLongDamperTolerance);
+  EXPECT_LT(std::abs(sealed.radial), 1e-3 * std::abs(sealed.tangential));
+  d.end_seal_gap = c;
+  d.end_seal_length = L;
+  const OrbitForce leaky = orbit_force(d, eta, eps, w);
+  EXPECT_LT(std::abs(open.tangential), std::abs(leaky.tangential));
+  EXPECT_LT(std::abs(leaky.tangential), std::abs(sealed.tangential));
+  // The closed damper damps far more than the open one: the long/short ratio 24 R^2 / L^2 (small eps), ~ 67 here.
+  EXPECT_GT(std::abs(sealed.tangential), 20.0 * std::abs(open.tangential));
 }
 
 TEST(Damper, RunUpThroughTheFirstCriticalsWithLowerForceAndClosedEnergyBalance) {

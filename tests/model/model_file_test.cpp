@@ -81,6 +81,24 @@ TEST(ModelFile, OverrideErrorsNameTheOverride) {
   EXPECT_THROW(parse_override("no-equals-sign"), ModelError);
 }
 
+TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {
+  const std::string f = example("reference_ball_sfd.toml");
+  const MachineSpec s = load_model(f, {parse_override("bearings.compressor.damper.end_seal_gap=20 um"),
+                                       parse_override("bearings.compressor.damper.end_seal_length=1 mm")});
+  EXPECT_DOUBLE_EQ(s.bearings.at(0).damper.end_seal_gap, 20e-6);
+  EXPECT_DOUBLE_EQ(s.bearings.at(0).damper.end_seal_length, 1e-3);
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.damper.end_seal_gap=20 um")}),
+              AllOf(HasSubstr("end_seal_gap"), HasSubstr("end_seal_length")));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.damper.end_seal_length=1 mm")}),
+              AllOf(HasSubstr("end_seal_length"), HasSubstr("end_seal_gap")));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.damper.end_seal_gap=80 um"),
+                           parse_override("bearings.compressor.damper.end_seal_length=1 mm")}),
+              HasSubstr("larger than the damper clearance"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.damper.end_seal_gap=-1 um"),
+                           parse_override("bearings.compressor.damper.end_seal_length=1 mm")}),
+              HasSubstr("end_seal_gap"));
+}
+
 TEST(ModelFile, ExamplesLoad) {
   EXPECT_NO_THROW(load_model(example("reference_linear.toml")));
   EXPECT_NO_THROW(load_model(example("friswell_5_9_1.toml")));
