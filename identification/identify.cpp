@@ -204,12 +204,12 @@ std::vector<Override> measured_speed_table(const Record& record, std::size_t max
   if (n < 2 || record.speed_hz.size() != n)
     throw ModelError("identify.speed = \"measured\": the measured record has no speed history");
   const std::size_t points = std::max<std::size_t>(2, std::min(max_points, n));
+  const std::size_t half = (n / points) / 2;  // half-width of the block each point's speed is averaged over
   std::string times = "[", speeds = "[";
   for (std::size_t k = 0; k < points; ++k) {
     // Point k: the first and last samples exactly in time; the speed a mean over the block around the point (tacho
     // speeds jitter from pulse to pulse), clamped at zero.
     const std::size_t i = k * (n - 1) / (points - 1);
-    const std::size_t half = (n / points) / 2;
     const std::size_t a = i > half ? i - half : 0, b = std::min(n - 1, i + half);
     double mean = 0.0;
     for (std::size_t j = a; j <= b; ++j) mean += record.speed_hz[j];

@@ -566,22 +566,21 @@ void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const 
     Evaluate(s, in, in + d, in + 2 * d, out.data(), out.data() + d, shares);
   };
   const auto column = [&](int j) { return J + static_cast<std::size_t>(j) * rows; };
-  const double rel = fd_relative_step();
   eval(w.out0, w.share0.data());
 
-  // The shaft's displacements and velocities, the cage and the outer ring: one input at a time.
-  for (int j = 0; j < 2 * d + m; ++j) {
-    if (j == 2 * d) j += nb;  // the balls' states: below
-    if (j >= 2 * d + m) break;
+  // The shaft's displacements and velocities, then the cage and the outer ring (the inputs after the balls): one
+  // input at a time.
+  const auto one_at_a_time = [&](int j) {
     const double saved = in[j];
-    const double typical = j < d ? kTypicalDisplacement : j < 2 * d ? kTypicalVelocity : state_scale(j - 2 * d);
-    const double h = rel * std::max(std::abs(saved), typical);
+    const double h = fd_step(j, d, saved);
     in[j] = saved + h;
     eval(w.out1, nullptr);
     in[j] = saved;
     double* col = column(j);
     for (int r = 0; r < rows; ++r) col[r] += (w.out1[r] - w.out0[r]) / h;
-  }
+  };
+  for (int j = 0; j < 2 * d; ++j) one_at_a_time(j);
+  for (int j = 2 * d + nb; j < 2 * d + m; ++j) one_at_a_time(j);
 
   // State i of every ball at once: a ball's own rows depend on no other ball, and the rows of the sums (shaft
   // forces, cage, outer ring) are told apart by each ball's share.
@@ -591,7 +590,7 @@ void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const 
   for (int i = 0; i < kBallStates; ++i) {
     for (int b = 0; b < Z; ++b) {
       const int k = ball_offset(b) + i;
-      w.step[b] = rel * std::max(std::abs(z[k]), state_scale(k));
+      w.step[b] = fd_step(2 * d + k, d, z[k]);
       in[2 * d + k] = z[k] + w.step[b];
     }
     eval(w.out1, w.share1.data());

@@ -107,7 +107,6 @@ struct OuterRingKinematics {
   double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
 };
 
-/// What one bearing evaluation gives besides the state derivatives.
 /// One ball's share of the sums CalcBearing() forms over the balls (housing frame): forces and moments on the
 /// shaft, on the outer ring and on the cage.
 struct BallShare {
@@ -116,6 +115,7 @@ struct BallShare {
   double cage[4] = {0, 0, 0, 0};       ///< x, y, z (N), torque about the axis (N m)
 };
 
+/// What one bearing evaluation gives besides the state derivatives.
 struct BallBearingLoads {
   double shaft[4] = {0, 0, 0, 0};       ///< generalised forces on the shaft: x, y (N), about x, y (N m)
   double shaft_torque = 0.0;            ///< moment on the shaft about the spin axis (N m; a drag is < 0)

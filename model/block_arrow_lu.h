@@ -28,8 +28,6 @@ class BlockArrowLU {
   /// Overwrites x (n x k, k <= max_rhs) with A^-1 x.
   void solve_in_place(Eigen::Ref<Eigen::MatrixXd> x);
 
-  int size() const { return n_; }
-
  private:
   int n_ = 0, border_ = 0;
   std::vector<int> offset_, size_;

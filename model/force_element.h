@@ -9,6 +9,9 @@
 // lives in its ElementWorkspace, created once per simulation. Evaluations allocate nothing.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -78,6 +81,14 @@ class ForceElement {
   /// Relative step of the engine's forward differences; elements computed by iterative solvers need more than
   /// sqrt(eps) to stay above their solver tolerance.
   virtual double fd_relative_step() const { return 1.4901161193847656e-08; }
+
+  /// Forward-difference step of input j of [q (d); v (d); z] (local numbering) at its value: fd_relative_step()
+  /// times the larger of |value| and the input's typical magnitude (kTypicalDisplacement, kTypicalVelocity,
+  /// state_scale()). The engine's numerical Jacobian and elements' own use it.
+  double fd_step(int j, int d, double value) const {
+    const double typical = j < d ? kTypicalDisplacement : j < 2 * d ? kTypicalVelocity : state_scale(j - 2 * d);
+    return fd_relative_step() * std::max(std::abs(value), typical);
+  }
 
   /// Sizes of leading blocks of the internal states that do not depend on one another: the derivatives of the
   /// states of one block depend on that block, the states after all blocks (the border) and the rotor only. The

@@ -22,12 +22,6 @@
 
 namespace turbodyn {
 
-// Typical magnitudes of the rotor coordinates (ForceElement: 1 um, 1 mm/s): below them an input is perturbed in the
-// finite-difference Jacobian as if it had that size, and with atol_scaling = "typical" they scale the absolute
-// tolerances.
-constexpr double kDisplacementScale = ForceElement::kTypicalDisplacement;
-constexpr double kVelocityScale = ForceElement::kTypicalVelocity;
-
 // Per-simulation scratch space: sized once, reused by every right-hand-side and Jacobian call.
 struct RunupWorkspace {
   Eigen::VectorXd f;                     // generalised force (n)
@@ -326,13 +320,9 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
         ++ws.element_calls;
       };
       eval(ws.eout0[k]);
-      // Inputs smaller than their typical magnitude are perturbed as if they had that size (element states: as
-      // the element says).
-      const double rel = e.fd_relative_step();
       for (int j = 0; j < 2 * d + m; ++j) {
         const double saved = in(j);
-        const double typical = j < d ? kDisplacementScale : j < 2 * d ? kVelocityScale : e.state_scale(j - 2 * d);
-        const double h = rel * std::max(std::abs(saved), typical);
+        const double h = e.fd_step(j, d, saved);
         in(j) = saved + h;
         eval(ws.eout1[k]);
         in(j) = saved;
@@ -421,13 +411,13 @@ Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
   Eigen::VectorXd a = Eigen::VectorXd::Constant(n_states(), atol);
   if (!scaled) return a;
   const int n = n_coordinates_;
-  a.segment(n, n).setConstant(atol * kVelocityScale / kDisplacementScale);
+  a.segment(n, n).setConstant(atol * ForceElement::kTypicalVelocity / ForceElement::kTypicalDisplacement);
   for (std::size_t k = 0; k < elements_.size(); ++k)
     for (int i = 0; i < elements_[k]->n_states(); ++i) {
       const double typical = elements_[k]->state_scale(i);
-      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisplacementScale) / kDisplacementScale;
+      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : ForceElement::kTypicalDisplacement) / ForceElement::kTypicalDisplacement;
     }
-  a.tail(2).setConstant(atol / kDisplacementScale);  // energy accounts (J)
+  a.tail(2).setConstant(atol / ForceElement::kTypicalDisplacement);  // energy accounts (J)
   return a;
 }
 

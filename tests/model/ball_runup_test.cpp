@@ -172,10 +172,7 @@ TEST(BallNewton, BallBearingJacobianMatchesPlainFiniteDifferences) {
     };
     const Eigen::VectorXd out0 = eval(in);
     for (int j = 0; j < cols; ++j) {
-      const double typical = j < d ? ForceElement::kTypicalDisplacement
-                             : j < 2 * d ? ForceElement::kTypicalVelocity
-                                         : e.state_scale(j - 2 * d);
-      const double h = e.fd_relative_step() * std::max(std::abs(in(j)), typical);
+      const double h = e.fd_step(j, d, in(j));
       Eigen::VectorXd x = in;
       x(j) += h;
       const Eigen::VectorXd out1 = eval(x);
