@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -130,12 +131,17 @@ namespace {
 struct BallBearingWorkspace : ElementWorkspace {
   BallBearingWorkspace(int n, int n_balls)
       : zdot(n, 0.0), in(8 + n, 0.0), out0(4 + n, 0.0), out1(4 + n, 0.0), share0(n_balls), share1(n_balls),
-        step(n_balls, 0.0) {}
+        step(n_balls, 0.0), key(9 + n, 0.0) {}
   std::vector<double> zdot;
   // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps.
   std::vector<double> in, out0, out1;
   std::vector<BallShare> share0, share1;
   std::vector<double> step;
+  // The loads of the last evaluation for the engine and its inputs (speed, q, v, z), so that the powers and the
+  // probes at the same state (every right-hand side asks for both powers) do not evaluate the bearing again.
+  std::vector<double> key;
+  bool valid = false;
+  BallBearingLoads loads;
 };
 
 // One race as the balls see it, all vectors in the orbital basis (e_r, e_psi, e_z) of the current ball.
@@ -548,8 +554,41 @@ void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const
 }
 
 void BallBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
-                                            ElementWorkspace&, double* f, double* zdot) const {
-  Evaluate(s, q, v, z, f, zdot, nullptr);
+                                            ElementWorkspace& ws, double* f, double* zdot) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  w.valid = false;
+  Evaluate(s, q, v, z, f, zdot, nullptr, &w.loads);
+  Remember(s, q, v, z, w);
+}
+
+namespace {
+// Writes (speed, q, v, z) into key (9 + nz values), or compares: true if they are the same bits.
+bool SameInputs(const SpinState& s, const double* q, const double* v, const double* z, std::size_t nz,
+                const std::vector<double>& key) {
+  return key[0] == s.speed && std::memcmp(key.data() + 1, q, 4 * sizeof(double)) == 0 &&
+         std::memcmp(key.data() + 5, v, 4 * sizeof(double)) == 0 &&
+         std::memcmp(key.data() + 9, z, nz * sizeof(double)) == 0;
+}
+}  // namespace
+
+void BallBearingElement::Remember(const SpinState& s, const double* q, const double* v, const double* z,
+                                  ElementWorkspace& ws) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  w.key[0] = s.speed;
+  std::memcpy(w.key.data() + 1, q, 4 * sizeof(double));
+  std::memcpy(w.key.data() + 5, v, 4 * sizeof(double));
+  std::memcpy(w.key.data() + 9, z, static_cast<std::size_t>(n_states()) * sizeof(double));
+  w.valid = true;
+}
+
+const BallBearingLoads& BallBearingElement::LoadsAt(const SpinState& s, const double* q, const double* v,
+                                                    const double* z, ElementWorkspace& ws) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  if (w.valid && SameInputs(s, q, v, z, static_cast<std::size_t>(n_states()), w.key)) return w.loads;
+  w.valid = false;
+  CalcBearing(s, q, v, z, OuterFromStates(z), w.loads, w.zdot.data());
+  Remember(s, q, v, z, w);
+  return w.loads;
 }
 
 void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
@@ -616,8 +655,9 @@ void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const 
 }
 
 void BallBearingElement::Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f,
-                                  double* zdot, BallShare* shares) const {
-  BallBearingLoads loads;
+                                  double* zdot, BallShare* shares, BallBearingLoads* loads_out) const {
+  BallBearingLoads local;
+  BallBearingLoads& loads = loads_out ? *loads_out : local;
   CalcBearing(s, q, v, z, OuterFromStates(z), loads, zdot, shares);
   for (int i = 0; i < 4; ++i) f[i] += loads.shaft[i];
   if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
@@ -644,9 +684,7 @@ std::vector<ProbeInfo> BallBearingElement::probes() const {
 
 void BallBearingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
                                     ElementWorkspace& ws, double* out) const {
-  auto& w = static_cast<BallBearingWorkspace&>(ws);
-  BallBearingLoads loads;
-  CalcBearing(s, q, v, z, OuterFromStates(z), loads, w.zdot.data());
+  const BallBearingLoads& loads = LoadsAt(s, q, v, z, ws);
   if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
     const double* o = z + n_core_;
     out[0] = spec_.outer_ring_stiffness * o[0] + spec_.outer_ring_damping * o[2];
@@ -729,10 +767,7 @@ double BallBearingElement::PotentialEnergy(const double* q, const double* z) con
 
 double BallBearingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
                                            ElementWorkspace& ws) const {
-  auto& w = static_cast<BallBearingWorkspace&>(ws);
-  BallBearingLoads loads;
-  CalcBearing(s, q, v, z, OuterFromStates(z), loads, w.zdot.data());
-  double P = loads.dissipated_power;
+  double P = LoadsAt(s, q, v, z, ws).dissipated_power;
   if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
     const double* o = z + n_core_;
     P += spec_.outer_ring_damping * (o[2] * o[2] + o[3] * o[3]);
@@ -742,10 +777,7 @@ double BallBearingElement::DissipatedPower(const SpinState& s, const double* q, 
 
 double BallBearingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
                                       ElementWorkspace& ws) const {
-  auto& w = static_cast<BallBearingWorkspace&>(ws);
-  BallBearingLoads loads;
-  CalcBearing(s, q, v, z, OuterFromStates(z), loads, w.zdot.data());
-  return -loads.shaft_torque * s.speed;
+  return -LoadsAt(s, q, v, z, ws).shaft_torque * s.speed;
 }
 
 }  // namespace turbodyn

@@ -207,9 +207,15 @@ class BallBearingElement final : public ForceElement {
 
  private:
   OuterRingKinematics OuterFromStates(const double* z) const;
-  /// DoCalcAndAddForces with the balls' shares of the sums (shares: n_balls entries, or null).
+  /// DoCalcAndAddForces with the balls' shares of the sums (shares: n_balls entries, or null) and the loads
+  /// (loads_out, or null).
   void Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f, double* zdot,
-                BallShare* shares) const;
+                BallShare* shares, BallBearingLoads* loads_out = nullptr) const;
+  /// The loads at this state: those of the last engine evaluation if its inputs were the same, else evaluated.
+  const BallBearingLoads& LoadsAt(const SpinState& s, const double* q, const double* v, const double* z,
+                                  ElementWorkspace& ws) const;
+  /// Marks the workspace's loads as those of (s, q, v, z).
+  void Remember(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws) const;
   BallBearingSpec spec_;
   double gravity_ = 0.0;
   int n_core_ = 0;

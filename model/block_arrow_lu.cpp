@@ -34,7 +34,7 @@ bool BlockArrowLU::compute(const Eigen::MatrixXd& A) {
   for (std::size_t i = 0; i < lu_.size(); ++i) {
     const int o = offset_[i], s = size_[i];
     lu_[i].compute(A.block(o, o, s, s));
-    regular = regular && lu_[i].rcond() > 0.0;
+    regular = regular && HasRegularPivots(lu_[i]);
     if (b == 0) continue;
     X_[i].noalias() = lu_[i].solve(A.block(o, nb, s, b));
     C_[i] = A.block(nb, o, b, s);
@@ -42,7 +42,7 @@ bool BlockArrowLU::compute(const Eigen::MatrixXd& A) {
   }
   if (b > 0) {
     lu_s_.compute(S_);
-    regular = regular && lu_s_.rcond() > 0.0;
+    regular = regular && HasRegularPivots(lu_s_);
   }
   return regular;
 }

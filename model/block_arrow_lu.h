@@ -16,6 +16,14 @@
 
 namespace turbodyn {
 
+/// True if the factorisation has no zero or non-finite pivot, i.e. its solves are defined. (Eigen's rcond()
+/// answers the same question for a singular matrix but estimates the inverse's norm with several extra solves,
+/// which costs as much as the factorisation of a small block.)
+inline bool HasRegularPivots(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
+  const auto d = lu.matrixLU().diagonal().array();
+  return d.allFinite() && (d != 0.0).all();
+}
+
 class BlockArrowLU {
  public:
   BlockArrowLU() = default;

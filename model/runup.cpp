@@ -19,6 +19,7 @@
 #include "model/floating_ring_element.h"
 #include "model/journal_bearing_element.h"
 #include "model/linear_bearing_element.h"
+#include "model/serial_vector_ops.h"
 
 namespace turbodyn {
 
@@ -364,7 +365,7 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
   }
   ws.lu.compute(ws.A);
   ++ws.factorisations;
-  return regular && ws.lu.rcond() > 0.0;
+  return regular && HasRegularPivots(ws.lu);
 }
 
 void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const {
@@ -676,6 +677,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   SUNContext ctx = nullptr;
   SUNContext_Create(nullptr, &ctx);
   N_Vector y = N_VNew_Serial(ny, ctx);
+  UseCompiledVectorOps(y);  // the integrators' vectors are clones of y
   std::vector<double> values(result.channels.size());
   auto record = [&](double t) {
     try {

@@ -474,6 +474,39 @@ TEST(BallBearing, EnergyIsConservedWithoutFrictionAndDamping) {
               v_max - v_min, drift, in.steps());
 }
 
+TEST(BallBearing, PowersAndProbesAreThoseOfTheirOwnStateWhateverWasEvaluatedBefore) {
+  // The element keeps the loads of its last engine evaluation for the powers and probes at the same state; at
+  // any other state they must be evaluated anew. Compared with a workspace that has seen nothing.
+  const BallBearingElement e("ref", reference_bearing(), 0, 9.81);
+  const double W = 60000 * kRpm;
+  const SpinState s{0.0, W, 0.0, 0.0};
+  std::vector<double> z1(e.n_states()), zdot(e.n_states());
+  e.initial_states(z1.data());
+  e.steady_states(W, z1.data());
+  std::vector<double> z2 = z1;
+  z2[e.ball_offset(3) + 4] += 2e-3;  // ball 3 moving radially: more damping in its contacts
+  const double q[4] = {3e-6, -2e-6, 0.0, 0.0}, v[4] = {0.01, 0.0, 0.0, 0.0};
+  auto ws = e.make_workspace();
+  const auto fresh = [&](const std::vector<double>& z, int what) {
+    auto w = e.make_workspace();
+    std::vector<double> out(e.probes().size());
+    if (what == 0) return e.DissipatedPower(s, q, v, z.data(), *w);
+    if (what == 1) return e.DrivePower(s, q, v, z.data(), *w);
+    e.EvalProbes(s, q, v, z.data(), *w, out.data());
+    return out[0];
+  };
+  for (const auto* z : {&z1, &z2}) {
+    double f[4] = {0, 0, 0, 0};
+    e.CalcAndAddForces(s, q, v, z1.data(), *ws, f, zdot.data());
+    std::vector<double> out(e.probes().size());
+    EXPECT_EQ(e.DissipatedPower(s, q, v, z->data(), *ws), fresh(*z, 0));
+    EXPECT_EQ(e.DrivePower(s, q, v, z->data(), *ws), fresh(*z, 1));
+    e.EvalProbes(s, q, v, z->data(), *ws, out.data());
+    EXPECT_EQ(out[0], fresh(*z, 2));
+  }
+  EXPECT_NE(fresh(z1, 0), fresh(z2, 0));
+}
+
 TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
   // With friction and damping on: E(t) - E(0) = work of the drive - dissipated energy, the drive holding the
   // rotor speed against the bearing's torque on the shaft (inner-race friction). The two powers are integrated
