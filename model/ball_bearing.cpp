@@ -130,10 +130,11 @@ namespace {
 
 struct BallBearingWorkspace : ElementWorkspace {
   BallBearingWorkspace(int n, int n_balls)
-      : zdot(n, 0.0), in(8 + n, 0.0), out0(4 + n, 0.0), out1(4 + n, 0.0), share0(n_balls), share1(n_balls),
+      : zdot(n, 0.0), in(8 + n + 4, 0.0), out0(4 + n + 4, 0.0), out1(4 + n + 4, 0.0), share0(n_balls), share1(n_balls),
         step(n_balls, 0.0), key(9 + n, 0.0) {}
   std::vector<double> zdot;
-  // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps.
+  // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps;
+  // room for the 4 radial outer-ring states of a wrapping element (AddJacobianOf).
   std::vector<double> in, out0, out1;
   std::vector<BallShare> share0, share1;
   std::vector<double> step;
@@ -593,27 +594,42 @@ const BallBearingLoads& BallBearingElement::LoadsAt(const SpinState& s, const do
 
 void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
                                      ElementWorkspace& ws, double* J) const {
+  struct Own final : JacobianEvaluator {
+    Own(const BallBearingElement& e, const SpinState& st) : e(e), st(st) {}
+    void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
+                    BallShare* shares) const override {
+      e.Evaluate(st, q, v, z, f, zdot, shares);
+    }
+    const BallBearingElement& e;
+    const SpinState& st;
+  };
+  AddJacobianOf(*this, Own(*this, s), n_states(), q, v, z, ws, J);
+}
+
+void BallBearingElement::AddJacobianOf(const ForceElement& owner, const JacobianEvaluator& eval, int m,
+                                       const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                                       double* J) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
   constexpr int d = 4;
-  const int m = n_states(), rows = d + m, Z = spec_.n_balls, nb = kBallStates * Z;
+  const int rows = d + m, Z = spec_.n_balls, nb = kBallStates * Z;
   double* in = w.in.data();
   std::copy(q, q + d, in);
   std::copy(v, v + d, in + d);
   std::copy(z, z + m, in + 2 * d);
-  const auto eval = [&](std::vector<double>& out, BallShare* shares) {
-    std::fill(out.begin(), out.end(), 0.0);
-    Evaluate(s, in, in + d, in + 2 * d, out.data(), out.data() + d, shares);
+  const auto evaluate = [&](std::vector<double>& out, BallShare* shares) {
+    std::fill(out.begin(), out.begin() + rows, 0.0);
+    eval(in, in + d, in + 2 * d, out.data(), out.data() + d, shares);
   };
   const auto column = [&](int j) { return J + static_cast<std::size_t>(j) * rows; };
-  eval(w.out0, w.share0.data());
+  evaluate(w.out0, w.share0.data());
 
-  // The shaft's displacements and velocities, then the cage and the outer ring (the inputs after the balls): one
-  // input at a time.
+  // The shaft's displacements and velocities, then the cage, the outer ring and any states after the core (the
+  // inputs after the balls): one input at a time.
   const auto one_at_a_time = [&](int j) {
     const double saved = in[j];
-    const double h = fd_step(j, d, saved);
+    const double h = owner.fd_step(j, d, saved);
     in[j] = saved + h;
-    eval(w.out1, nullptr);
+    evaluate(w.out1, nullptr);
     in[j] = saved;
     double* col = column(j);
     for (int r = 0; r < rows; ++r) col[r] += (w.out1[r] - w.out0[r]) / h;
@@ -625,14 +641,14 @@ void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const 
   // forces, cage, outer ring) are told apart by each ball's share.
   const double mc = spec_.cage_mass, mo = spec_.outer_ring_mass;
   const int rc = d + cage_offset(), ro = d + outer_offset(), rs = d + n_core_;
-  const bool spring = spec_.outer_ring_mode == OuterRingMode::kSpring;
+  const bool radial = m > n_core_;  // the outer ring's radial states follow the core
   for (int i = 0; i < kBallStates; ++i) {
     for (int b = 0; b < Z; ++b) {
       const int k = ball_offset(b) + i;
-      w.step[b] = fd_step(2 * d + k, d, z[k]);
+      w.step[b] = owner.fd_step(2 * d + k, d, z[k]);
       in[2 * d + k] = z[k] + w.step[b];
     }
-    eval(w.out1, w.share1.data());
+    evaluate(w.out1, w.share1.data());
     for (int b = 0; b < Z; ++b) {
       const int k = ball_offset(b) + i;
       in[2 * d + k] = z[k];
@@ -646,7 +662,7 @@ void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const 
       for (int r = 0; r < 3; ++r) col[rc + 4 + r] += (p.cage[r] - p0.cage[r]) / (mc * h);
       col[rc + 7] += (p.cage[3] - p0.cage[3]) / (i_cage_ * h);
       col[ro + 1] += (p.outer[2] - p0.outer[2]) / (mo * h);
-      if (spring) {
+      if (radial) {
         col[rs + 2] += (p.outer[0] - p0.outer[0]) / (mo * h);
         col[rs + 3] += (p.outer[1] - p0.outer[1]) / (mo * h);
       }

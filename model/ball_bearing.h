@@ -167,8 +167,22 @@ class BallBearingElement final : public ForceElement {
   /// (BallShare) telling the balls apart: 2d + 19 (+4 with a spring-mounted outer ring) evaluations instead of
   /// 2d + 9 Z + 10. Steps as the engine's (fd_relative_step(), state_scale()).
   bool has_jacobian() const override { return true; }
+  int jacobian_evaluations() const override { return 1 + 8 + (n_states() - kBallStates * spec_.n_balls) + kBallStates; }
   void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                    double* J) const override;
+  /// What AddJacobianOf differentiates: an element's outputs [f (4); zdot] at inputs (q, v, z), added to f and
+  /// written to zdot, with each ball's share of the sums.
+  struct JacobianEvaluator {
+    virtual ~JacobianEvaluator() = default;
+    virtual void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
+                            BallShare* shares) const = 0;
+  };
+  /// AddJacobian for an element `owner` that is this bearing or wraps it (a squeeze-film damper): m states, the
+  /// core states first, then (m > n_core_states()) the outer ring's x, y, vx, vy, whose accelerations contain the
+  /// balls' force on the ring divided by the outer-ring mass, plus terms that depend on those 4 states only. Steps
+  /// are owner.fd_step(); ws is a workspace of this bearing.
+  void AddJacobianOf(const ForceElement& owner, const JacobianEvaluator& eval, int m, const double* q,
+                     const double* v, const double* z, ElementWorkspace& ws, double* J) const;
   std::vector<ProbeInfo> probes() const override;
   void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct BallDamperWorkspace : ElementWorkspace {
   BallDamperElement::Evaluation eval;
   std::vector<double> key;  // speed, q[4], v[4], z of `eval`
   bool valid = false;
+  // AddJacobian: the bearing's workspace, and the film at the ring state of fd_key (x, y, vx, vy), which most
+  // finite-difference evaluations share (only the ring's own columns move the film).
+  std::unique_ptr<ElementWorkspace> bearing;
+  reynolds::FilmResult fd_film;
+  double fd_key[4] = {0, 0, 0, 0};
+  bool fd_valid = false;
+  std::vector<double> fd_zdot;
 };
 
 }  // namespace
@@ -50,8 +58,58 @@ BallDamperElement::BallDamperElement(const std::string& name, const BallBearingS
 }
 
 std::unique_ptr<ElementWorkspace> BallDamperElement::make_workspace() const {
-  return std::make_unique<BallDamperWorkspace>(reynolds::FilmSolver(geometry_, viscosity_, options_), n_states(),
-                                               n_core_);
+  auto w = std::make_unique<BallDamperWorkspace>(reynolds::FilmSolver(geometry_, viscosity_, options_), n_states(),
+                                                 n_core_);
+  w->bearing = bearing_.make_workspace();
+  w->fd_film.hole_flows.reserve(8);
+  return w;
+}
+
+void BallDamperElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
+                                    ElementWorkspace& ws, double* J) const {
+  auto& w = static_cast<BallDamperWorkspace&>(ws);
+  w.fd_valid = false;
+  struct Wrapped final : BallBearingElement::JacobianEvaluator {
+    Wrapped(const BallDamperElement& e, const SpinState& st, BallDamperWorkspace& w) : e(e), st(st), w(w) {}
+    void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
+                    BallShare* shares) const override {
+      const double* ring = z + e.n_core_;
+      const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
+      BallBearingLoads loads;
+      e.bearing_.CalcBearing(st, q, v, z, outer, loads, zdot, shares);
+      if (!w.fd_valid || std::memcmp(w.fd_key, ring, sizeof w.fd_key) != 0) {
+        w.fd_valid = false;
+        if (!w.solver.solve(e.FilmState(ring), w.fd_film))
+          throw std::runtime_error("squeeze-film damper of bearing '" + e.name() + "': " + w.solver.last_error());
+        std::memcpy(w.fd_key, ring, sizeof w.fd_key);
+        w.fd_valid = true;
+      }
+      for (int k = 0; k < 4; ++k) f[k] += loads.shaft[k];
+      e.RingDerivatives(ring, loads, w.fd_film, zdot + e.n_core_);
+    }
+    const BallDamperElement& e;
+    const SpinState& st;
+    BallDamperWorkspace& w;
+  };
+  bearing_.AddJacobianOf(*this, Wrapped(*this, s, w), n_states(), q, v, z, *w.bearing, J);
+}
+
+reynolds::FilmState BallDamperElement::FilmState(const double* ring) const {
+  reynolds::FilmState f;  // the outer ring is the (non-rotating) journal, the housing the bush
+  f.ex = ring[0];
+  f.ey = ring[1];
+  f.vx = ring[2];
+  f.vy = ring[3];
+  return f;
+}
+
+void BallDamperElement::RingDerivatives(const double* ring, const BallBearingLoads& loads,
+                                        const reynolds::FilmResult& film, double* dring) const {
+  const double kc = damper_.centring_stiffness;
+  dring[0] = ring[2];
+  dring[1] = ring[3];
+  dring[2] = (loads.outer_ring[0] + film.fx - kc * ring[0]) / ring_mass_;
+  dring[3] = (loads.outer_ring[1] + film.fy - kc * ring[1]) / ring_mass_ - gravity_;
 }
 
 void BallDamperElement::initial_states_at_speed(double speed, double* z) const {
@@ -79,12 +137,7 @@ const BallDamperElement::Evaluation& BallDamperElement::Evaluate(const SpinState
   const double* ring = z + n_core_;
   const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
   bearing_.CalcBearing(s, q, v, z, outer, w.eval.loads, w.eval.zdot.data());
-  reynolds::FilmState f;  // the outer ring is the (non-rotating) journal, the housing the bush
-  f.ex = ring[0];
-  f.ey = ring[1];
-  f.vx = ring[2];
-  f.vy = ring[3];
-  if (!w.solver.solve(f, w.eval.film))
+  if (!w.solver.solve(FilmState(ring), w.eval.film))
     throw std::runtime_error("squeeze-film damper of bearing '" + name() + "': " + w.solver.last_error());
   key[0] = s.speed;
   std::memcpy(key + 1, q, 4 * sizeof(double));
@@ -99,13 +152,7 @@ void BallDamperElement::DoCalcAndAddForces(const SpinState& s, const double* q, 
   const Evaluation& e = Evaluate(s, q, v, z, ws);
   for (int k = 0; k < 4; ++k) f[k] += e.loads.shaft[k];
   std::memcpy(zdot, e.zdot.data(), static_cast<std::size_t>(n_core_) * sizeof(double));
-  const double* ring = z + n_core_;
-  double* dring = zdot + n_core_;
-  const double kc = damper_.centring_stiffness;
-  dring[0] = ring[2];
-  dring[1] = ring[3];
-  dring[2] = (e.loads.outer_ring[0] + e.film.fx - kc * ring[0]) / ring_mass_;
-  dring[3] = (e.loads.outer_ring[1] + e.film.fy - kc * ring[1]) / ring_mass_ - gravity_;
+  RingDerivatives(z + n_core_, e.loads, e.film, zdot + n_core_);
 }
 
 std::vector<ProbeInfo> BallDamperElement::probes() const {

@@ -28,6 +28,12 @@ class BallDamperElement final : public ForceElement {
   /// The bearing's balls (the damper ring's states join the border).
   std::vector<int> independent_state_blocks() const override { return bearing_.independent_state_blocks(); }
   double fd_relative_step() const override { return 1e-6; }
+  /// The bearing's finite differences (BallBearingElement::AddJacobianOf: the balls' states one index at a time
+  /// for all balls at once), with the damper film solved again only for the ring's own 4 columns.
+  bool has_jacobian() const override { return true; }
+  int jacobian_evaluations() const override { return bearing_.jacobian_evaluations() + 4; }
+  void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                   double* J) const override;
   std::vector<ProbeInfo> probes() const override;
   void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
@@ -50,6 +56,11 @@ class BallDamperElement final : public ForceElement {
  private:
   const Evaluation& Evaluate(const SpinState& s, const double* q, const double* v, const double* z,
                              ElementWorkspace& ws) const;
+  /// The film's input at the ring states (x, y, vx, vy).
+  reynolds::FilmState FilmState(const double* ring) const;
+  /// Derivatives of the ring's 4 states from the balls' and the film's forces on it and the centring spring.
+  void RingDerivatives(const double* ring, const BallBearingLoads& loads, const reynolds::FilmResult& film,
+                       double* dring) const;
   BallBearingElement bearing_;
   DamperSpec damper_;
   reynolds::FilmGeometry geometry_;

@@ -103,6 +103,9 @@ class ForceElement {
                            double* J) const {
     (void)s, (void)q, (void)v, (void)z, (void)ws, (void)J;
   }
+  /// Force evaluations one AddJacobian() call makes (0 for an analytic Jacobian), for the engine's count of
+  /// force-element calls.
+  virtual int jacobian_evaluations() const { return 0; }
 
   /// Outputs of the element.
   virtual std::vector<ProbeInfo> probes() const { return {}; }

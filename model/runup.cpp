@@ -310,6 +310,7 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
     Gather(e, y, y + n, ws, static_cast<int>(k));
     if (e.has_jacobian()) {
       e.AddJacobian(s, ws.eq[k].data(), ws.ev[k].data(), y + zoff, *ws.element_ws[k], J.data());
+      ws.element_calls += e.jacobian_evaluations();
     } else {
       // Forward differences in the element's own inputs: 2d + m evaluations of the element alone.
       Eigen::VectorXd& in = ws.ein[k];

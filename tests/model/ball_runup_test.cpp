@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "model/ball_bearing.h"
+#include "model/ball_damper_element.h"
 #include "model/model_file.h"
 #include "model/runup.h"
 #include "tests/model/test_support.h"
@@ -140,11 +141,13 @@ namespace {
 // round-off, for rings held fixed and for rings on the housing spring.
 TEST(BallNewton, BallBearingJacobianMatchesPlainFiniteDifferences) {
   constexpr double kTolerance = 1e-6;  // relative to the largest entry of the column
-  for (const std::string outer : {"fixed", "spring"}) {
-    const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball.toml",
-                                        {{"speed.start", "60000 rpm"},
-                                         {"bearings.compressor.outer_ring", outer},
-                                         {"bearings.turbine.outer_ring", outer}});
+  // Outer ring fixed, on a spring, in a squeeze-film damper (the damper element's own Jacobian).
+  for (const std::string outer : {"fixed", "spring", "damper"}) {
+    const bool damper = outer == "damper";
+    std::vector<Override> set = {{"speed.start", "60000 rpm"}};
+    if (!damper) set.insert(set.end(), {{"bearings.compressor.outer_ring", outer}, {"bearings.turbine.outer_ring", outer}});
+    const MachineSpec spec = load_model(
+        testing::source_dir() + (damper ? "/examples/reference_ball_sfd.toml" : "/examples/reference_ball.toml"), set);
     const auto model = make_runup_model(spec);
     auto rws = model->make_workspace();
     Eigen::VectorXd y(model->n_states());
@@ -159,10 +162,16 @@ TEST(BallNewton, BallBearingJacobianMatchesPlainFiniteDifferences) {
         y.segment(model->state_offset(0), m);
     // Turn the cage ahead by more than the pocket clearance over the pitch radius, so that every ball touches its
     // pocket and the cage's rows depend on the balls.
-    const auto* bearing = dynamic_cast<const BallBearingElement*>(&e);
+    const auto* damper_element = dynamic_cast<const BallDamperElement*>(&e);
+    const auto* bearing = damper ? &damper_element->bearing() : dynamic_cast<const BallBearingElement*>(&e);
     ASSERT_NE(bearing, nullptr);
     in(2 * d + bearing->cage_offset() + 3) += 1.3 * spec.bearings.at(0).ball.pocket_clearance /
                                               (0.5 * spec.bearings.at(0).ball.pitch_diameter);
+    if (damper) {  // the ring off centre and moving, so that the film carries load
+      const double c = spec.bearings.at(0).damper.clearance;
+      const int r = 2 * d + bearing->n_core_states();
+      in.segment(r, 4) << 0.3 * c, -0.4 * c, 2e-3, -1e-3;
+    }
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, cols);
     e.AddJacobian(s, in.data(), in.data() + d, in.data() + 2 * d, *ws, J.data());
     const auto eval = [&](const Eigen::VectorXd& x) {
