@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
 # Reproduces the whole-run figures of docs/validation.md and the run-up timings of bench/README.md with one
 # command: the paper's three bearing variants (examples/reference_floating_ring.toml, reference_ball.toml,
-# reference_ball_sfd.toml), each run up from 0 to 150,000 rpm in 4 s at its default fidelity, single thread.
+# reference_ball_sfd.toml), each run up from 0 to 150,000 rpm in 4 s at its default fidelity, single thread, and
+# the two smaller figures of the document (the reference rotor on linear bearings, the rigid rotor's oil whirl).
 #
 # Usage: bench/reproduce_validation.sh [N] [VARIANT ...]     (after scripts/build.sh)
 #   N        runs per variant (default 1; 3 for the medians quoted in bench/README.md). The pictures of the last
 #            run are copied into docs/images/ under the names docs/validation.md uses.
-#   VARIANT  any of floating_ring ball ball_sfd (default: all three)
-# Output: out/validation/<variant>/ (time series, summary.json, all pictures), a timing table on stdout, and
-# out/validation/timings.txt. Expect tens of minutes per variant on a 2-core machine; run variants on both cores
-# with two invocations if the machine is otherwise idle (timings then share the memory bandwidth).
+#   VARIANT  any of floating_ring ball ball_sfd linear oil_whirl (default: all five)
+# Output: out/validation/<variant>/ (time series, summary.json, all pictures), out/validation/<variant>.timing
+# (one line per variant: median and single integration wall times, CPU times, steps, calls), and a table of all
+# variants timed so far on stdout and in out/validation/timings.txt. Expect 5-10 minutes per run of a paper
+# variant on a 2-core machine; two invocations with different variants can share the machine, one per core
+# (their timings then share the memory bandwidth).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-1}
 shift || true
 variants=("$@")
-((${#variants[@]})) || variants=(floating_ring ball ball_sfd)
+((${#variants[@]})) || variants=(floating_ring ball ball_sfd linear oil_whirl)
 exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "reproduce_validation: build first (scripts/build.sh)" >&2; exit 1; }
 mkdir -p out/validation docs/images
@@ -23,40 +26,71 @@ mkdir -p out/validation docs/images
 summary_field() {  # summary.json, python expression on s
   python3 -c "import json,sys; s=json.load(open(sys.argv[1])); print($2)" "$1"
 }
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2)?a[(NR+1)/2]:(a[NR/2]+a[NR/2+1])/2}'; }
 
-printf "%-15s %10s %22s %10s %10s %12s %9s\n" variant "wall [s]" "runs [s]" steps "rhs calls" "elem calls" complete |
-  tee out/validation/timings.txt
+model_of() {
+  case $1 in
+    linear) echo examples/reference_linear.toml ;;
+    oil_whirl) echo examples/rigid_rotor_oil_whirl.toml ;;
+    *) echo "examples/reference_$1.toml" ;;
+  esac
+}
+
 for v in "${variants[@]}"; do
-  model=examples/reference_${v}.toml
+  model=$(model_of "$v")
   [[ -f $model ]] || { echo "reproduce_validation: no $model" >&2; exit 2; }
-  walls=()
+  dir=out/validation/$v
+  walls=() cpus=()
   for ((i = 1; i <= n; i++)); do
-    dir=out/validation/$v
     rm -rf "$dir"
     # Pictures only in the last run: they do not enter the integration wall time in summary.json anyway.
     plots=(--no-plots)
     ((i == n)) && plots=()
     status=0
-    "$exe" run "$model" "${plots[@]}" -o "$dir" > "out/validation/$v.log" 2>&1 || status=$?
+    TIMEFORMAT=%U
+    { time "$exe" run "$model" "${plots[@]}" -o "$dir" > "out/validation/$v.log" 2>&1 || status=$?; } 2> "$dir.cpu"
     ((status == 0)) || echo "reproduce_validation: $v run $i ended with exit code $status (see out/validation/$v.log)" >&2
     walls+=("$(summary_field "$dir/summary.json" "s['stats']['wall_time_s']")")
+    cpus+=("$(cat "$dir.cpu")")
+    rm -f "$dir.cpu"
   done
-  median=$(printf "%s\n" "${walls[@]}" | sort -g | awk '{a[NR]=$1} END {print (NR%2)?a[(NR+1)/2]:(a[NR/2]+a[NR/2+1])/2}')
-  runs=$(printf "%.0f," "${walls[@]}")
   read -r steps rhs calls complete < <(summary_field "$dir/summary.json" \
     "s['stats']['steps'], s['stats']['rhs_calls'], s['stats']['force_element_calls'], s['complete']")
-  printf "%-15s %10.1f %22s %10s %10s %12s %9s\n" "$v" "$median" "${runs%,}" "$steps" "$rhs" "$calls" "$complete" |
-    tee -a out/validation/timings.txt
-  # Ball-bearing variants: the natural frequencies of the rotor on linear bearings of the ball bearing's static
-  # radial stiffness (5.0e7 N/m at 40 N preload, BallBearing.StaticStiffness...) drawn on the spectrograms.
-  if [[ $v == ball || $v == ball_sfd ]]; then
-    [[ -f out/validation/modal_ball/campbell.csv ]] ||
-      "$exe" modal examples/reference_linear.toml --speeds "0:150000 rpm:61" --no-plots \
-        --set bearings.compressor.k=5e7 --set bearings.turbine.k=5e7 -o out/validation/modal_ball > /dev/null
-    "$exe" plot "$dir" --campbell out/validation/modal_ball/campbell.csv > /dev/null
-  fi
-  # The two pictures per variant that docs/validation.md shows beside the paper's Figs. 4-6.
-  cp "$dir/spectrogram_disk.compressor.x.png" "docs/images/variant_${v}_compressor_x.png"
-  cp "$dir/spectrogram_bearing.compressor.fx.png" "docs/images/variant_${v}_compressor_force.png"
+  printf "%-15s %10.1f %24s %24s %10s %10s %12s %9s\n" "$v" "$(printf "%s\n" "${walls[@]}" | median)" \
+    "$(printf "%.0f," "${walls[@]}" | sed 's/,$//')" "$(printf "%.0f," "${cpus[@]}" | sed 's/,$//')" \
+    "$steps" "$rhs" "$calls" "$complete" > "out/validation/$v.timing"
+  case $v in
+    ball | ball_sfd)
+      # The natural frequencies of the rotor on linear bearings of the ball bearing's static radial stiffness
+      # (5.0e7 N/m at 40 N preload, BallBearing.StaticStiffness...) drawn on the spectrograms.
+      [[ -f out/validation/modal_ball/campbell.csv ]] ||
+        "$exe" modal examples/reference_linear.toml --speeds "0:150000 rpm:61" --no-plots \
+          --set bearings.compressor.k=5e7 --set bearings.turbine.k=5e7 -o out/validation/modal_ball > /dev/null
+      "$exe" plot "$dir" --campbell out/validation/modal_ball/campbell.csv > /dev/null
+      ;;
+  esac
+  # The pictures docs/validation.md shows.
+  case $v in
+    linear)
+      cp "$dir/spectrogram_disk.compressor.x.png" docs/images/runup_linear_spectrogram_compressor_x.png
+      cp "$dir/spectrogram_bearing.compressor.fx.png" docs/images/runup_linear_spectrogram_compressor_force.png
+      cp "$dir/order1x_disk.compressor.png" docs/images/runup_linear_order1x_compressor.png
+      ;;
+    oil_whirl)
+      cp "$dir/spectrogram_disk.mid.x.png" docs/images/oil_whirl_rigid_rotor_spectrogram.png
+      ;;
+    *)
+      cp "$dir/spectrogram_disk.compressor.x.png" "docs/images/variant_${v}_compressor_x.png"
+      cp "$dir/spectrogram_bearing.compressor.fx.png" "docs/images/variant_${v}_compressor_force.png"
+      ;;
+  esac
 done
-echo "reproduce_validation: pictures in docs/images/variant_*.png, runs in out/validation/"
+
+{
+  printf "%-15s %10s %24s %24s %10s %10s %12s %9s\n" variant "wall [s]" "runs, wall [s]" "runs, CPU [s]" steps \
+    "rhs calls" "elem calls" complete
+  for v in floating_ring ball ball_sfd linear oil_whirl; do
+    [[ -f out/validation/$v.timing ]] && cat "out/validation/$v.timing"
+  done
+} | tee out/validation/timings.txt
+echo "reproduce_validation: pictures in docs/images/, runs in out/validation/"
