@@ -31,19 +31,22 @@ cases_for() {
       echo "default|"
       echo "film grid 36 x 8|$(film "" 36 8)"
       echo "film grid 64 x 14|$(film "" 64 14)"
+      echo "rtol 1e-6, atol 1e-10|--set solver.rtol=1e-6 --set solver.atol=1e-10"
       echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"
       echo "mesh 5 mm|--set mesh.max_element_length=5mm"
       ;;
     ball)
       echo "default|"
-      echo "rtol 1e-7, atol 1e-10|--set solver.rtol=1e-7 --set solver.atol=1e-10"
+      echo "rtol 1e-6, atol 1e-10|--set solver.rtol=1e-6 --set solver.atol=1e-10"
+      echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"
       echo "mesh 5 mm|--set mesh.max_element_length=5mm"
       ;;
     ball_sfd)
       echo "default|"
       echo "damper grid 32 x 6|$(film damper. 32 6)"
       echo "damper grid 64 x 12|$(film damper. 64 12)"
-      echo "rtol 1e-7, atol 1e-10|--set solver.rtol=1e-7 --set solver.atol=1e-10"
+      echo "rtol 1e-6, atol 1e-10|--set solver.rtol=1e-6 --set solver.atol=1e-10"
+      echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"
       echo "mesh 5 mm|--set mesh.max_element_length=5mm"
       ;;
   esac

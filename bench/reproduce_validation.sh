@@ -19,7 +19,7 @@ n=${1:-1}
 shift || true
 variants=("$@")
 ((${#variants[@]})) || variants=(floating_ring ball ball_sfd linear oil_whirl)
-exe=build/app/turbodyn
+exe=${TURBODYN:-build/app/turbodyn}  # TURBODYN: another binary (e.g. a copy, so that the build can go on)
 [[ -x $exe ]] || { echo "reproduce_validation: build first (scripts/build.sh)" >&2; exit 1; }
 mkdir -p out/validation docs/images
 

@@ -18,6 +18,7 @@ BlockArrowLU::BlockArrowLU(int n, const std::vector<int>& blocks, int max_rhs) :
   border_ = n - off;
   for (int s : size_) {
     lu_.emplace_back(s);
+    inverse_.emplace_back(Eigen::MatrixXd::Zero(s, s));
     X_.emplace_back(Eigen::MatrixXd::Zero(s, border_));
     C_.emplace_back(Eigen::MatrixXd::Zero(border_, s));
   }
@@ -35,10 +36,11 @@ bool BlockArrowLU::compute(const Eigen::MatrixXd& A) {
     const int o = offset_[i], s = size_[i];
     lu_[i].compute(A.block(o, o, s, s));
     regular = regular && HasRegularPivots(lu_[i]);
+    inverse_[i] = lu_[i].inverse();
     if (b == 0) continue;
-    X_[i].noalias() = lu_[i].solve(A.block(o, nb, s, b));
+    X_[i].noalias() = inverse_[i].lazyProduct(A.block(o, nb, s, b));
     C_[i] = A.block(nb, o, b, s);
-    S_.noalias() -= C_[i] * X_[i];
+    S_.noalias() -= C_[i].lazyProduct(X_[i]);
   }
   if (b > 0) {
     lu_s_.compute(S_);
@@ -52,14 +54,15 @@ void BlockArrowLU::solve_in_place(Eigen::Ref<Eigen::MatrixXd> x) {
   // Forward: y_i = D_i^-1 r_i, r_b - sum_i C_i y_i; the border solve; back: x_i = y_i - X_i x_b.
   for (std::size_t i = 0; i < lu_.size(); ++i) {
     const int o = offset_[i], s = size_[i];
-    work_.topLeftCorner(s, k).noalias() = lu_[i].solve(x.middleRows(o, s));
+    work_.topLeftCorner(s, k).noalias() = inverse_[i].lazyProduct(x.middleRows(o, s));
     x.middleRows(o, s) = work_.topLeftCorner(s, k);
-    if (b > 0) x.bottomRows(b).noalias() -= C_[i] * x.middleRows(o, s);
+    if (b > 0) x.bottomRows(b).noalias() -= C_[i].lazyProduct(x.middleRows(o, s));
   }
   if (b == 0) return;
   border_work_.leftCols(k).noalias() = lu_s_.solve(x.bottomRows(b));
   x.bottomRows(b) = border_work_.leftCols(k);
-  for (std::size_t i = 0; i < lu_.size(); ++i) x.middleRows(offset_[i], size_[i]).noalias() -= X_[i] * x.bottomRows(b);
+  for (std::size_t i = 0; i < lu_.size(); ++i)
+    x.middleRows(offset_[i], size_[i]).noalias() -= X_[i].lazyProduct(x.bottomRows(b));
 }
 
 }  // namespace turbodyn

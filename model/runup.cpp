@@ -360,9 +360,10 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
     ws.eT[k] = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
     ws.eY[k] = ws.eT[k];
     ws.elu[k].solve_in_place(ws.eY[k]);
-    ws.eJY[k].noalias() = J.block(0, 2 * d, d, m) * ws.eY[k];
-    ws.eRJY[k].noalias() = element_rows_[k].transpose() * ws.eJY[k];
-    ws.A.noalias() += g * (ws.eRJY[k] * element_rows_[k]);
+    // Small products (d = 4): coefficient-wise, without the packing of Eigen's general products.
+    ws.eJY[k].noalias() = J.block(0, 2 * d, d, m).lazyProduct(ws.eY[k]);
+    ws.eRJY[k].noalias() = element_rows_[k].transpose().lazyProduct(ws.eJY[k]);
+    ws.A.noalias() += g * ws.eRJY[k].lazyProduct(element_rows_[k]);
   }
   ws.lu.compute(ws.A);
   ++ws.factorisations;
