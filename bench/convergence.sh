@@ -7,7 +7,8 @@
 #   ball           0 -> 15,000 rpm (0.4 s): rolling, cage and ball-pass dynamics, rising unbalance response
 #   ball_sfd       0 -> 15,000 rpm (0.4 s): the same with the damper films
 # and the maxima of the compressor-wheel displacement and of the compressor-bearing force (x and y) are compared
-# with the default. Prints a table (also out/convergence/table.txt).
+# with the default; for the floating rings also the frequency of the inner-film whirl at the end of the window.
+# Prints a table (also out/convergence/table_<variants>.txt).
 #
 # Usage: bench/convergence.sh [VARIANT ...]     (after scripts/build.sh; default all three)
 set -euo pipefail
@@ -59,6 +60,31 @@ window_for() {
   esac
 }
 
+whirl() {  # timeseries.csv -> frequency (Hz) of the largest sub-synchronous line of the compressor wheel's x over
+  # the last 40 ms (band 0.2-0.7 x rotor speed; a zero-padded DFT, 0.25 Hz steps), or "-"
+  python3 - "$1" <<'EOF'
+import cmath, csv, math, sys
+try:
+    rows = list(csv.DictReader(open(sys.argv[1])))
+except OSError:
+    print("-"); sys.exit()
+t = [float(r["time_s"]) for r in rows]
+x = [float(r["disk.compressor.x_m"]) for r in rows]
+f_d = float(rows[-1]["speed_Hz"])
+keep = [i for i in range(len(t)) if t[i] >= t[-1] - 0.04]
+ts, xs = [t[i] for i in keep], [x[i] for i in keep]
+mean = sum(xs) / len(xs)
+best, f_best = -1.0, 0.0
+f = 0.2 * f_d
+while f <= 0.7 * f_d:
+    a = abs(sum((xi - mean) * cmath.exp(-2j * math.pi * f * ti) for ti, xi in zip(ts, xs)))
+    if a > best:
+        best, f_best = a, f
+    f += 0.25
+print("%.1f" % f_best)
+EOF
+}
+
 row() {  # summary.json -> "x y fx fy steps wall"
   python3 - "$1" <<'EOF'
 import json, sys
@@ -70,14 +96,17 @@ EOF
 }
 
 {
-  printf "%-14s %-22s %10s %10s %9s %9s %9s %8s %9s\n" variant setting "x [um]" "y [um]" "fx [N]" "fy [N]" steps "wall [s]" "max dev"
+  printf "%-14s %-22s %10s %10s %9s %9s %9s %8s %9s %10s\n" variant setting "x [um]" "y [um]" "fx [N]" "fy [N]" steps "wall [s]" \
+    "max dev" "whirl [Hz]"
   for v in "${variants[@]}"; do
     ref=""
     while IFS='|' read -r name args; do
       dir=$out/$v/$(echo "$name" | tr -c 'a-z0-9\n' '_')
       mkdir -p "$out/$v"
+      csv=""
+      [[ $v == floating_ring ]] && csv="--set output.csv=true"
       # shellcheck disable=SC2086
-      "$exe" run "examples/reference_${v}.toml" $(window_for "$v") $args --no-plots -o "$dir" > "$dir.log" 2>&1 ||
+      "$exe" run "examples/reference_${v}.toml" $(window_for "$v") $args $csv --no-plots -o "$dir" > "$dir.log" 2>&1 ||
         echo "convergence: $v '$name' exited with $? (see $dir.log)" >&2
       read -r x y fx fy steps wall complete < <(row "$dir/summary.json")
       if [[ -z $ref ]]; then ref="$x $y $fx $fy"; dev="-"; else
@@ -86,7 +115,9 @@ EOF
           printf "%.2f %%", 100 * m}')
       fi
       [[ $complete == True ]] || dev="$dev (incomplete)"
-      printf "%-14s %-22s %10s %10s %9s %9s %9s %8s %9s\n" "$v" "$name" "$x" "$y" "$fx" "$fy" "$steps" "$wall" "$dev"
+      f_w="-"
+      [[ $v == floating_ring ]] && f_w=$(whirl "$dir/timeseries.csv")
+      printf "%-14s %-22s %10s %10s %9s %9s %9s %8s %9s %10s\n" "$v" "$name" "$x" "$y" "$fx" "$fy" "$steps" "$wall" "$dev" "$f_w"
     done < <(cases_for "$v")
   done
-} | tee "$out/table.txt"
+} | tee "$out/table_$(IFS=_; echo "${variants[*]}").txt"
