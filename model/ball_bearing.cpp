@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -131,7 +130,7 @@ namespace {
 struct BallBearingWorkspace : ElementWorkspace {
   BallBearingWorkspace(int n, int n_balls)
       : zdot(n, 0.0), in(8 + n + 4, 0.0), out0(4 + n + 4, 0.0), out1(4 + n + 4, 0.0), share0(n_balls), share1(n_balls),
-        step(n_balls, 0.0), key(9 + n, 0.0) {}
+        step(n_balls, 0.0), key(4, n) {}
   std::vector<double> zdot;
   // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps;
   // room for the 4 radial outer-ring states of a wrapping element (AddJacobianOf).
@@ -140,8 +139,7 @@ struct BallBearingWorkspace : ElementWorkspace {
   std::vector<double> step;
   // The loads of the last evaluation for the engine and its inputs (speed, q, v, z), so that the powers and the
   // probes at the same state (every right-hand side asks for both powers) do not evaluate the bearing again.
-  std::vector<double> key;
-  bool valid = false;
+  EvaluationKey key;
   BallBearingLoads loads;
 };
 
@@ -557,38 +555,18 @@ void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const
 void BallBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
                                             ElementWorkspace& ws, double* f, double* zdot) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
-  w.valid = false;
+  w.key.Invalidate();
   Evaluate(s, q, v, z, f, zdot, nullptr, &w.loads);
-  Remember(s, q, v, z, w);
-}
-
-namespace {
-// Writes (speed, q, v, z) into key (9 + nz values), or compares: true if they are the same bits.
-bool SameInputs(const SpinState& s, const double* q, const double* v, const double* z, std::size_t nz,
-                const std::vector<double>& key) {
-  return key[0] == s.speed && std::memcmp(key.data() + 1, q, 4 * sizeof(double)) == 0 &&
-         std::memcmp(key.data() + 5, v, 4 * sizeof(double)) == 0 &&
-         std::memcmp(key.data() + 9, z, nz * sizeof(double)) == 0;
-}
-}  // namespace
-
-void BallBearingElement::Remember(const SpinState& s, const double* q, const double* v, const double* z,
-                                  ElementWorkspace& ws) const {
-  auto& w = static_cast<BallBearingWorkspace&>(ws);
-  w.key[0] = s.speed;
-  std::memcpy(w.key.data() + 1, q, 4 * sizeof(double));
-  std::memcpy(w.key.data() + 5, v, 4 * sizeof(double));
-  std::memcpy(w.key.data() + 9, z, static_cast<std::size_t>(n_states()) * sizeof(double));
-  w.valid = true;
+  w.key.Set(s.speed, q, v, z);
 }
 
 const BallBearingLoads& BallBearingElement::LoadsAt(const SpinState& s, const double* q, const double* v,
                                                     const double* z, ElementWorkspace& ws) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
-  if (w.valid && SameInputs(s, q, v, z, static_cast<std::size_t>(n_states()), w.key)) return w.loads;
-  w.valid = false;
+  if (w.key.Matches(s.speed, q, v, z)) return w.loads;
+  w.key.Invalidate();
   CalcBearing(s, q, v, z, OuterFromStates(z), w.loads, w.zdot.data());
-  Remember(s, q, v, z, w);
+  w.key.Set(s.speed, q, v, z);
   return w.loads;
 }
 

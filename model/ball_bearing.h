@@ -228,8 +228,6 @@ class BallBearingElement final : public ForceElement {
   /// The loads at this state: those of the last engine evaluation if its inputs were the same, else evaluated.
   const BallBearingLoads& LoadsAt(const SpinState& s, const double* q, const double* v, const double* z,
                                   ElementWorkspace& ws) const;
-  /// Marks the workspace's loads as those of (s, q, v, z).
-  void Remember(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws) const;
   BallBearingSpec spec_;
   double gravity_ = 0.0;
   int n_core_ = 0;

@@ -24,21 +24,19 @@ BallBearingSpec external(BallBearingSpec s) {
 }
 
 struct BallDamperWorkspace : ElementWorkspace {
-  BallDamperWorkspace(reynolds::FilmSolver s, int n_states, int n_core) : solver(std::move(s)), key(n_states + 9) {
+  BallDamperWorkspace(reynolds::FilmSolver s, int n_states, int n_core) : solver(std::move(s)), key(4, n_states) {
     eval.film.hole_flows.reserve(8);
     eval.zdot.resize(n_core);
   }
   reynolds::FilmSolver solver;
   BallDamperElement::Evaluation eval;
-  std::vector<double> key;  // speed, q[4], v[4], z of `eval`
-  bool valid = false;
+  EvaluationKey key;  // the state of `eval`
   // AddJacobian: the bearing's workspace, and the film at the ring state of fd_key (x, y, vx, vy), which most
   // finite-difference evaluations share (only the ring's own columns move the film).
   std::unique_ptr<ElementWorkspace> bearing;
   reynolds::FilmResult fd_film;
   double fd_key[4] = {0, 0, 0, 0};
   bool fd_valid = false;
-  std::vector<double> fd_zdot;
 };
 
 }  // namespace
@@ -128,22 +126,14 @@ const BallDamperElement::Evaluation& BallDamperElement::Evaluate(const SpinState
                                                                  const double* v, const double* z,
                                                                  ElementWorkspace& ws) const {
   auto& w = static_cast<BallDamperWorkspace&>(ws);
-  double* key = w.key.data();
-  const std::size_t nz = static_cast<std::size_t>(n_states());
-  if (w.valid && key[0] == s.speed && std::memcmp(key + 1, q, 4 * sizeof(double)) == 0 &&
-      std::memcmp(key + 5, v, 4 * sizeof(double)) == 0 && std::memcmp(key + 9, z, nz * sizeof(double)) == 0)
-    return w.eval;
-  w.valid = false;
+  if (w.key.Matches(s.speed, q, v, z)) return w.eval;
+  w.key.Invalidate();
   const double* ring = z + n_core_;
   const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
   bearing_.CalcBearing(s, q, v, z, outer, w.eval.loads, w.eval.zdot.data());
   if (!w.solver.solve(FilmState(ring), w.eval.film))
     throw std::runtime_error("squeeze-film damper of bearing '" + name() + "': " + w.solver.last_error());
-  key[0] = s.speed;
-  std::memcpy(key + 1, q, 4 * sizeof(double));
-  std::memcpy(key + 5, v, 4 * sizeof(double));
-  std::memcpy(key + 9, z, nz * sizeof(double));
-  w.valid = true;
+  w.key.Set(s.speed, q, v, z);
   return w.eval;
 }
 

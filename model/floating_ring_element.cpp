@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
 namespace turbodyn {
@@ -14,8 +13,6 @@ struct FloatingRingElement::Films {
 
 namespace {
 
-constexpr int kKeySize = 1 + 4 + 4 + FloatingRingElement::kStates;  // speed, q, v, z
-
 struct RingWorkspace : ElementWorkspace {
   RingWorkspace(reynolds::FilmSolver i, reynolds::FilmSolver o) : inner(std::move(i)), outer(std::move(o)) {
     films.inner.hole_flows.reserve(8);
@@ -23,8 +20,7 @@ struct RingWorkspace : ElementWorkspace {
   }
   reynolds::FilmSolver inner, outer;
   FloatingRingElement::Films films;
-  double key[kKeySize] = {};
-  bool valid = false;
+  EvaluationKey key{4, FloatingRingElement::kStates};  // the state of `films`
 };
 
 // Rotates (x, y) by angle a (c = cos a, s = sin a).
@@ -108,12 +104,8 @@ double FloatingRingElement::centrifugal_head(double w_r) const {
 const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s, const double* q, const double* v,
                                                              const double* z, ElementWorkspace& ws) const {
   auto& w = static_cast<RingWorkspace&>(ws);
-  double key[kKeySize] = {s.speed};
-  std::memcpy(key + 1, q, 4 * sizeof(double));
-  std::memcpy(key + 5, v, 4 * sizeof(double));
-  std::memcpy(key + 9, z, kStates * sizeof(double));
-  if (w.valid && std::memcmp(key, w.key, sizeof key) == 0) return w.films;
-  w.valid = false;
+  if (w.key.Matches(s.speed, q, v, z)) return w.films;
+  w.key.Invalidate();
   const double wr = z[kSpin];
 
   // Outer film: the ring in the housing, housing frame.
@@ -168,8 +160,7 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   rotate(c, sn, i.fx, i.fy);
   rotate(c, sn, i.mx, i.my);
   w.films.hole_pressure = inner_.holes.empty() ? 0.0 : hole_sum / inner_.holes.size();
-  std::memcpy(w.key, key, sizeof key);
-  w.valid = true;
+  w.key.Set(s.speed, q, v, z);
   return w.films;
 }
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <memory>
 #include <string>
@@ -29,6 +30,37 @@ struct SpinState {
 /// Scratch space of one element for one simulation (derive from it for element-specific buffers).
 struct ElementWorkspace {
   virtual ~ElementWorkspace() = default;
+};
+
+/// The inputs (rotor speed, q, v, z) of an element's last evaluation, kept in its workspace with what that
+/// evaluation computed, so that another call at the same state (the powers and probes after the forces) reuses
+/// it. Inputs are compared bit for bit; sized once, allocation-free afterwards.
+class EvaluationKey {
+ public:
+  EvaluationKey() = default;
+  /// d rotor DOFs, m internal states.
+  EvaluationKey(int d, int m) : d_(d), m_(m), key_(static_cast<std::size_t>(1 + 2 * d + m), 0.0) {}
+  bool Matches(double speed, const double* q, const double* v, const double* z) const {
+    return valid_ && std::memcmp(key_.data(), &speed, sizeof speed) == 0 &&
+           std::memcmp(key_.data() + 1, q, bytes(d_)) == 0 && std::memcmp(key_.data() + 1 + d_, v, bytes(d_)) == 0 &&
+           std::memcmp(key_.data() + 1 + 2 * d_, z, bytes(m_)) == 0;
+  }
+  /// Marks (speed, q, v, z) as the state of what the workspace holds.
+  void Set(double speed, const double* q, const double* v, const double* z) {
+    key_[0] = speed;
+    std::memcpy(key_.data() + 1, q, bytes(d_));
+    std::memcpy(key_.data() + 1 + d_, v, bytes(d_));
+    std::memcpy(key_.data() + 1 + 2 * d_, z, bytes(m_));
+    valid_ = true;
+  }
+  /// Call before recomputing, so that a throw leaves nothing stale marked valid.
+  void Invalidate() { valid_ = false; }
+
+ private:
+  static std::size_t bytes(int n) { return static_cast<std::size_t>(n) * sizeof(double); }
+  int d_ = 0, m_ = 0;
+  std::vector<double> key_;
+  bool valid_ = false;
 };
 
 /// A named scalar output of an element (e.g. the force it transmits to the housing).
