@@ -12,7 +12,8 @@
 namespace turbodyn {
 
 /// Film geometry and solver options of a plain film spec (JournalBearingSpec, DamperSpec: diameter, length,
-/// clearance, grid, feed hole, cavitation; end seals for dampers). Throws std::logic_error for a cavitation name the loader would refuse.
+/// clearance, grid, feed hole, cavitation; end seals for dampers). Throws std::logic_error for a cavitation name
+/// the loader would refuse.
 template <class Film>
 reynolds::FilmGeometry film_geometry(const Film& f, reynolds::SolverOptions& options) {
   reynolds::FilmGeometry g;

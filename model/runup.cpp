@@ -414,13 +414,14 @@ Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
   Eigen::VectorXd a = Eigen::VectorXd::Constant(n_states(), atol);
   if (!scaled) return a;
   const int n = n_coordinates_;
-  a.segment(n, n).setConstant(atol * ForceElement::kTypicalVelocity / ForceElement::kTypicalDisplacement);
+  constexpr double kDisp = ForceElement::kTypicalDisplacement, kVel = ForceElement::kTypicalVelocity;
+  a.segment(n, n).setConstant(atol * kVel / kDisp);
   for (std::size_t k = 0; k < elements_.size(); ++k)
     for (int i = 0; i < elements_[k]->n_states(); ++i) {
       const double typical = elements_[k]->state_scale(i);
-      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : ForceElement::kTypicalDisplacement) / ForceElement::kTypicalDisplacement;
+      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisp) / kDisp;
     }
-  a.tail(2).setConstant(atol / ForceElement::kTypicalDisplacement);  // energy accounts (J)
+  a.tail(2).setConstant(atol / kDisp);  // energy accounts (J)
   return a;
 }
 

@@ -145,7 +145,8 @@ TEST(BallNewton, BallBearingJacobianMatchesPlainFiniteDifferences) {
   for (const std::string outer : {"fixed", "spring", "damper"}) {
     const bool damper = outer == "damper";
     std::vector<Override> set = {{"speed.start", "60000 rpm"}};
-    if (!damper) set.insert(set.end(), {{"bearings.compressor.outer_ring", outer}, {"bearings.turbine.outer_ring", outer}});
+    if (!damper)
+      set.insert(set.end(), {{"bearings.compressor.outer_ring", outer}, {"bearings.turbine.outer_ring", outer}});
     const MachineSpec spec = load_model(
         testing::source_dir() + (damper ? "/examples/reference_ball_sfd.toml" : "/examples/reference_ball.toml"), set);
     const auto model = make_runup_model(spec);
