@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/film_linearisation.h"
-#include "model/model_file.h"
-#include "model/model_spec.h"
-#include "model/reynolds.h"
-#include "model/units.h"
+#include "model/films/film_linearisation.h"
+#include "model/io/model_file.h"
+#include "model/spec/model_spec.h"
+#include "model/films/reynolds.h"
+#include "model/spec/units.h"
 
 namespace turbodyn::app {
 namespace {

@@ -12,8 +12,8 @@
 #include "app/response_command.h"
 #include "app/run_command.h"
 #include "app/sweep_command.h"
-#include "model/model_file.h"
-#include "model/rotor.h"
+#include "model/io/model_file.h"
+#include "model/rotor/rotor.h"
 
 namespace {
 

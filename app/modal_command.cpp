@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/plot.h"
-#include "model/rotor.h"
-#include "model/units.h"
+#include "post/plot.h"
+#include "model/rotor/rotor.h"
+#include "model/spec/units.h"
 
 namespace turbodyn::app {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "model/model_file.h"
-#include "model/modal.h"
+#include "model/io/model_file.h"
+#include "model/rotor/modal.h"
 
 namespace turbodyn::app {
 

@@ -14,9 +14,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/plot.h"
-#include "model/runup.h"
-#include "model/signal.h"
+#include "post/plot.h"
+#include "model/engine/runup.h"
+#include "post/signal.h"
 #include "optim/model_patch.h"
 #include "optim/optimizer.h"
 #include "optim/report.h"

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/modal_command.h"
-#include "model/plot.h"
-#include "model/response.h"
-#include "model/rotor.h"
+#include "post/plot.h"
+#include "model/rotor/response.h"
+#include "model/rotor/rotor.h"
 
 namespace turbodyn::app {
 

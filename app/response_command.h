@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 
 namespace turbodyn::app {
 

@@ -12,11 +12,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/plot.h"
-#include "model/run_summary.h"
-#include "model/runup.h"
-#include "model/signal.h"
-#include "model/timeseries_file.h"
+#include "post/plot.h"
+#include "model/io/run_summary.h"
+#include "model/engine/runup.h"
+#include "post/signal.h"
+#include "model/io/timeseries_file.h"
 
 namespace turbodyn::app {
 namespace {

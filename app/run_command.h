@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 
 namespace turbodyn::app {
 

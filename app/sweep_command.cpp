@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 #include "studies/sweep.h"
 
 namespace turbodyn::app {

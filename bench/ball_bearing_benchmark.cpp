@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "model/ball_bearing.h"
+#include "model/elements/ball/ball_bearing.h"
 
 namespace {
 
@@ -44,7 +44,7 @@ void Forces(benchmark::State& state) {
   state.counters["shaft_force_x"] = f[0] / static_cast<double>(state.iterations());  // f accumulates
 }
 
-// Forward differences over [q; v; z] as model/runup.cpp does for elements without an analytic Jacobian.
+// Forward differences over [q; v; z] as model/engine/runup.cpp does for elements without an analytic Jacobian.
 void FiniteDifferenceJacobian(benchmark::State& state) {
   Setup b;
   const int d = 4, m = b.element.n_states();

@@ -1,4 +1,4 @@
-// Cost of one Reynolds film evaluation (model/reynolds.h) on the 60 x 12 grid at eccentricity ratio 0.6, warm-started
+// Cost of one Reynolds film evaluation (model/films/reynolds.h) on the 60 x 12 grid at eccentricity ratio 0.6, warm-started
 // in a loop whose eccentricity vector turns slowly (0.25 degree per call, about one integrator step of a 500 Hz
 // whirl at 7e5 steps/s), against a baseline that assembles the same full-film linear system and solves it with
 // Eigen::SparseLU (analyse + factorise + solve on every call). docs/reynolds.md lists the measured numbers.
@@ -19,7 +19,7 @@
 
 #include <Eigen/SparseLU>
 
-#include "model/reynolds.h"
+#include "model/films/reynolds.h"
 
 namespace {
 

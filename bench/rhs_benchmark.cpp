@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "model/model_file.h"
-#include "model/runup.h"
+#include "model/io/model_file.h"
+#include "model/engine/runup.h"
 
 namespace {
 

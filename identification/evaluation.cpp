@@ -5,9 +5,9 @@
 #include <cmath>
 #include <complex>
 
-#include "model/response.h"
-#include "model/rotor.h"
-#include "model/runup.h"
+#include "model/rotor/response.h"
+#include "model/rotor/rotor.h"
+#include "model/engine/runup.h"
 #include "studies/sweep.h"
 
 namespace turbodyn::identification {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "identification/measurement.h"
-#include "model/signal.h"
+#include "post/signal.h"
 
 namespace turbodyn::identification {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "model/toml_reader.h"
+#include "model/io/toml_reader.h"
 #include "studies/study.h"
 
 namespace turbodyn::identification {

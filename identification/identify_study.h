@@ -10,7 +10,7 @@
 
 #include "identification/features.h"
 #include "identification/measurement.h"
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 
 namespace turbodyn::identification {
 

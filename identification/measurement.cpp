@@ -7,8 +7,8 @@
 #include <map>
 #include <sstream>
 
-#include "model/model_file.h"
-#include "model/timeseries_file.h"
+#include "model/io/model_file.h"
+#include "model/io/timeseries_file.h"
 
 namespace turbodyn::identification {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "model/units.h"
+#include "model/spec/units.h"
 
 namespace turbodyn::identification {
 

@@ -7,8 +7,8 @@
 
 #include <toml++/toml.h>
 
-#include "model/plot.h"
-#include "model/signal.h"
+#include "post/plot.h"
+#include "post/signal.h"
 
 namespace turbodyn::identification {
 namespace {

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "identification/identify.h"
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 
 namespace turbodyn::identification {
 

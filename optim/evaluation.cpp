@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "model/rotor.h"
+#include "model/rotor/rotor.h"
 #include "optim/response_metric.h"
 #include "studies/sweep.h"
 

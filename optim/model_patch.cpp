@@ -5,7 +5,7 @@
 
 #include <toml++/toml.h>
 
-#include "model/toml_reader.h"
+#include "model/io/toml_reader.h"
 
 namespace turbodyn::optim {
 namespace {

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "model/rotor.h"
-#include "model/runup.h"
-#include "model/toml_reader.h"
+#include "model/rotor/rotor.h"
+#include "model/engine/runup.h"
+#include "model/io/toml_reader.h"
 #include "studies/metrics.h"
 
 namespace turbodyn::optim {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 #include "studies/study.h"
 
 namespace turbodyn::optim {
@@ -40,7 +40,7 @@ struct OperatingCase {
 };
 
 /// A metric of every run of every case. Run-up metrics are those of docs/studies.md; `response_peak` and
-/// `response_peak_speed` are the largest steady-state 1x amplitude of the linear rotor (model/response.h) over the
+/// `response_peak_speed` are the largest steady-state 1x amplitude of the linear rotor (model/rotor/response.h) over the
 /// speed window and the speed where it occurs.
 struct Metric {
   studies::MetricSpec spec;

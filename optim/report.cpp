@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "model/plot.h"
+#include "post/plot.h"
 
 namespace turbodyn::optim {
 namespace {

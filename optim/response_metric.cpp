@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "model/response.h"
+#include "model/rotor/response.h"
 
 namespace turbodyn::optim {
 namespace {

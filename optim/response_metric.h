@@ -1,9 +1,9 @@
 // Steady-state metrics of the linear rotor: the largest synchronous unbalance response over a speed window, from
-// the frequency-domain solution of model/response.h. Smooth in the parameters and far cheaper than a run-up, so an
+// the frequency-domain solution of model/rotor/response.h. Smooth in the parameters and far cheaper than a run-up, so an
 // optimiser can use them where a linear model suffices (and where a closed form exists to test against).
 #pragma once
 
-#include "model/rotor.h"
+#include "model/rotor/rotor.h"
 #include "studies/study.h"
 
 namespace turbodyn::optim {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "model/signal.h"
+#include "post/signal.h"
 
 namespace turbodyn::studies {
 namespace {

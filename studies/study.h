@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 #include "studies/design.h"
 
 namespace turbodyn::input {

@@ -13,10 +13,10 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
-#include "model/plot.h"
-#include "model/run_summary.h"
-#include "model/runup.h"
-#include "model/speed_profile.h"
+#include "post/plot.h"
+#include "model/io/run_summary.h"
+#include "model/engine/runup.h"
+#include "model/engine/speed_profile.h"
 #include "studies/metrics.h"
 
 namespace turbodyn::studies {

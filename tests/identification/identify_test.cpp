@@ -13,11 +13,11 @@
 #include "identification/identify_study.h"
 #include "identification/measurement.h"
 #include "identification/report.h"
-#include "model/model_file.h"
-#include "model/response.h"
-#include "model/rotor.h"
-#include "model/runup.h"
-#include "model/timeseries_file.h"
+#include "model/io/model_file.h"
+#include "model/rotor/response.h"
+#include "model/rotor/rotor.h"
+#include "model/engine/runup.h"
+#include "model/io/timeseries_file.h"
 
 namespace turbodyn::identification {
 namespace {

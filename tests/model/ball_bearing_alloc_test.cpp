@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/ball_bearing.h"
+#include "model/elements/ball/ball_bearing.h"
 
 namespace {
 std::atomic<long> g_allocations{0};

@@ -1,7 +1,7 @@
 // Ball bearing as a multibody element: Hertz constants against the deep-groove reference, static stiffness
 // against an independent rigid-ring (Jones/Harris) calculation, kinematic frequencies at constant speed, energy
 // conservation without friction and damping, bad input.
-#include "model/ball_bearing.h"
+#include "model/elements/ball/ball_bearing.h"
 
 #include <algorithm>
 #include <cmath>

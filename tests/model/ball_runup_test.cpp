@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "model/ball_bearing.h"
-#include "model/ball_damper_element.h"
-#include "model/model_file.h"
-#include "model/runup.h"
+#include "model/elements/ball/ball_bearing.h"
+#include "model/elements/ball/ball_damper_element.h"
+#include "model/io/model_file.h"
+#include "model/engine/runup.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/block_arrow_lu.h"
+#include "model/engine/block_arrow_lu.h"
 
 namespace turbodyn {
 namespace {

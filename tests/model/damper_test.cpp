@@ -1,13 +1,13 @@
 // Squeeze-film damper around a linear bearing: film forces on a centred circular orbit against the short-damper
 // closed forms, and a run-up in which the damper cuts the force transmitted at the first critical speeds.
-#include "model/damper_element.h"
+#include "model/elements/damper_element.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "model/model_file.h"
-#include "model/runup.h"
+#include "model/io/model_file.h"
+#include "model/engine/runup.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {

@@ -1,6 +1,6 @@
 // Linearised film coefficients against the short-bearing closed forms (validation-references.md §2, Friswell et
 // al. 2010 §5.5), the check behind `turbodyn journal`.
-#include "model/film_linearisation.h"
+#include "model/films/film_linearisation.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // Full-floating-ring bearing element: ring speed from the torque balance of the two films.
-#include "model/floating_ring_element.h"
+#include "model/elements/floating_ring_element.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The journal-bearing force element: the shaft's DOFs mapped into the film and the film's force and moment back.
-#include "model/journal_bearing_element.h"
+#include "model/elements/journal_bearing_element.h"
 
 #include <cmath>
 

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "model/runup.h"
-#include "model/signal.h"
+#include "model/engine/runup.h"
+#include "post/signal.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {

@@ -1,12 +1,12 @@
 // Linear rotordynamics against published numbers and exact transformations.
-#include "model/modal.h"
+#include "model/rotor/modal.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "model/model_file.h"
-#include "model/rotor.h"
+#include "model/io/model_file.h"
+#include "model/rotor/rotor.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {

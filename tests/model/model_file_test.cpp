@@ -1,5 +1,5 @@
 // Model files: values, units, overrides, and the errors a new user meets.
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 
 #include <cmath>
 

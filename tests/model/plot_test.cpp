@@ -1,6 +1,6 @@
 // Pictures: the files are real PNGs of the requested size; bad data, a missing gnuplot and a failing gnuplot give
 // clear errors; rendering from several threads at once works; text is passed to gnuplot literally.
-#include "model/plot.h"
+#include "post/plot.h"
 
 #include <algorithm>
 #include <array>

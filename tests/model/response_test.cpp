@@ -1,5 +1,5 @@
 // Steady-state unbalance response against the Jeffcott-type closed form.
-#include "model/response.h"
+#include "model/rotor/response.h"
 
 #include <cmath>
 

@@ -1,9 +1,9 @@
-// Reynolds film solver (model/reynolds.h) against published tables, closed forms, independent solvers and exact
+// Reynolds film solver (model/films/reynolds.h) against published tables, closed forms, independent solvers and exact
 // discrete properties. References are in docs/reynolds.md and shared/reference/validation-references.md.
 //
 // The allocation test replaces the global operator new with a counting one (as tests/model/rhs_alloc_test.cpp):
 // keep this file out of executables that replace operator new themselves.
-#include "model/reynolds.h"
+#include "model/films/reynolds.h"
 
 #include <algorithm>
 #include <atomic>

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "model/model_file.h"
-#include "model/runup.h"
+#include "model/io/model_file.h"
+#include "model/engine/runup.h"
 #include "tests/model/test_support.h"
 
 namespace {

@@ -1,6 +1,6 @@
 // The run-up engine against the frequency-domain solution, run-up theory, exact Jacobians, the energy balance and
 // statics.
-#include "model/runup.h"
+#include "model/engine/runup.h"
 
 #include <cmath>
 #include <iostream>
@@ -9,10 +9,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "model/linear_bearing_element.h"
-#include "model/model_file.h"
-#include "model/response.h"
-#include "model/signal.h"
+#include "model/elements/linear_bearing_element.h"
+#include "model/io/model_file.h"
+#include "model/rotor/response.h"
+#include "post/signal.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {

@@ -1,4 +1,4 @@
-// The compiled vector kernels (model/serial_vector_ops.h) against the library's own serial kernels, on a length
+// The compiled vector kernels (model/engine/serial_vector_ops.h) against the library's own serial kernels, on a length
 // that is not a multiple of the four partial sums, and the fused operations with the aliasing CVODE uses.
 #include <cmath>
 #include <random>
@@ -8,7 +8,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-#include "model/serial_vector_ops.h"
+#include "model/engine/serial_vector_ops.h"
 
 namespace turbodyn {
 namespace {

@@ -1,4 +1,4 @@
-#include "model/signal.h"
+#include "post/signal.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -9,9 +9,9 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
-#include "model/model_spec.h"
-#include "model/rotor.h"
-#include "model/runup.h"
+#include "model/spec/model_spec.h"
+#include "model/rotor/rotor.h"
+#include "model/engine/runup.h"
 
 namespace turbodyn::testing {
 

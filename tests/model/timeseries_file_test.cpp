@@ -1,5 +1,5 @@
 // Time-series files: exact HDF5 round trip, what survives when the writer's process dies, CSV export, and errors.
-#include "model/timeseries_file.h"
+#include "model/io/timeseries_file.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

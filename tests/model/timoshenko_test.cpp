@@ -1,12 +1,12 @@
 // Shaft finite elements against closed-form beam theory.
-#include "model/timoshenko.h"
+#include "model/rotor/timoshenko.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "model/rotor.h"
+#include "model/rotor/rotor.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {

@@ -1,4 +1,4 @@
-#include "model/units.h"
+#include "model/spec/units.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

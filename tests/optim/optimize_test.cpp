@@ -10,7 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "model/model_file.h"
+#include "model/io/model_file.h"
 #include "optim/evaluation_log.h"
 #include "optim/model_patch.h"
 #include "tests/model/test_support.h"

@@ -1,0 +1,720 @@
+#include "model/elements/ball/ball_bearing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace turbodyn {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------- Hertz
+
+HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y, double modulus) {
+  if (!(curvature_x > 0.0 && curvature_y > 0.0 && modulus > 0.0))
+    throw std::invalid_argument("Hertz point contact: curvature sums and modulus must be > 0");
+  HertzPointContact h;
+  h.curvature_sum = curvature_x + curvature_y;
+  // R_y / R_x >= 1 with x the direction of the larger curvature (the shorter semi-axis b).
+  const double ratio = std::max(curvature_x, curvature_y) / std::min(curvature_x, curvature_y);
+  // Hertz's relation between the curvature ratio and the ellipse (Johnson 1985, §4.2, rewritten with
+  // k = a/b): k^2 E(e) - (1 + ratio) K(e) + ratio E(e) = 0, e^2 = 1 - 1/k^2. It is negative just above k = 1
+  // and grows without bound; bisection in log k is robust and only runs in the constructor.
+  const auto residual = [ratio](double k) {
+    const double e = std::sqrt(1.0 - 1.0 / (k * k));
+    const double K = std::comp_ellint_1(e), E = std::comp_ellint_2(e);
+    return k * k * E - (1.0 + ratio) * K + ratio * E;
+  };
+  double k = 1.0;
+  if (ratio > 1.0 + 1e-12) {
+    double lo = 1.0 + 1e-12, hi = 2.0;
+    while (residual(hi) < 0.0) hi *= 2.0;
+    for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
+      const double mid = std::sqrt(lo * hi);
+      (residual(mid) < 0.0 ? lo : hi) = mid;
+    }
+    k = 0.5 * (lo + hi);
+  }
+  const double e = std::sqrt(std::max(0.0, 1.0 - 1.0 / (k * k)));
+  h.ellipticity = k;
+  h.integral_k = std::comp_ellint_1(e);
+  h.integral_e = std::comp_ellint_2(e);
+  const double R = 1.0 / h.curvature_sum;
+  // delta = K(e) [ (9 / (2 E(e) R)) (F / (pi k E'))^2 ]^(1/3) (Hamrock & Dowson 1981, ch. 3), inverted.
+  h.stiffness = kPi * k * modulus * std::sqrt(2.0 * h.integral_e * R / 9.0) / std::pow(h.integral_k, 1.5);
+  // Semi-axes a = (6 k^2 E F R / (pi E'))^(1/3), b = (6 E F R / (pi k E'))^(1/3) (same source).
+  h.radius_factor = std::cbrt(6.0 * h.integral_e * R / (kPi * modulus)) * std::pow(k, 1.0 / 6.0);
+  return h;
+}
+
+void RaceCurvatures(double D, double d_m, double f, double alpha, bool inner, double* curvature_x,
+                    double* curvature_y) {
+  const double c = std::cos(alpha);
+  // Rolling direction: ball 2/D plus the race, convex (inner) or concave (outer), of radius
+  // (d_m -+ D cos a) / (2 cos a) measured along the contact normal to the bearing axis.
+  *curvature_x = 2.0 / D + (inner ? 2.0 * c / (d_m - D * c) : -2.0 * c / (d_m + D * c));
+  *curvature_y = 2.0 / D - 1.0 / (f * D);  // the groove, concave
+}
+
+// ------------------------------------------------------------------------------------------------ element
+
+namespace {
+
+struct BallBearingWorkspace : ElementWorkspace {
+  BallBearingWorkspace(int n, int n_balls)
+      : zdot(n, 0.0), in(8 + n + 4, 0.0), out0(4 + n + 4, 0.0), out1(4 + n + 4, 0.0), share0(n_balls), share1(n_balls),
+        step(n_balls, 0.0), key(4, n) {}
+  std::vector<double> zdot;
+  // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps;
+  // room for the 4 radial outer-ring states of a wrapping element (AddJacobianOf).
+  std::vector<double> in, out0, out1;
+  std::vector<BallShare> share0, share1;
+  std::vector<double> step;
+  // The loads of the last evaluation for the engine and its inputs (speed, q, v, z), so that the powers and the
+  // probes at the same state (every right-hand side asks for both powers) do not evaluate the bearing again.
+  EvaluationKey key;
+  BallBearingLoads loads;
+};
+
+// One race as the balls see it, all vectors in the orbital basis (e_r, e_psi, e_z) of the current ball.
+struct Race {
+  Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero();   // ring centre (m, m/s)
+  Vec3 tilt = Vec3::Zero(), tilt_rate = Vec3::Zero();    // small rotation theta (rad) and its rate (rad/s)
+  Vec3 omega = Vec3::Zero();                             // angular velocity of the ring (rad/s)
+  double dr = 0.0, dz = 0.0, r0 = 0.0;  // groove-centre circle (radius - R_p, axial), unloaded distance
+};
+
+struct RaceGeometry {
+  double delta = 0.0;  // normal approach (m), > 0 in contact
+  Vec3 p;              // ball centre relative to the ring centre, housing orientation
+  Vec3 u_l;            // unit vector groove centre -> ball centre in the ring's (tilted) frame
+  Vec3 u;              // the same in the housing frame: u = (I - [theta x])^T u_l = u_l + theta x u_l
+};
+
+// Ball centre at (R, 0, zeta) in the orbital basis, R = R_p + rho. The ring frame is reached with the
+// small rotation p_l = p - theta x p; the closest groove centre lies in the ring-frame plane through the axis and
+// the ball. Radial differences are formed from small quantities only (no R_p - R_p cancellation).
+inline bool race_geometry(const Race& race, double R, double rho, double zeta, RaceGeometry& g) {
+  g.p = Vec3(R - race.centre.x(), -race.centre.y(), zeta - race.centre.z());
+  const Vec3 tp = race.tilt.cross(g.p);
+  const double a = -race.centre.x() - tp.x();  // radial offset of the ball in the ring frame, minus R
+  const double b = -race.centre.y() - tp.y();  // tangential offset
+  const double zl = g.p.z() - tp.z();
+  const double rl = std::sqrt((R + a) * (R + a) + b * b);
+  const double rl_minus_R = ((2.0 * R + a) * a + b * b) / (rl + R);
+  const double dr = rho - race.dr + rl_minus_R;  // r_l - R_g
+  const double dz = zl - race.dz;
+  const double dist = std::sqrt(dr * dr + dz * dz);
+  g.delta = dist - race.r0;
+  if (g.delta <= 0.0) return false;
+  const double s = dr / (dist * rl);
+  g.u_l = Vec3(s * (R + a), s * b, dz / dist);
+  g.u = g.u_l + race.tilt.cross(g.u_l);
+  return true;
+}
+
+// Pocket of a ball: ball centre relative to the pocket centre (orbital basis) and the pocket centre relative
+// to the cage centre. dpsi = psi - (cage angle + 2 pi j / Z).
+struct PocketGeometry {
+  Vec3 delta_vec, pocket;
+  double dist = 0.0;
+};
+
+inline void pocket_geometry(double rho, double zeta, double dpsi, double Rp, const Vec3& cage_centre,
+                            PocketGeometry& g) {
+  const double half = 0.5 * std::remainder(dpsi, 2.0 * kPi);
+  const double sh = std::sin(half), ch = std::cos(half);
+  const double sd = 2.0 * sh * ch, one_minus_cos = 2.0 * sh * sh;
+  g.pocket = Vec3(Rp * (1.0 - one_minus_cos), -Rp * sd, 0.0);
+  g.delta_vec = Vec3(rho + Rp * one_minus_cos - cage_centre.x(), Rp * sd - cage_centre.y(), zeta - cage_centre.z());
+  g.dist = g.delta_vec.norm();
+}
+
+// Housing-frame components (x, y, z) in the orbital basis of a ball at angle psi (c = cos psi, s = sin psi).
+inline Vec3 to_orbital(double x, double y, double z, double c, double s) {
+  return Vec3(x * c + y * s, -x * s + y * c, z);
+}
+
+}  // namespace
+
+BallBearingElement::BallBearingElement(const std::string& name, const BallBearingSpec& spec, int node_dof,
+                                       double gravity)
+    : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3},
+                   BallBearingElement::kBallStates * spec.n_balls + kCageStates + 2 +
+                       (spec.outer_ring_mode == OuterRingMode::kSpring ? 4 : 0)),
+      spec_(spec),
+      gravity_(gravity) {
+  std::string error;
+  if (!spec.IsValid(&error)) throw std::invalid_argument("ball bearing '" + name + "': " + error);
+  if (!std::isfinite(gravity)) throw std::invalid_argument("ball bearing '" + name + "': gravity must be finite");
+  n_core_ = kBallStates * spec.n_balls + kCageStates + 2;
+  const double D = spec.ball_diameter, dm = spec.pitch_diameter, a0 = spec.contact_angle, s = spec.side;
+  pitch_radius_ = 0.5 * dm;
+  m_ball_ = spec.ball_density * kPi * D * D * D / 6.0;
+  i_ball_ = m_ball_ * D * D / 10.0;
+  i_cage_ = spec.cage_polar_inertia > 0.0 ? spec.cage_polar_inertia : spec.cage_mass * pitch_radius_ * pitch_radius_;
+
+  // Groove curvature centres (Harris & Kotzalas 2007, ch. 2): crossed, the inner one beyond the ball centre.
+  inner_r_ = (spec.inner_groove_ratio - 0.5) * D;
+  outer_r_ = (spec.outer_groove_ratio - 0.5) * D;
+  inner_dr_ = inner_r_ * std::cos(a0);
+  inner_z_ = s * inner_r_ * std::sin(a0);
+  outer_dr_ = -outer_r_ * std::cos(a0);
+  outer_z_ = -s * outer_r_ * std::sin(a0);
+
+  // Hertz constants at the free contact angle (the change with the loaded angle is neglected, see the doc).
+  const double e_br = 2.0 / ((1.0 - spec.ball_poisson_ratio * spec.ball_poisson_ratio) / spec.ball_youngs_modulus +
+                             (1.0 - spec.ring_poisson_ratio * spec.ring_poisson_ratio) / spec.ring_youngs_modulus);
+  double cx = 0.0, cy = 0.0;
+  RaceCurvatures(D, dm, spec.inner_groove_ratio, a0, true, &cx, &cy);
+  hertz_inner_ = SolveHertzPointContact(cx, cy, e_br);
+  RaceCurvatures(D, dm, spec.outer_groove_ratio, a0, false, &cx, &cy);
+  hertz_outer_ = SolveHertzPointContact(cx, cy, e_br);
+
+  // Ball in a spherical pocket of radius D/2 + c_p: sphere in a conforming sphere, F = (4/3) E* sqrt(R) delta^1.5
+  // with 1/R = 2/D - 1/(D/2 + c_p) (Johnson 1985, §4.2).
+  const double e_star = 1.0 / ((1.0 - spec.ball_poisson_ratio * spec.ball_poisson_ratio) / spec.ball_youngs_modulus +
+                               (1.0 - spec.cage_poisson_ratio * spec.cage_poisson_ratio) / spec.cage_youngs_modulus);
+  const double r_pocket = 0.5 * D + spec.pocket_clearance;
+  k_pocket_ = 4.0 / 3.0 * e_star * std::sqrt(0.5 * D * r_pocket / spec.pocket_clearance);
+
+  // Static preload equilibrium without gravity and speed: every ball on the line of its groove centres
+  // (two-force body), Q = K_n delta_n^1.5 with 1/K_n^(2/3) = 1/K_i^(2/3) + 1/K_o^(2/3) (Harris & Kotzalas 2007,
+  // ch. 7); the outer ring moves by x towards -side until Z Q sin(a) = F_p - k_p x.
+  const double Kn =
+      std::pow(std::pow(hertz_inner_.stiffness, -2.0 / 3.0) + std::pow(hertz_outer_.stiffness, -2.0 / 3.0), -1.5);
+  const double A = inner_r_ + outer_r_;
+  const auto state = [&](double x, double* Q, double* dr, double* dz, double* L) {
+    *dr = inner_dr_ - outer_dr_;
+    *dz = inner_z_ - (outer_z_ - s * x);
+    *L = std::sqrt(*dr * *dr + *dz * *dz);
+    const double dn = *L - A;
+    *Q = dn > 0.0 ? Kn * dn * std::sqrt(dn) : 0.0;
+  };
+  const auto h = [&](double x) {
+    double Q, dr, dz, L;
+    state(x, &Q, &dr, &dz, &L);
+    return spec.n_balls * Q * s * dz / L - spec.preload + spec.preload_stiffness * x;
+  };
+  double x = 0.0;
+  if (h(0.0) < 0.0) {
+    double lo = 0.0, hi = 1e-9;
+    for (int i = 0; i < 200 && h(hi) < 0.0; ++i) lo = hi, hi *= 2.0;
+    for (int i = 0; i < 200 && hi - lo > 1e-16 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (h(mid) < 0.0 ? lo : hi) = mid;
+    }
+    x = 0.5 * (lo + hi);
+  }
+  double Q, dr, dz, L;
+  state(x, &Q, &dr, &dz, &L);
+  zo_eq_ = -s * x;
+  const double to_ball = outer_r_ + std::pow(Q / hertz_outer_.stiffness, 2.0 / 3.0);
+  rho_eq_ = outer_dr_ + to_ball * dr / L;
+  zeta_eq_ = outer_z_ + zo_eq_ + to_ball * dz / L;
+}
+
+OuterRingKinematics BallBearingElement::OuterFromStates(const double* z) const {
+  OuterRingKinematics o;
+  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+    o.x = z[n_core_];
+    o.y = z[n_core_ + 1];
+    o.vx = z[n_core_ + 2];
+    o.vy = z[n_core_ + 3];
+  }
+  return o;
+}
+
+void BallBearingElement::initial_states(double* z) const {
+  std::fill(z, z + n_states(), 0.0);
+  for (int j = 0; j < spec_.n_balls; ++j) {
+    double* b = z + ball_offset(j);
+    b[0] = 2.0 * kPi * j / spec_.n_balls;
+    b[1] = rho_eq_;
+    b[2] = zeta_eq_;
+  }
+  z[outer_offset()] = zo_eq_;
+}
+
+void BallBearingElement::initial_states_at_speed(double speed, double* z) const {
+  initial_states(z);
+  if (speed != 0.0) steady_states(speed, z);
+}
+
+void BallBearingElement::steady_states(double speed, double* z) const {
+  const double D = spec_.ball_diameter, dm = spec_.pitch_diameter;
+  double cage = 0.0;
+  for (int j = 0; j < spec_.n_balls; ++j) {
+    double* b = z + ball_offset(j);
+    // Outer contact normal from the outer groove centre to the ball centre (outer ring radially centred).
+    const double dr = b[1] - outer_dr_, dz = b[2] - (outer_z_ + z[outer_offset()]);
+    const double L = std::sqrt(dr * dr + dz * dz);
+    const double ur = dr / L, uz = dz / L;  // cos(a), side * sin(a)
+    // No slip at either contact, cage speed (W/2)(1 - (D/d_m) cos a) (validation-references §5); with no spin
+    // at the outer contact the ball's absolute angular velocity is normal to the contact line,
+    // w = w_c (d_m / D) (side sin a, 0, -cos a) in (e_r, e_psi, e_z).
+    const double wc = 0.5 * speed * (1.0 - D / dm * ur);
+    b[3] = wc;
+    b[4] = b[5] = 0.0;
+    b[6] = wc * dm / D * uz;
+    b[7] = 0.0;
+    b[8] = -wc * dm / D * ur;
+    cage += wc / spec_.n_balls;
+  }
+  double* c = z + cage_offset();
+  c[4] = c[5] = c[6] = 0.0;
+  c[7] = cage;
+}
+
+std::unique_ptr<ElementWorkspace> BallBearingElement::make_workspace() const {
+  return std::make_unique<BallBearingWorkspace>(n_states(), spec_.n_balls);
+}
+
+double BallBearingElement::state_scale(int i) const {
+  const double v_ang = 1e-3 / pitch_radius_;  // 1 mm/s at the pitch circle in rad/s
+  const int nb = kBallStates * spec_.n_balls;
+  if (i < nb) {
+    static constexpr double kLengths[kBallStates] = {0, 1e-6, 1e-6, 0, 1e-3, 1e-3, 0, 0, 0};
+    const int k = i % kBallStates;
+    if (k == 0) return 1e-6 / pitch_radius_;
+    if (k == 3) return v_ang;
+    if (k >= 6) return 1e-3 / (0.5 * spec_.ball_diameter);
+    return kLengths[k];
+  }
+  i -= nb;
+  if (i < kCageStates) {
+    static constexpr double kCage[kCageStates] = {1e-6, 1e-6, 1e-6, 0, 1e-3, 1e-3, 1e-3, 0};
+    if (i == 3) return 1e-6 / pitch_radius_;
+    if (i == 7) return v_ang;
+    return kCage[i];
+  }
+  i -= kCageStates;
+  if (i < 2) return i == 0 ? 1e-6 : 1e-3;
+  return (i - 2) < 2 ? 1e-6 : 1e-3;
+}
+
+void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const double* v, const double* z,
+                                     const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
+                                     BallShare* shares) const {
+  loads = BallBearingLoads{};
+  const int Z = spec_.n_balls;
+  const double Rp = pitch_radius_, Rb = 0.5 * spec_.ball_diameter, m = m_ball_, I = i_ball_, g = gravity_;
+  const double side = spec_.side;
+  const double d_race = spec_.contact_damping, d_pocket = spec_.pocket_damping, cp = spec_.pocket_clearance;
+  const double mu0 = spec_.friction_static, mur = spec_.friction_sliding;
+  const double v1 = spec_.friction_v1, v2 = spec_.friction_v2;
+  const bool friction = mu0 > 0.0 || mur > 0.0;
+  const bool spin = friction && spec_.spin_friction;
+  // mu(v)/v of paper Eq. 23 for v >= 0, finite at v = 0: the friction force is -Q (mu(|v_t|)/|v_t|) v_t.
+  const auto mu_over_v = [=](double vt) {
+    const double x = vt / v2;
+    const double t = x < 1e-4 ? (1.0 - x * x / 3.0) / v2 : std::tanh(x) / vt;
+    return (mur + (mu0 - mur) * std::exp(-vt / v1)) * t;
+  };
+  constexpr double kSpinMoment = 3.0 * kPi / 16.0;  // M = (3 pi / 16) mu Q a: uniform mu, Hertz pressure
+
+  // Shaft: inner ring centre, tilt and angular velocity (spin about the tilted axis) in the housing frame.
+  const double W = st.speed;
+  const Vec3 wi_h(v[2] + W * q[3], v[3] - W * q[2], W);
+  // Cage and outer ring.
+  const double* cg = z + cage_offset();
+  const double zo = z[outer_offset()], vzo = z[outer_offset() + 1];
+
+  Vec3 F_shaft = Vec3::Zero(), M_shaft = Vec3::Zero();  // housing frame
+  Vec3 F_outer = Vec3::Zero(), F_cage = Vec3::Zero();
+  double T_cage = 0.0, diss = 0.0, qmax = 0.0;
+  double ai_r = 0.0, ai_z = 0.0, ao_r = 0.0, ao_z = 0.0;
+
+  Race inner, outer_race;
+  inner.dr = inner_dr_, inner.dz = inner_z_, inner.r0 = inner_r_;
+  outer_race.dr = outer_dr_, outer_race.dz = outer_z_, outer_race.r0 = outer_r_;
+
+  for (int j = 0; j < Z; ++j) {
+    const double* b = z + ball_offset(j);
+    double* bd = zdot + ball_offset(j);
+    const Vec3 F_shaft0 = F_shaft, M_shaft0 = M_shaft, F_outer0 = F_outer, F_cage0 = F_cage;
+    const double T_cage0 = T_cage;
+    const double psi = b[0], rho = b[1], zeta = b[2], psid = b[3];
+    const double c = std::cos(psi), sn = std::sin(psi);
+    const double R = Rp + rho;
+    const Vec3 Vb(b[4], R * psid, b[5]);
+    const Vec3 wb(b[6], b[7], b[8]);
+
+    inner.centre = to_orbital(q[0], q[1], 0.0, c, sn);
+    inner.velocity = to_orbital(v[0], v[1], 0.0, c, sn);
+    inner.tilt = to_orbital(q[2], q[3], 0.0, c, sn);
+    inner.tilt_rate = to_orbital(v[2], v[3], 0.0, c, sn);
+    inner.omega = to_orbital(wi_h.x(), wi_h.y(), wi_h.z(), c, sn);
+    outer_race.centre = to_orbital(outer.x, outer.y, zo, c, sn);
+    outer_race.velocity = to_orbital(outer.vx, outer.vy, vzo, c, sn);
+
+    Vec3 F = Vec3(-m * g * sn, -m * g * c, 0.0);  // gravity along -y
+    Vec3 M = Vec3::Zero();
+
+    // Ball-race contacts: Hertz + damping (Eq. 21, clipped so that it never pulls), friction (Eqs. 22-23) at
+    // the slip velocity of the contact centre, spin moment.
+    for (int k = 0; k < 2; ++k) {
+      const Race& race = k == 0 ? inner : outer_race;
+      const HertzPointContact& hz = k == 0 ? hertz_inner_ : hertz_outer_;
+      RaceGeometry geo;
+      if (!race_geometry(race, R, rho, zeta, geo)) continue;
+      const double QH = hz.stiffness * geo.delta * std::sqrt(geo.delta);
+      const double ddot = geo.u.dot(Vb - race.velocity) - geo.u_l.dot(race.tilt_rate.cross(geo.p));
+      const double Q = std::max(0.0, QH + d_race * ddot);
+      diss += (Q - QH) * ddot;
+      Vec3 Fr = Q * geo.u;               // on the ring
+      Vec3 Mr = geo.p.cross(Q * geo.u_l);  // about the ring centre (generalised force of the small rotation)
+      F -= Q * geo.u;
+      if (friction && Q > 0.0) {
+        const Vec3 arm = Rb * geo.u;
+        const Vec3 lever = geo.p + arm;  // contact point from the ring centre
+        const Vec3 vrel = Vb + wb.cross(arm) - race.velocity - race.omega.cross(lever);
+        const Vec3 vt = vrel - vrel.dot(geo.u) * geo.u;
+        const Vec3 Ft = (-Q * mu_over_v(vt.norm())) * vt;
+        F += Ft;
+        M += arm.cross(Ft);
+        Fr -= Ft;
+        Mr -= lever.cross(Ft);
+        diss -= Ft.dot(vt);
+        if (spin) {
+          const double a = hz.radius_factor * std::cbrt(Q);
+          const double ws = (wb - race.omega).dot(geo.u);
+          const double Ms = kSpinMoment * Q * a * a * mu_over_v(std::abs(ws) * a) * ws;
+          M -= Ms * geo.u;
+          Mr += Ms * geo.u;
+          diss += Ms * ws;
+        }
+      }
+      qmax = std::max(qmax, Q);
+      if (k == 0) {
+        F_shaft += Vec3(Fr.x() * c - Fr.y() * sn, Fr.x() * sn + Fr.y() * c, Fr.z());
+        M_shaft += Vec3(Mr.x() * c - Mr.y() * sn, Mr.x() * sn + Mr.y() * c, Mr.z());
+        if (Q > 0.0) ai_r -= geo.u.x(), ai_z -= side * geo.u.z();
+      } else {
+        F_outer += Vec3(Fr.x() * c - Fr.y() * sn, Fr.x() * sn + Fr.y() * c, Fr.z());
+        if (Q > 0.0) ao_r += geo.u.x(), ao_z += side * geo.u.z();
+      }
+    }
+
+    // Ball-pocket contact (ball-guided cage, spherical pocket of clearance c_p).
+    {
+      const Vec3 cage_centre = to_orbital(cg[0], cg[1], cg[2], c, sn);
+      PocketGeometry pg;
+      pocket_geometry(rho, zeta, psi - cg[3] - 2.0 * kPi * j / Z, Rp, cage_centre, pg);
+      const double delta = pg.dist - cp;
+      if (delta > 0.0) {
+        const Vec3 n = pg.delta_vec / pg.dist;
+        const Vec3 Vc = to_orbital(cg[4], cg[5], cg[6], c, sn);
+        const double wc = cg[7];
+        const Vec3 Vpocket = Vc + wc * Vec3(-pg.pocket.y(), pg.pocket.x(), 0.0);
+        const double QH = k_pocket_ * delta * std::sqrt(delta);
+        const double ddot = n.dot(Vb - Vpocket);
+        const double Q = std::max(0.0, QH + d_pocket * ddot);
+        diss += (Q - QH) * ddot;
+        Vec3 Fc = Q * n;  // on the cage
+        double Tc = Q * (pg.pocket.x() * n.y() - pg.pocket.y() * n.x());
+        F -= Q * n;
+        if (friction && Q > 0.0) {
+          const Vec3 arm = Rb * n;
+          const Vec3 lever = pg.pocket + pg.delta_vec + arm;  // contact point from the cage centre
+          const Vec3 vrel = Vb + wb.cross(arm) - Vc - wc * Vec3(-lever.y(), lever.x(), 0.0);
+          const Vec3 vt = vrel - vrel.dot(n) * n;
+          const Vec3 Ft = (-Q * mu_over_v(vt.norm())) * vt;
+          F += Ft;
+          M += arm.cross(Ft);
+          Fc -= Ft;
+          Tc -= lever.x() * Ft.y() - lever.y() * Ft.x();
+          diss -= Ft.dot(vt);
+        }
+        F_cage += Vec3(Fc.x() * c - Fc.y() * sn, Fc.x() * sn + Fc.y() * c, Fc.z());
+        T_cage += Tc;
+      }
+    }
+
+    // Newton in cylindrical coordinates, Euler for a sphere in the orbital frame.
+    bd[0] = psid;
+    bd[1] = b[4];
+    bd[2] = b[5];
+    bd[3] = (F.y() / m - 2.0 * b[4] * psid) / R;
+    bd[4] = F.x() / m + R * psid * psid;
+    bd[5] = F.z() / m;
+    bd[6] = M.x() / I + psid * wb.y();
+    bd[7] = M.y() / I - psid * wb.x();
+    bd[8] = M.z() / I;
+
+    if (shares) {
+      BallShare& sh = shares[j];
+      sh.shaft[0] = F_shaft.x() - F_shaft0.x();
+      sh.shaft[1] = F_shaft.y() - F_shaft0.y();
+      sh.shaft[2] = M_shaft.x() - M_shaft0.x();
+      sh.shaft[3] = M_shaft.y() - M_shaft0.y();
+      sh.shaft[4] = M_shaft.z() - M_shaft0.z();
+      for (int i = 0; i < 3; ++i) sh.outer[i] = F_outer(i) - F_outer0(i), sh.cage[i] = F_cage(i) - F_cage0(i);
+      sh.cage[3] = T_cage - T_cage0;
+    }
+  }
+
+  // Cage: translation and spin (tilt neglected).
+  double* cd = zdot + cage_offset();
+  const double mc = spec_.cage_mass;
+  cd[0] = cg[4];
+  cd[1] = cg[5];
+  cd[2] = cg[6];
+  cd[3] = cg[7];
+  cd[4] = F_cage.x() / mc;
+  cd[5] = F_cage.y() / mc - g;
+  cd[6] = F_cage.z() / mc;
+  cd[7] = T_cage / i_cage_;
+
+  // Outer ring, axial: balls and the preload spring, force -side F_p - k_p z_o.
+  double* od = zdot + outer_offset();
+  od[0] = vzo;
+  od[1] = (F_outer.z() - side * spec_.preload - spec_.preload_stiffness * zo) / spec_.outer_ring_mass;
+
+  loads.shaft[0] = F_shaft.x();
+  loads.shaft[1] = F_shaft.y();
+  loads.shaft[2] = M_shaft.x();
+  loads.shaft[3] = M_shaft.y();
+  loads.shaft_torque = M_shaft.z();
+  loads.outer_ring[0] = F_outer.x();
+  loads.outer_ring[1] = F_outer.y();
+  loads.outer_ring[2] = F_outer.z();
+  loads.max_contact_force = qmax;
+  loads.dissipated_power = diss;
+  loads.inner_contact_angle = (ai_r != 0.0 || ai_z != 0.0) ? std::atan2(ai_z, ai_r) : 0.0;
+  loads.outer_contact_angle = (ao_r != 0.0 || ao_z != 0.0) ? std::atan2(ao_z, ao_r) : 0.0;
+}
+
+void BallBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+                                            ElementWorkspace& ws, double* f, double* zdot) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  w.key.Invalidate();
+  Evaluate(s, q, v, z, f, zdot, nullptr, &w.loads);
+  w.key.Set(s.speed, q, v, z);
+}
+
+const BallBearingLoads& BallBearingElement::LoadsAt(const SpinState& s, const double* q, const double* v,
+                                                    const double* z, ElementWorkspace& ws) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  if (w.key.Matches(s.speed, q, v, z)) return w.loads;
+  w.key.Invalidate();
+  CalcBearing(s, q, v, z, OuterFromStates(z), w.loads, w.zdot.data());
+  w.key.Set(s.speed, q, v, z);
+  return w.loads;
+}
+
+void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
+                                     ElementWorkspace& ws, double* J) const {
+  struct Own final : JacobianEvaluator {
+    Own(const BallBearingElement& e, const SpinState& st) : e(e), st(st) {}
+    void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
+                    BallShare* shares) const override {
+      e.Evaluate(st, q, v, z, f, zdot, shares);
+    }
+    const BallBearingElement& e;
+    const SpinState& st;
+  };
+  AddJacobianOf(*this, Own(*this, s), n_states(), q, v, z, ws, J);
+}
+
+void BallBearingElement::AddJacobianOf(const ForceElement& owner, const JacobianEvaluator& eval, int m,
+                                       const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                                       double* J) const {
+  auto& w = static_cast<BallBearingWorkspace&>(ws);
+  constexpr int d = 4;
+  const int rows = d + m, Z = spec_.n_balls, nb = kBallStates * Z;
+  double* in = w.in.data();
+  std::copy(q, q + d, in);
+  std::copy(v, v + d, in + d);
+  std::copy(z, z + m, in + 2 * d);
+  const auto evaluate = [&](std::vector<double>& out, BallShare* shares) {
+    std::fill(out.begin(), out.begin() + rows, 0.0);
+    eval(in, in + d, in + 2 * d, out.data(), out.data() + d, shares);
+  };
+  const auto column = [&](int j) { return J + static_cast<std::size_t>(j) * rows; };
+  evaluate(w.out0, w.share0.data());
+
+  // The shaft's displacements and velocities, then the cage, the outer ring and any states after the core (the
+  // inputs after the balls): one input at a time.
+  const auto one_at_a_time = [&](int j) {
+    const double saved = in[j];
+    const double h = owner.fd_step(j, d, saved);
+    in[j] = saved + h;
+    evaluate(w.out1, nullptr);
+    in[j] = saved;
+    double* col = column(j);
+    for (int r = 0; r < rows; ++r) col[r] += (w.out1[r] - w.out0[r]) / h;
+  };
+  for (int j = 0; j < 2 * d; ++j) one_at_a_time(j);
+  for (int j = 2 * d + nb; j < 2 * d + m; ++j) one_at_a_time(j);
+
+  // State i of every ball at once: a ball's own rows depend on no other ball, and the rows of the sums (shaft
+  // forces, cage, outer ring) are told apart by each ball's share.
+  const double mc = spec_.cage_mass, mo = spec_.outer_ring_mass;
+  const int rc = d + cage_offset(), ro = d + outer_offset(), rs = d + n_core_;
+  const bool radial = m > n_core_;  // the outer ring's radial states follow the core
+  for (int i = 0; i < kBallStates; ++i) {
+    for (int b = 0; b < Z; ++b) {
+      const int k = ball_offset(b) + i;
+      w.step[b] = owner.fd_step(2 * d + k, d, z[k]);
+      in[2 * d + k] = z[k] + w.step[b];
+    }
+    evaluate(w.out1, w.share1.data());
+    for (int b = 0; b < Z; ++b) {
+      const int k = ball_offset(b) + i;
+      in[2 * d + k] = z[k];
+      const double h = w.step[b];
+      double* col = column(2 * d + k);
+      for (int r = d + ball_offset(b); r < d + ball_offset(b) + kBallStates; ++r)
+        col[r] += (w.out1[r] - w.out0[r]) / h;
+      const BallShare& p = w.share1[b];
+      const BallShare& p0 = w.share0[b];
+      for (int r = 0; r < 4; ++r) col[r] += (p.shaft[r] - p0.shaft[r]) / h;
+      for (int r = 0; r < 3; ++r) col[rc + 4 + r] += (p.cage[r] - p0.cage[r]) / (mc * h);
+      col[rc + 7] += (p.cage[3] - p0.cage[3]) / (i_cage_ * h);
+      col[ro + 1] += (p.outer[2] - p0.outer[2]) / (mo * h);
+      if (radial) {
+        col[rs + 2] += (p.outer[0] - p0.outer[0]) / (mo * h);
+        col[rs + 3] += (p.outer[1] - p0.outer[1]) / (mo * h);
+      }
+    }
+  }
+}
+
+void BallBearingElement::Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f,
+                                  double* zdot, BallShare* shares, BallBearingLoads* loads_out) const {
+  BallBearingLoads local;
+  BallBearingLoads& loads = loads_out ? *loads_out : local;
+  CalcBearing(s, q, v, z, OuterFromStates(z), loads, zdot, shares);
+  for (int i = 0; i < 4; ++i) f[i] += loads.shaft[i];
+  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+    const double* o = z + n_core_;
+    double* od = zdot + n_core_;
+    const double k = spec_.outer_ring_stiffness, c = spec_.outer_ring_damping, mo = spec_.outer_ring_mass;
+    od[0] = o[2];
+    od[1] = o[3];
+    od[2] = (loads.outer_ring[0] - k * o[0] - c * o[2]) / mo;
+    od[3] = (loads.outer_ring[1] - k * o[1] - c * o[3]) / mo - gravity_;
+  }
+}
+
+std::vector<ProbeInfo> BallBearingElement::probes() const {
+  const std::string who = "ball bearing '" + name() + "': ";
+  return {{"fx", "N", who + "force transmitted to the housing, horizontal (x)"},
+          {"fy", "N", who + "force transmitted to the housing, vertical (y)"},
+          {"cage_speed_ratio", "1", who + "cage speed / rotor speed"},
+          {"max_contact_force", "N", who + "largest ball-race normal force"},
+          {"outer_ring_axial", "m", who + "axial displacement of the outer ring"},
+          {"inner_contact_angle", "rad", who + "mean loaded inner contact angle"},
+          {"outer_contact_angle", "rad", who + "mean loaded outer contact angle"}};
+}
+
+void BallBearingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+                                    ElementWorkspace& ws, double* out) const {
+  const BallBearingLoads& loads = LoadsAt(s, q, v, z, ws);
+  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+    const double* o = z + n_core_;
+    out[0] = spec_.outer_ring_stiffness * o[0] + spec_.outer_ring_damping * o[2];
+    out[1] = spec_.outer_ring_stiffness * o[1] + spec_.outer_ring_damping * o[3];
+  } else {
+    out[0] = loads.outer_ring[0];
+    out[1] = loads.outer_ring[1];
+  }
+  out[2] = s.speed != 0.0 ? z[cage_offset() + 7] / s.speed : 0.0;
+  out[3] = loads.max_contact_force;
+  out[4] = z[outer_offset()];
+  out[5] = loads.inner_contact_angle;
+  out[6] = loads.outer_contact_angle;
+}
+
+double BallBearingElement::CoreKineticEnergy(const double* z) const {
+  double T = 0.0;
+  for (int j = 0; j < spec_.n_balls; ++j) {
+    const double* b = z + ball_offset(j);
+    const double R = pitch_radius_ + b[1];
+    T += 0.5 * m_ball_ * (b[4] * b[4] + R * R * b[3] * b[3] + b[5] * b[5]) +
+         0.5 * i_ball_ * (b[6] * b[6] + b[7] * b[7] + b[8] * b[8]);
+  }
+  const double* c = z + cage_offset();
+  T += 0.5 * spec_.cage_mass * (c[4] * c[4] + c[5] * c[5] + c[6] * c[6]) + 0.5 * i_cage_ * c[7] * c[7];
+  const double vzo = z[outer_offset() + 1];
+  return T + 0.5 * spec_.outer_ring_mass * vzo * vzo;
+}
+
+double BallBearingElement::KineticEnergy(const double* z) const {
+  double T = CoreKineticEnergy(z);
+  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+    const double* o = z + n_core_;
+    T += 0.5 * spec_.outer_ring_mass * (o[2] * o[2] + o[3] * o[3]);
+  }
+  return T;
+}
+
+double BallBearingElement::CorePotentialEnergy(const double* q, const double* z,
+                                               const OuterRingKinematics& outer) const {
+  const int Z = spec_.n_balls;
+  const double Rp = pitch_radius_;
+  const double* cg = z + cage_offset();
+  const double zo = z[outer_offset()];
+  Race inner, outer_race;
+  inner.dr = inner_dr_, inner.dz = inner_z_, inner.r0 = inner_r_;
+  outer_race.dr = outer_dr_, outer_race.dz = outer_z_, outer_race.r0 = outer_r_;
+  double V = 0.0;
+  for (int j = 0; j < Z; ++j) {
+    const double* b = z + ball_offset(j);
+    const double c = std::cos(b[0]), sn = std::sin(b[0]);
+    const double R = Rp + b[1];
+    inner.centre = to_orbital(q[0], q[1], 0.0, c, sn);
+    inner.tilt = to_orbital(q[2], q[3], 0.0, c, sn);
+    outer_race.centre = to_orbital(outer.x, outer.y, zo, c, sn);
+    RaceGeometry geo;
+    if (race_geometry(inner, R, b[1], b[2], geo))
+      V += 0.4 * hertz_inner_.stiffness * geo.delta * geo.delta * std::sqrt(geo.delta);
+    if (race_geometry(outer_race, R, b[1], b[2], geo))
+      V += 0.4 * hertz_outer_.stiffness * geo.delta * geo.delta * std::sqrt(geo.delta);
+    PocketGeometry pg;
+    pocket_geometry(b[1], b[2], b[0] - cg[3] - 2.0 * kPi * j / Z, Rp, to_orbital(cg[0], cg[1], cg[2], c, sn), pg);
+    const double dp = pg.dist - spec_.pocket_clearance;
+    if (dp > 0.0) V += 0.4 * k_pocket_ * dp * dp * std::sqrt(dp);
+    V += m_ball_ * gravity_ * R * sn;
+  }
+  V += spec_.cage_mass * gravity_ * cg[1];
+  V += spec_.side * spec_.preload * zo + 0.5 * spec_.preload_stiffness * zo * zo;
+  return V;
+}
+
+double BallBearingElement::PotentialEnergy(const double* q, const double* z) const {
+  double V = CorePotentialEnergy(q, z, OuterFromStates(z));
+  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+    const double* o = z + n_core_;
+    V += 0.5 * spec_.outer_ring_stiffness * (o[0] * o[0] + o[1] * o[1]) + spec_.outer_ring_mass * gravity_ * o[1];
+  }
+  return V;
+}
+
+double BallBearingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                                           ElementWorkspace& ws) const {
+  double P = LoadsAt(s, q, v, z, ws).dissipated_power;
+  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+    const double* o = z + n_core_;
+    P += spec_.outer_ring_damping * (o[2] * o[2] + o[3] * o[3]);
+  }
+  return P;
+}
+
+double BallBearingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                                      ElementWorkspace& ws) const {
+  return -LoadsAt(s, q, v, z, ws).shaft_torque * s.speed;
+}
+
+}  // namespace turbodyn

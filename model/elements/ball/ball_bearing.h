@@ -1,0 +1,186 @@
+// Angular-contact ball bearing as a multibody force element (paper §2.1.2 and §2.2): inner ring (the shaft),
+// Z balls, a ball-guided cage and an outer ring, 11 bodies for Z = 8. Every ball is a rigid sphere in contact
+// with both grooves (Hertz, Eq. 20 in the exact-ellipse form, plus linear damping, Eq. 21) and with its cage
+// pocket; tangential forces follow the regularised Coulomb law of Eqs. 22-23 at the slip velocity of each contact.
+//
+// Ball j, in cylindrical coordinates about the bearing axis (psi orbital angle, r = R_p + rho, axial zeta) and
+// with its angular velocity w written in the ball's orbital frame (e_r, e_psi, e_z), which turns at psi':
+//   m (rho'' - r psi'^2) = F_r,   m (r psi'' + 2 rho' psi') = F_psi,   m zeta'' = F_z,
+//   I (w' + psi' e_z x w) = M            (sphere: I = m D^2 / 10, no gyroscopic term of its own)
+// Cage: translations x, y, z and spin about z; tilt neglected. Outer ring: axial DOF on the preload spring,
+// radial x, y fixed, on a spring-damper, or given by a wrapping element (see CalcBearing). No ring tilt.
+// docs/ball-bearing.md gives the equations, the sign conventions and the assumptions.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/elements/force_element.h"
+#include "model/spec/ball_bearing_spec.h"
+
+namespace turbodyn {
+
+/// Hertz point contact of two elastic bodies (Johnson 1985, §4.2; Hamrock & Dowson 1981, ch. 3), with the exact
+/// ellipse: the ellipticity k = a/b solves k^2 E(e) = (1 + R_y/R_x) K(e) - (R_y/R_x) E(e), e^2 = 1 - 1/k^2
+/// (complete elliptic integrals K, E), and then F = K_c delta^(3/2) with K_c = pi k E' sqrt(2 E R / 9) / K^(3/2).
+struct HertzPointContact {
+  double curvature_sum = 0.0;  ///< 1/R = 1/R_x + 1/R_y in 1/m
+  double ellipticity = 1.0;    ///< k = a / b (>= 1)
+  double integral_k = 0.0;     ///< K(e), complete elliptic integral of the first kind
+  double integral_e = 0.0;     ///< E(e), second kind
+  double stiffness = 0.0;      ///< K_c in N/m^1.5: F = K_c delta^1.5
+  /// sqrt(a b) = radius_factor * F^(1/3) (m / N^(1/3)), mean radius of the contact ellipse.
+  double radius_factor = 0.0;
+};
+
+/// curvature_x, curvature_y: principal curvature sums of the two bodies in the two principal planes (1/m, concave
+/// negative), both > 0; modulus: E' = 2 / ((1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2) in Pa (Hamrock's E').
+HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y, double modulus);
+
+/// Curvature sums (1/m) of a ball of diameter D in a race groove of ratio f at contact angle alpha, pitch
+/// diameter d_m, rolling direction x and transverse direction y (Harris & Kotzalas 2007, ch. 2).
+void RaceCurvatures(double D, double d_m, double f, double alpha, bool inner, double* curvature_x,
+                    double* curvature_y);
+
+/// Radial kinematics of the outer ring in the housing frame: position (m) and velocity (m/s).
+struct OuterRingKinematics {
+  double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
+};
+
+/// One ball's share of the sums CalcBearing() forms over the balls (housing frame): forces and moments on the
+/// shaft, on the outer ring and on the cage.
+struct BallShare {
+  double shaft[5] = {0, 0, 0, 0, 0};   ///< x, y (N), about x, y, z (N m)
+  double outer[3] = {0, 0, 0};         ///< x, y, z (N)
+  double cage[4] = {0, 0, 0, 0};       ///< x, y, z (N), torque about the axis (N m)
+};
+
+/// What one bearing evaluation gives besides the state derivatives.
+struct BallBearingLoads {
+  double shaft[4] = {0, 0, 0, 0};       ///< generalised forces on the shaft: x, y (N), about x, y (N m)
+  double shaft_torque = 0.0;            ///< moment on the shaft about the spin axis (N m; a drag is < 0)
+  double outer_ring[3] = {0, 0, 0};     ///< force of the balls on the outer ring, x, y, z (N)
+  double max_contact_force = 0.0;       ///< largest ball-race normal force (N)
+  double dissipated_power = 0.0;        ///< contact damping and friction (W, >= 0)
+  double inner_contact_angle = 0.0;     ///< mean direction of the loaded inner contacts (rad), 0 if none
+  double outer_contact_angle = 0.0;     ///< same, outer contacts
+};
+
+class BallBearingElement final : public ForceElement {
+ public:
+  /// Attached to the 4 rotor DOFs (x, y, theta_x, theta_y) starting at node_dof. gravity: m/s^2 along -y.
+  /// Throws std::invalid_argument naming the bad field if !spec.IsValid().
+  ///
+  /// States (n_states()), blocks in this order:
+  ///   ball j = 0..Z-1, 9 each: psi (rad), rho (m, r - R_p), zeta (m), psi' (rad/s), rho' (m/s), zeta' (m/s),
+  ///                            w_r, w_psi, w_z (rad/s, absolute angular velocity in the ball's orbital frame)
+  ///   cage, 8:                 x, y, z (m), angle (rad), vx, vy, vz (m/s), spin (rad/s)
+  ///   outer ring axial, 2:     z_o (m), v_zo (m/s)
+  ///   kSpring only, 4:         x_o, y_o (m), vx_o, vy_o (m/s)
+  /// The first n_core_states() (all but the last block) are the states CalcBearing() works on.
+  BallBearingElement(const std::string& name, const BallBearingSpec& spec, int node_dof, double gravity);
+
+  const BallBearingSpec& spec() const { return spec_; }
+  int n_core_states() const { return n_core_; }
+  static constexpr int kBallStates = 9, kCageStates = 8;
+  int ball_offset(int j) const { return kBallStates * j; }
+  int cage_offset() const { return kBallStates * spec_.n_balls; }
+  int outer_offset() const { return cage_offset() + kCageStates; }
+
+  /// Static preload equilibrium (no gravity, no speed), balls equally spaced, everything at rest.
+  void initial_states(double* z) const override;
+  /// initial_states(), then (speed != 0) the no-slip ball and cage speeds of steady_states().
+  void initial_states_at_speed(double speed, double* z) const override;
+  /// Sets the ball orbital and spin speeds and the cage speed to their no-slip values at rotor speed `speed`
+  /// (rad/s): outer-race control, spin axis normal to the outer contact line (Jones 1960; Harris & Kotzalas 2007,
+  /// ball kinematics), contact angle from the ball positions in z; positions are left as they are.
+  void steady_states(double speed, double* z) const;
+
+  std::unique_ptr<ElementWorkspace> make_workspace() const override;
+  double state_scale(int i) const override;
+  /// The balls: each ball's equations involve only itself, the cage, the outer ring and the shaft.
+  std::vector<int> independent_state_blocks() const override {
+    return std::vector<int>(static_cast<std::size_t>(spec_.n_balls), kBallStates);
+  }
+  /// Finite differences that use the balls' independence: the shaft, cage and outer-ring inputs one at a time,
+  /// the balls' states one index at a time for all balls at once, each ball's rows and its share of the sums
+  /// (BallShare) telling the balls apart: 2d + 19 (+4 with a spring-mounted outer ring) evaluations instead of
+  /// 2d + 9 Z + 10. Steps as the engine's (fd_relative_step(), state_scale()).
+  bool has_jacobian() const override { return true; }
+  int jacobian_evaluations() const override { return 1 + 8 + (n_states() - kBallStates * spec_.n_balls) + kBallStates; }
+  void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                   double* J) const override;
+  /// What AddJacobianOf differentiates: an element's outputs [f (4); zdot] at inputs (q, v, z), added to f and
+  /// written to zdot, with each ball's share of the sums.
+  struct JacobianEvaluator {
+    virtual ~JacobianEvaluator() = default;
+    virtual void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
+                            BallShare* shares) const = 0;
+  };
+  /// AddJacobian for an element `owner` that is this bearing or wraps it (a squeeze-film damper): m states, the
+  /// core states first, then (m > n_core_states()) the outer ring's x, y, vx, vy, whose accelerations contain the
+  /// balls' force on the ring divided by the outer-ring mass, plus terms that depend on those 4 states only. Steps
+  /// are owner.fd_step(); ws is a workspace of this bearing.
+  void AddJacobianOf(const ForceElement& owner, const JacobianEvaluator& eval, int m, const double* q,
+                     const double* v, const double* z, ElementWorkspace& ws, double* J) const;
+  std::vector<ProbeInfo> probes() const override;
+  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                  double* out) const override;
+  double KineticEnergy(const double* z) const override;
+  double PotentialEnergy(const double* q, const double* z) const override;
+  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                         ElementWorkspace& ws) const override;
+  /// Drive power through the drag torque on the shaft, -T Omega (the rotor spin is prescribed).
+  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                    ElementWorkspace& ws) const override;
+
+  /// The bearing without its outer-ring radial dynamics, for this element and for an element that wraps it
+  /// (a squeeze-film damper owning the outer ring's radial states): given the shaft (q, v at the 4 DOFs), the
+  /// core states z (n_core_states() values) and the outer ring's radial kinematics, writes the derivatives of
+  /// the core states into zdot and the forces into loads (which it overwrites). Allocates nothing.
+  /// shares: if not null, n_balls entries that receive each ball's share of the sums.
+  void CalcBearing(const SpinState& s, const double* q, const double* v, const double* z,
+                   const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
+                   BallShare* shares = nullptr) const;
+  /// Hertz (races and pockets), preload-spring and gravity energy of the core bodies (J); the radial spring of
+  /// kSpring and the outer ring's radial gravity are not included.
+  double CorePotentialEnergy(const double* q, const double* z, const OuterRingKinematics& outer) const;
+  /// Kinetic energy of balls, cage and the outer ring's axial motion (J).
+  double CoreKineticEnergy(const double* z) const;
+
+  /// Derived constants (for tests and documentation).
+  const HertzPointContact& inner_contact() const { return hertz_inner_; }
+  const HertzPointContact& outer_contact() const { return hertz_outer_; }
+  double pocket_stiffness() const { return k_pocket_; }  ///< N/m^1.5
+  double ball_mass() const { return m_ball_; }           ///< kg
+  double preload_displacement() const { return zo_eq_; } ///< z_o at the static preload equilibrium (m)
+
+ protected:
+  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                          double* f, double* zdot) const override;
+
+ private:
+  OuterRingKinematics OuterFromStates(const double* z) const;
+  /// DoCalcAndAddForces with the balls' shares of the sums (shares: n_balls entries, or null) and the loads
+  /// (loads_out, or null).
+  void Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f, double* zdot,
+                BallShare* shares, BallBearingLoads* loads_out = nullptr) const;
+  /// The loads at this state: those of the last engine evaluation if its inputs were the same, else evaluated.
+  const BallBearingLoads& LoadsAt(const SpinState& s, const double* q, const double* v, const double* z,
+                                  ElementWorkspace& ws) const;
+  BallBearingSpec spec_;
+  double gravity_ = 0.0;
+  int n_core_ = 0;
+  HertzPointContact hertz_inner_, hertz_outer_;
+  double k_pocket_ = 0.0;
+  double m_ball_ = 0.0, i_ball_ = 0.0, i_cage_ = 0.0;
+  double pitch_radius_ = 0.0;
+  // Groove-centre circles: radius offset from the pitch radius and axial position (ring frames), and the
+  // unloaded distance (f - 1/2) D from the groove centre to the ball centre.
+  double inner_dr_ = 0.0, inner_z_ = 0.0, inner_r_ = 0.0;
+  double outer_dr_ = 0.0, outer_z_ = 0.0, outer_r_ = 0.0;
+  // Static preload equilibrium: outer ring z, ball rho and zeta.
+  double zo_eq_ = 0.0, rho_eq_ = 0.0, zeta_eq_ = 0.0;
+};
+
+}  // namespace turbodyn

@@ -1,0 +1,198 @@
+#include "model/elements/ball/ball_damper_element.h"
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "model/films/film_geometry.h"
+
+namespace turbodyn {
+
+struct BallDamperElement::Evaluation {
+  BallBearingLoads loads;
+  reynolds::FilmResult film;
+  std::vector<double> zdot;  ///< core-state derivatives (sized once)
+};
+
+namespace {
+
+BallBearingSpec external(BallBearingSpec s) {
+  s.outer_ring_mode = OuterRingMode::kExternal;
+  return s;
+}
+
+struct BallDamperWorkspace : ElementWorkspace {
+  BallDamperWorkspace(reynolds::FilmSolver s, int n_states, int n_core) : solver(std::move(s)), key(4, n_states) {
+    eval.film.hole_flows.reserve(8);
+    eval.zdot.resize(n_core);
+  }
+  reynolds::FilmSolver solver;
+  BallDamperElement::Evaluation eval;
+  EvaluationKey key;  // the state of `eval`
+  // AddJacobian: the bearing's workspace, and the film at the ring state of fd_key (x, y, vx, vy), which most
+  // finite-difference evaluations share (only the ring's own columns move the film).
+  std::unique_ptr<ElementWorkspace> bearing;
+  reynolds::FilmResult fd_film;
+  double fd_key[4] = {0, 0, 0, 0};
+  bool fd_valid = false;
+};
+
+}  // namespace
+
+BallDamperElement::BallDamperElement(const std::string& name, const BallBearingSpec& bearing,
+                                     const DamperSpec& damper, const OilSpec& oil, int node_dof, double gravity)
+    : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3},
+                   BallBearingElement(name, external(bearing), node_dof, gravity).n_core_states() + 4),
+      bearing_(name, external(bearing), node_dof, gravity),
+      damper_(damper),
+      gravity_(gravity),
+      ring_mass_(bearing.outer_ring_mass),
+      n_core_(bearing_.n_core_states()) {
+  geometry_ = film_geometry(damper, options_);
+  viscosity_ = oil.viscosity_at(damper.oil_temperature > 0.0 ? damper.oil_temperature : oil.temperature);
+  reynolds::FilmSolver check(geometry_, viscosity_, options_);  // inconsistent geometry fails now, not mid-run
+}
+
+std::unique_ptr<ElementWorkspace> BallDamperElement::make_workspace() const {
+  auto w = std::make_unique<BallDamperWorkspace>(reynolds::FilmSolver(geometry_, viscosity_, options_), n_states(),
+                                                 n_core_);
+  w->bearing = bearing_.make_workspace();
+  w->fd_film.hole_flows.reserve(8);
+  return w;
+}
+
+void BallDamperElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
+                                    ElementWorkspace& ws, double* J) const {
+  auto& w = static_cast<BallDamperWorkspace&>(ws);
+  w.fd_valid = false;
+  struct Wrapped final : BallBearingElement::JacobianEvaluator {
+    Wrapped(const BallDamperElement& e, const SpinState& st, BallDamperWorkspace& w) : e(e), st(st), w(w) {}
+    void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
+                    BallShare* shares) const override {
+      const double* ring = z + e.n_core_;
+      const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
+      BallBearingLoads loads;
+      e.bearing_.CalcBearing(st, q, v, z, outer, loads, zdot, shares);
+      if (!w.fd_valid || std::memcmp(w.fd_key, ring, sizeof w.fd_key) != 0) {
+        w.fd_valid = false;
+        if (!w.solver.solve(e.FilmState(ring), w.fd_film))
+          throw std::runtime_error("squeeze-film damper of bearing '" + e.name() + "': " + w.solver.last_error());
+        std::memcpy(w.fd_key, ring, sizeof w.fd_key);
+        w.fd_valid = true;
+      }
+      for (int k = 0; k < 4; ++k) f[k] += loads.shaft[k];
+      e.RingDerivatives(ring, loads, w.fd_film, zdot + e.n_core_);
+    }
+    const BallDamperElement& e;
+    const SpinState& st;
+    BallDamperWorkspace& w;
+  };
+  bearing_.AddJacobianOf(*this, Wrapped(*this, s, w), n_states(), q, v, z, *w.bearing, J);
+}
+
+reynolds::FilmState BallDamperElement::FilmState(const double* ring) const {
+  reynolds::FilmState f;  // the outer ring is the (non-rotating) journal, the housing the bush
+  f.ex = ring[0];
+  f.ey = ring[1];
+  f.vx = ring[2];
+  f.vy = ring[3];
+  return f;
+}
+
+void BallDamperElement::RingDerivatives(const double* ring, const BallBearingLoads& loads,
+                                        const reynolds::FilmResult& film, double* dring) const {
+  const double kc = damper_.centring_stiffness;
+  dring[0] = ring[2];
+  dring[1] = ring[3];
+  dring[2] = (loads.outer_ring[0] + film.fx - kc * ring[0]) / ring_mass_;
+  dring[3] = (loads.outer_ring[1] + film.fy - kc * ring[1]) / ring_mass_ - gravity_;
+}
+
+void BallDamperElement::initial_states_at_speed(double speed, double* z) const {
+  bearing_.initial_states_at_speed(speed, z);
+  for (int i = 0; i < 4; ++i) z[n_core_ + i] = 0.0;  // outer ring centred in the damper, at rest
+}
+
+void BallDamperElement::initial_states(double* z) const { initial_states_at_speed(0.0, z); }
+
+double BallDamperElement::state_scale(int i) const {
+  if (i < n_core_) return bearing_.state_scale(i);
+  return i < n_core_ + 2 ? 1e-6 : 1e-3;
+}
+
+const BallDamperElement::Evaluation& BallDamperElement::Evaluate(const SpinState& s, const double* q,
+                                                                 const double* v, const double* z,
+                                                                 ElementWorkspace& ws) const {
+  auto& w = static_cast<BallDamperWorkspace&>(ws);
+  if (w.key.Matches(s.speed, q, v, z)) return w.eval;
+  w.key.Invalidate();
+  const double* ring = z + n_core_;
+  const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
+  bearing_.CalcBearing(s, q, v, z, outer, w.eval.loads, w.eval.zdot.data());
+  if (!w.solver.solve(FilmState(ring), w.eval.film))
+    throw std::runtime_error("squeeze-film damper of bearing '" + name() + "': " + w.solver.last_error());
+  w.key.Set(s.speed, q, v, z);
+  return w.eval;
+}
+
+void BallDamperElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+                                           ElementWorkspace& ws, double* f, double* zdot) const {
+  const Evaluation& e = Evaluate(s, q, v, z, ws);
+  for (int k = 0; k < 4; ++k) f[k] += e.loads.shaft[k];
+  std::memcpy(zdot, e.zdot.data(), static_cast<std::size_t>(n_core_) * sizeof(double));
+  RingDerivatives(z + n_core_, e.loads, e.film, zdot + n_core_);
+}
+
+std::vector<ProbeInfo> BallDamperElement::probes() const {
+  const std::string who = "bearing '" + name() + "': ";
+  return {{"fx", "N", who + "force transmitted to the housing through the damper, horizontal (x)"},
+          {"fy", "N", who + "force transmitted to the housing through the damper, vertical (y)"},
+          {"damper_x", "m", who + "outer ring displacement in the damper, horizontal"},
+          {"damper_y", "m", who + "outer ring displacement in the damper, vertical"},
+          {"damper_eccentricity", "1", who + "damper eccentricity ratio e/c"},
+          {"cage_speed_ratio", "1", who + "cage speed / rotor speed"},
+          {"max_contact_force", "N", who + "largest ball-race normal force"}};
+}
+
+void BallDamperElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+                                   ElementWorkspace& ws, double* out) const {
+  const Evaluation& e = Evaluate(s, q, v, z, ws);
+  const double* ring = z + n_core_;
+  const double kc = damper_.centring_stiffness;
+  out[0] = -e.film.fx + kc * ring[0];  // the film and the spring push the housing
+  out[1] = -e.film.fy + kc * ring[1];
+  out[2] = ring[0];
+  out[3] = ring[1];
+  out[4] = std::hypot(ring[0], ring[1]) / damper_.clearance;
+  const double cage_spin = z[bearing_.cage_offset() + 7];
+  out[5] = s.speed != 0.0 ? cage_spin / s.speed : 0.0;
+  out[6] = e.loads.max_contact_force;
+}
+
+double BallDamperElement::PotentialEnergy(const double* q, const double* z) const {
+  const double* ring = z + n_core_;
+  const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
+  return bearing_.CorePotentialEnergy(q, z, outer) +
+         0.5 * damper_.centring_stiffness * (ring[0] * ring[0] + ring[1] * ring[1]) + ring_mass_ * gravity_ * ring[1];
+}
+
+double BallDamperElement::KineticEnergy(const double* z) const {
+  const double* ring = z + n_core_;
+  return bearing_.CoreKineticEnergy(z) + 0.5 * ring_mass_ * (ring[2] * ring[2] + ring[3] * ring[3]);
+}
+
+double BallDamperElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                                          ElementWorkspace& ws) const {
+  const Evaluation& e = Evaluate(s, q, v, z, ws);
+  const double* ring = z + n_core_;
+  return e.loads.dissipated_power - (e.film.fx * ring[2] + e.film.fy * ring[3]);
+}
+
+double BallDamperElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                                     ElementWorkspace& ws) const {
+  return -Evaluate(s, q, v, z, ws).loads.shaft_torque * s.speed;
+}
+
+}  // namespace turbodyn

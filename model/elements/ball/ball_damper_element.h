@@ -1,0 +1,72 @@
+// A ball bearing in a squeeze-film damper (paper §3.3, variant III): the multibody ball bearing of
+// model/elements/ball/ball_bearing.h whose outer ring, instead of being held by the housing, moves radially in a non-rotating
+// oil film (Reynolds' equation at every call), kept from spinning by an anti-rotation pin and optionally centred by
+// a spring k_c:
+//   m_o p'' = F_balls(p, p', ...) + F_film(p, p') - k_c p - m_o g e_y,
+// p = (x_o, y_o) the outer ring's centre, m_o the outer ring's mass. The balls, the cage and the outer ring's axial
+// preload motion are the ball bearing's own states (BallBearingElement::CalcBearing).
+#pragma once
+
+#include "model/elements/ball/ball_bearing.h"
+#include "model/elements/force_element.h"
+#include "model/spec/model_spec.h"
+#include "model/films/reynolds.h"
+
+namespace turbodyn {
+
+class BallDamperElement final : public ForceElement {
+ public:
+  /// `bearing` must have outer_ring_mode = kExternal. States: the ball bearing's core states, then the outer
+  /// ring's x_o, y_o (m), vx_o, vy_o (m/s).
+  BallDamperElement(const std::string& name, const BallBearingSpec& bearing, const DamperSpec& damper,
+                    const OilSpec& oil, int node_dof, double gravity);
+
+  std::unique_ptr<ElementWorkspace> make_workspace() const override;
+  void initial_states(double* z) const override;
+  void initial_states_at_speed(double speed, double* z) const override;
+  double state_scale(int i) const override;
+  /// The bearing's balls (the damper ring's states join the border).
+  std::vector<int> independent_state_blocks() const override { return bearing_.independent_state_blocks(); }
+  double fd_relative_step() const override { return 1e-6; }
+  /// The bearing's finite differences (BallBearingElement::AddJacobianOf: the balls' states one index at a time
+  /// for all balls at once), with the damper film solved again only for the ring's own 4 columns.
+  bool has_jacobian() const override { return true; }
+  int jacobian_evaluations() const override { return bearing_.jacobian_evaluations() + 4; }
+  void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                   double* J) const override;
+  std::vector<ProbeInfo> probes() const override;
+  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                  double* out) const override;
+  double PotentialEnergy(const double* q, const double* z) const override;
+  double KineticEnergy(const double* z) const override;
+  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                         ElementWorkspace& ws) const override;
+  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                    ElementWorkspace& ws) const override;
+
+  const BallBearingElement& bearing() const { return bearing_; }
+
+ protected:
+  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                          double* f, double* zdot) const override;
+
+ public:
+  struct Evaluation;  ///< one evaluation of bearing and film (defined in the .cpp)
+
+ private:
+  const Evaluation& Evaluate(const SpinState& s, const double* q, const double* v, const double* z,
+                             ElementWorkspace& ws) const;
+  /// The film's input at the ring states (x, y, vx, vy).
+  reynolds::FilmState FilmState(const double* ring) const;
+  /// Derivatives of the ring's 4 states from the balls' and the film's forces on it and the centring spring.
+  void RingDerivatives(const double* ring, const BallBearingLoads& loads, const reynolds::FilmResult& film,
+                       double* dring) const;
+  BallBearingElement bearing_;
+  DamperSpec damper_;
+  reynolds::FilmGeometry geometry_;
+  reynolds::SolverOptions options_;
+  double viscosity_ = 0.0, gravity_ = 0.0, ring_mass_ = 0.0;
+  int n_core_ = 0;
+};
+
+}  // namespace turbodyn

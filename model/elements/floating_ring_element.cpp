@@ -1,0 +1,247 @@
+#include "model/elements/floating_ring_element.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace turbodyn {
+
+struct FloatingRingElement::Films {
+  reynolds::FilmResult inner, outer;  ///< the inner film's force, moment rotated into the housing frame
+  double hole_pressure = 0.0;         ///< Pa gauge, mean over the drill holes' inner mouths
+};
+
+namespace {
+
+struct RingWorkspace : ElementWorkspace {
+  RingWorkspace(reynolds::FilmSolver i, reynolds::FilmSolver o) : inner(std::move(i)), outer(std::move(o)) {
+    films.inner.hole_flows.reserve(8);
+    films.outer.hole_flows.reserve(8);
+  }
+  reynolds::FilmSolver inner, outer;
+  FloatingRingElement::Films films;
+  EvaluationKey key{4, FloatingRingElement::kStates};  // the state of `films`
+};
+
+// Rotates (x, y) by angle a (c = cos a, s = sin a).
+inline void rotate(double c, double s, double& x, double& y) {
+  const double xr = c * x - s * y;
+  y = s * x + c * y;
+  x = xr;
+}
+
+// Gauge pressure of a solved film at mid-width, angle theta (film frame), linearly interpolated.
+double midwidth_pressure(const reynolds::FilmSolver& solver, double theta) {
+  const reynolds::FilmGeometry& g = solver.geometry();
+  const std::vector<double>& p = solver.pressure();
+  const int n = g.n_circ, nz = g.n_axial;
+  double u = theta / (2.0 * M_PI);
+  u = (u - std::floor(u)) * n;
+  const int i0 = std::min(static_cast<int>(u), n - 1), i1 = (i0 + 1) % n;
+  const double w = u - i0;
+  // Nodes at z_j = -L/2 + (j + 1) L / (nz + 1): mid-width is node (nz - 1) / 2 for odd nz, halfway between the
+  // two middle nodes for even nz.
+  const int ja = (nz - 1) / 2, jb = nz / 2;
+  auto at = [&](int i) { return 0.5 * (p[i * nz + ja] + p[i * nz + jb]); };
+  return (1.0 - w) * at(i0) + w * at(i1);
+}
+
+}  // namespace
+
+FloatingRingElement::FloatingRingElement(const std::string& name, const FloatingRingSpec& spec, const OilSpec& oil,
+                                         int node_dof, double gravity)
+    : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3}, kStates),
+      spec_(spec),
+      gravity_(gravity),
+      density_(oil.density) {
+  inner_.radius = 0.5 * spec.inner_diameter;
+  inner_.length = spec.inner_length;
+  inner_.clearance = spec.inner_clearance;
+  outer_.radius = 0.5 * spec.outer_diameter;
+  outer_.length = spec.outer_length;
+  outer_.clearance = spec.outer_clearance;
+  for (reynolds::FilmGeometry* g : {&inner_, &outer_}) {
+    g->n_circ = spec.n_circ;
+    g->n_axial = spec.n_axial;
+  }
+  if (spec.feed_hole_diameter > 0.0)
+    outer_.holes.push_back({spec.feed_hole_angle, 0.0, spec.feed_hole_diameter, spec.supply_pressure});
+  if (spec.drill_holes > 8) throw std::invalid_argument("floating-ring bearing: at most 8 drill holes");
+  for (int k = 0; k < spec.drill_holes; ++k)
+    inner_.holes.push_back({spec.drill_hole_angle + 2.0 * M_PI * k / spec.drill_holes, 0.0, spec.drill_hole_diameter,
+                            0.0});
+  if (!reynolds::cavitation_from_string(spec.cavitation, options_.cavitation))
+    throw std::logic_error("unknown cavitation model '" + spec.cavitation + "'");
+  eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
+  eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
+  inertia_diametral_ = spec.ring_diametral_inertia;
+  if (inertia_diametral_ <= 0.0) {
+    // Thick-walled cylinder: bore D_i + 2 c_i, outside D_o - 2 c_o, width of the outer film.
+    const double ri = 0.5 * spec.inner_diameter + spec.inner_clearance;
+    const double ro = 0.5 * spec.outer_diameter - spec.outer_clearance;
+    const double b = spec.outer_length;
+    inertia_diametral_ = spec.ring_mass * (3.0 * (ro * ro + ri * ri) + b * b) / 12.0;
+  }
+  reynolds::FilmSolver a(inner_, eta_inner_, options_), c(outer_, eta_outer_, options_);  // fail now, not mid-run
+}
+
+std::unique_ptr<ElementWorkspace> FloatingRingElement::make_workspace() const {
+  return std::make_unique<RingWorkspace>(reynolds::FilmSolver(inner_, eta_inner_, options_),
+                                         reynolds::FilmSolver(outer_, eta_outer_, options_));
+}
+
+double FloatingRingElement::state_scale(int i) const {
+  static constexpr double kScale[kStates] = {1e-6, 1e-6, 1e-3, 1e-3, 1e-5, 1e-5, 1e-2, 1e-2, 10.0, 1.0};
+  return kScale[i];
+}
+
+double FloatingRingElement::centrifugal_head(double w_r) const {
+  if (!spec_.drill_hole_centrifugal) return 0.0;
+  const double ro = 0.5 * spec_.outer_diameter, ri = 0.5 * spec_.inner_diameter;
+  return 0.5 * density_ * w_r * w_r * (ro * ro - ri * ri);
+}
+
+const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s, const double* q, const double* v,
+                                                             const double* z, ElementWorkspace& ws) const {
+  auto& w = static_cast<RingWorkspace&>(ws);
+  if (w.key.Matches(s.speed, q, v, z)) return w.films;
+  w.key.Invalidate();
+  const double wr = z[kSpin];
+
+  // Outer film: the ring in the housing, housing frame.
+  reynolds::FilmState out;
+  out.ex = z[kX];
+  out.ey = z[kY];
+  out.vx = z[kVx];
+  out.vy = z[kVy];
+  out.sx = z[kAy];  // slopes of the ring axis: dx/dz = ay, dy/dz = -ax
+  out.sy = -z[kAx];
+  out.dsx = z[kWy];
+  out.dsy = -z[kWx];
+  out.omega_inner = wr;
+  if (!w.outer.solve(out, w.films.outer))
+    throw std::runtime_error("floating-ring bearing '" + name() + "', outer film: " + w.outer.last_error());
+
+  // Inner film: the journal relative to the ring, in the ring frame (rotated by -phi_r). A vector e fixed in the
+  // housing frame appears as e' = R(-phi) e, with rate R(-phi) e' - w_r J e' (J the quarter turn).
+  const double c = std::cos(z[kAngle]), sn = std::sin(z[kAngle]);
+  reynolds::FilmState in;
+  in.ex = q[0] - z[kX];
+  in.ey = q[1] - z[kY];
+  in.vx = v[0] - z[kVx];
+  in.vy = v[1] - z[kVy];
+  in.sx = q[3] - z[kAy];
+  in.sy = -q[2] + z[kAx];
+  in.dsx = v[3] - z[kWy];
+  in.dsy = -v[2] + z[kWx];
+  rotate(c, -sn, in.ex, in.ey);
+  rotate(c, -sn, in.vx, in.vy);
+  rotate(c, -sn, in.sx, in.sy);
+  rotate(c, -sn, in.dsx, in.dsy);
+  in.vx += wr * in.ey;
+  in.vy -= wr * in.ex;
+  in.dsx += wr * in.sy;
+  in.dsy -= wr * in.sx;
+  in.omega_inner = s.speed - wr;
+  in.omega_outer = 0.0;
+  double hole_sum = 0.0;
+  if (!inner_.holes.empty()) {
+    in.use_override = true;
+    const double head = centrifugal_head(wr);
+    for (std::size_t k = 0; k < inner_.holes.size(); ++k) {
+      const double p_outer = midwidth_pressure(w.outer, z[kAngle] + inner_.holes[k].theta);
+      in.hole_pressure_override[k] = std::max(p_outer - head, inner_.cavitation_pressure);
+      hole_sum += in.hole_pressure_override[k];
+    }
+  }
+  if (!w.inner.solve(in, w.films.inner))
+    throw std::runtime_error("floating-ring bearing '" + name() + "', inner film: " + w.inner.last_error());
+  reynolds::FilmResult& i = w.films.inner;
+  rotate(c, sn, i.fx, i.fy);
+  rotate(c, sn, i.mx, i.my);
+  w.films.hole_pressure = inner_.holes.empty() ? 0.0 : hole_sum / inner_.holes.size();
+  w.key.Set(s.speed, q, v, z);
+  return w.films;
+}
+
+void FloatingRingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+                                             ElementWorkspace& ws, double* f, double* zdot) const {
+  const Films& films = Solve(s, q, v, z, ws);
+  const reynolds::FilmResult& i = films.inner;
+  const reynolds::FilmResult& o = films.outer;
+  f[0] += i.fx;
+  f[1] += i.fy;
+  f[2] += i.mx;
+  f[3] += i.my;
+  const double m = spec_.ring_mass, ip = spec_.ring_polar_inertia, id = inertia_diametral_;
+  zdot[kX] = z[kVx];
+  zdot[kY] = z[kVy];
+  zdot[kVx] = (-i.fx + o.fx) / m;
+  zdot[kVy] = (-i.fy + o.fy) / m - gravity_;
+  // Torque on the ring: from the inner film on its bore (the film's outer surface) and from the outer film on its
+  // outer surface (that film's inner surface).
+  const double wr = z[kSpin], dwr = (i.torque_outer + o.torque_inner) / ip;
+  zdot[kSpin] = dwr;
+  zdot[kAngle] = wr;
+  if (spec_.ring_tilt) {
+    zdot[kAx] = z[kWx];
+    zdot[kAy] = z[kWy];
+    zdot[kWx] = (-i.mx + o.mx - ip * (wr * z[kWy] + dwr * z[kAy])) / id;
+    zdot[kWy] = (-i.my + o.my + ip * (wr * z[kWx] + dwr * z[kAx])) / id;
+  } else {
+    zdot[kAx] = zdot[kAy] = zdot[kWx] = zdot[kWy] = 0.0;
+  }
+}
+
+std::vector<ProbeInfo> FloatingRingElement::probes() const {
+  const std::string who = "bearing '" + name() + "': ";
+  return {{"fx", "N", who + "force transmitted to the housing, horizontal (x)"},
+          {"fy", "N", who + "force transmitted to the housing, vertical (y)"},
+          {"ring_speed_ratio", "1", who + "ring speed / rotor speed"},
+          {"inner_eccentricity", "1", who + "inner-film eccentricity ratio at mid-width"},
+          {"outer_eccentricity", "1", who + "outer-film eccentricity ratio at mid-width"},
+          {"ring_tilt", "rad", who + "ring tilt against the housing (magnitude)"},
+          {"drill_hole_pressure", "Pa", who + "pressure at the drill holes' inner mouths, mean over the holes"}};
+}
+
+void FloatingRingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+                                     ElementWorkspace& ws, double* out) const {
+  const Films& films = Solve(s, q, v, z, ws);
+  out[0] = -films.outer.fx;
+  out[1] = -films.outer.fy;
+  out[2] = s.speed != 0.0 ? z[kSpin] / s.speed : 0.0;
+  out[3] = std::hypot(q[0] - z[kX], q[1] - z[kY]) / spec_.inner_clearance;
+  out[4] = std::hypot(z[kX], z[kY]) / spec_.outer_clearance;
+  out[5] = std::hypot(z[kAx], z[kAy]);
+  out[6] = films.hole_pressure;
+}
+
+double FloatingRingElement::KineticEnergy(const double* z) const {
+  return 0.5 * spec_.ring_mass * (z[kVx] * z[kVx] + z[kVy] * z[kVy]) +
+         0.5 * inertia_diametral_ * (z[kWx] * z[kWx] + z[kWy] * z[kWy]) +
+         0.5 * spec_.ring_polar_inertia * z[kSpin] * z[kSpin];
+}
+
+double FloatingRingElement::PotentialEnergy(const double*, const double* z) const {
+  return spec_.ring_mass * gravity_ * z[kY];
+}
+
+double FloatingRingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                                            ElementWorkspace& ws) const {
+  // All the films turn into heat: minus the power of their forces, moments and torques on the shaft and the ring
+  // (the housing is fixed).
+  const Films& films = Solve(s, q, v, z, ws);
+  const reynolds::FilmResult& i = films.inner;
+  const reynolds::FilmResult& o = films.outer;
+  const double shaft = i.fx * v[0] + i.fy * v[1] + i.mx * v[2] + i.my * v[3] + i.torque_inner * s.speed;
+  const double ring = (-i.fx + o.fx) * z[kVx] + (-i.fy + o.fy) * z[kVy] + (-i.mx + o.mx) * z[kWx] +
+                      (-i.my + o.my) * z[kWy] + (i.torque_outer + o.torque_inner) * z[kSpin];
+  return -(shaft + ring);
+}
+
+double FloatingRingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                                       ElementWorkspace& ws) const {
+  return -Solve(s, q, v, z, ws).inner.torque_inner * s.speed;
+}
+
+}  // namespace turbodyn

@@ -1,0 +1,71 @@
+// Full-floating-ring bearing (paper §2.3): a ring that translates, tilts and spins freely between two hydrodynamic
+// films, both solved with Reynolds' equation at every call.
+//
+//   inner film: journal (shaft) in the ring bore, described in the ring frame (the ring's drill holes are fixed
+//               there, as in the paper and its refs. [5-7]); journal speed relative to the ring W - w_r;
+//   outer film: ring in the housing, described in the housing frame (the feed hole is fixed there); ring speed w_r.
+//
+// Equations of the ring (mass m, polar and diametral inertia Ip, Id; translations x, y; small rotations ax, ay
+// about x and y; spin w_r; F, M the film forces and moments on the ring):
+//   m x'' = F_x,   m y'' = F_y - m g,
+//   Id ax'' + Ip (w_r ay' + w_r' ay) = M_x,   Id ay'' - Ip (w_r ax' + w_r' ax) = M_y,
+//   Ip w_r' = T(inner film on the bore) + T(outer film on the outer surface),
+// the gyroscopic terms as for the rotor's disks (angular momentum Ip w_r (ay, -ax, 1)).
+//
+// Oil reaches the inner film through radial drill holes in the ring. Each hole's mouth in the inner film is held at
+// the pressure the outer film has at the hole's outer mouth, lowered by the centrifugal head of the oil column
+// spinning with the ring, rho w_r^2 (R_o^2 - R_i^2) / 2, and not below the cavitation pressure (a starved hole).
+// The hole's flow resistance is neglected and the outer film is solved as if its drill-hole mouths were closed
+// (the holes draw oil from it without changing its pressure): docs/model-format.md and docs/validation.md.
+#pragma once
+
+#include "model/elements/force_element.h"
+#include "model/spec/model_spec.h"
+#include "model/films/reynolds.h"
+
+namespace turbodyn {
+
+class FloatingRingElement final : public ForceElement {
+ public:
+  /// States (10): ring x, y (m), vx, vy (m/s), tilts ax, ay (rad), their rates (rad/s), spin w_r (rad/s) and spin
+  /// angle phi_r (rad, the ring frame's orientation; the drill holes sit at phi_r + drill_hole_angle + k 2pi/n).
+  static constexpr int kStates = 10;
+  enum State { kX, kY, kVx, kVy, kAx, kAy, kWx, kWy, kSpin, kAngle };
+
+  FloatingRingElement(const std::string& name, const FloatingRingSpec& spec, const OilSpec& oil, int node_dof,
+                      double gravity);
+
+  std::unique_ptr<ElementWorkspace> make_workspace() const override;
+  double state_scale(int i) const override;
+  double fd_relative_step() const override { return 1e-6; }
+  std::vector<ProbeInfo> probes() const override;
+  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                  double* out) const override;
+  double KineticEnergy(const double* z) const override;
+  double PotentialEnergy(const double* q, const double* z) const override;
+  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+                         ElementWorkspace& ws) const override;
+  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+                    ElementWorkspace& ws) const override;
+
+  /// Centrifugal pressure drop across a drill hole at ring speed w_r (Pa).
+  double centrifugal_head(double w_r) const;
+  /// Diametral inertia of the ring used (the spec's, or the thick-walled cylinder's if the spec gives none).
+  double diametral_inertia() const { return inertia_diametral_; }
+
+ protected:
+  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                          double* f, double* zdot) const override;
+
+ public:
+  struct Films;  ///< both films' results at one state, in the housing frame (defined in the .cpp)
+
+ private:
+  const Films& Solve(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws) const;
+  FloatingRingSpec spec_;
+  reynolds::FilmGeometry inner_, outer_;
+  reynolds::SolverOptions options_;
+  double eta_inner_ = 0.0, eta_outer_ = 0.0, gravity_ = 0.0, density_ = 0.0, inertia_diametral_ = 0.0;
+};
+
+}  // namespace turbodyn

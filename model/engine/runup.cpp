@@ -1,0 +1,816 @@
+#include "model/engine/runup.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+
+#include "model/elements/damper_element.h"
+#include "model/elements/ball/ball_bearing.h"
+#include "model/elements/ball/ball_damper_element.h"
+#include "model/engine/block_arrow_lu.h"
+#include "model/elements/floating_ring_element.h"
+#include "model/elements/journal_bearing_element.h"
+#include "model/elements/linear_bearing_element.h"
+#include "model/engine/serial_vector_ops.h"
+
+namespace turbodyn {
+
+// Per-simulation scratch space: sized once, reused by every right-hand-side and Jacobian call.
+struct RunupWorkspace {
+  Eigen::VectorXd f;                     // generalised force (n)
+  Eigen::VectorXd tmp;                   // scratch (n)
+  std::vector<std::unique_ptr<ElementWorkspace>> element_ws;
+  std::vector<Eigen::VectorXd> eq, ev, ef, ezdot;  // per element: gathered q, v; local force; (unused) zdot copy
+  std::vector<Eigen::MatrixXd> ejac;     // per element local Jacobian (d + m) x (2d + m)
+  std::vector<Eigen::VectorXd> ein;      // per element: perturbed inputs [q; v; z] for finite differences
+  std::vector<Eigen::VectorXd> eout0, eout1;  // per element: outputs [f; zdot] for finite differences
+  // Jacobian blocks of M v' = f(q, v, z), z' = g(q, v, z).
+  Eigen::MatrixXd Fq, Fv, Fz, Gq, Gv, Gz;
+  // Newton matrix: the n x n Schur complement on the rotor coordinates and its factorisation; per element with
+  // states, its block I - g G_zz, the factors, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), and scratch.
+  Eigen::MatrixXd A;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  std::vector<Eigen::MatrixXd> eA, eY, eT, eJY, eRJY;
+  std::vector<BlockArrowLU> elu;               // per element: factors of its Newton block
+  std::vector<Eigen::VectorXd> ew, ew0, eu;   // per element: m, m and d scratch
+  Eigen::VectorXd rhs, sol;
+  double jac_t = 0.0;
+  SpinState jac_spin;
+  long rhs_calls = 0, element_calls = 0, jacobian_evaluations = 0, factorisations = 0;
+  bool energy = true;  // accumulate the energy-balance states
+};
+
+RunupModel::~RunupModel() = default;
+
+RunupModel::RunupModel(const MachineSpec& spec, Rotor rotor, std::vector<std::unique_ptr<ForceElement>> elements,
+                       double reduction_cutoff)
+    : spec_(spec), rotor_(std::move(rotor)), speed_(spec.speed), elements_(std::move(elements)) {
+  const int N = rotor_.n_dof;
+  // Boundary (kept exactly): the translations force elements act on, and the disks' x and y where the unbalance
+  // acts, so that the static response to every applied force is exact. Rotations that elements read (journal
+  // tilt) are interpolated through the basis: kept as coordinates of their own, the small rotary inertia of a
+  // bearing node against the film's moment stiffness makes fast local modes that cost steps and no accuracy.
+  std::vector<bool> boundary(N, false);
+  for (const auto& e : elements_)
+    for (int d : e->dofs())
+      if (d % kDofPerNode == kX || d % kDofPerNode == kY) boundary[d] = true;
+  for (const RigidDisk& d : rotor_.disks) {
+    boundary[rotor_.dof(d.node, kX)] = true;
+    boundary[rotor_.dof(d.node, kY)] = true;
+  }
+  std::vector<int> B, I;
+  for (int i = 0; i < N; ++i) (boundary[i] ? B : I).push_back(i);
+
+  if (reduction_cutoff > 0.0 && !B.empty() && !I.empty()) {
+    const int nb = static_cast<int>(B.size()), ni = static_cast<int>(I.size());
+    Eigen::MatrixXd Kii(ni, ni), Mii(ni, ni), Kib(ni, nb);
+    for (int a = 0; a < ni; ++a) {
+      for (int b = 0; b < ni; ++b) {
+        Kii(a, b) = rotor_.K(I[a], I[b]);
+        Mii(a, b) = rotor_.M(I[a], I[b]);
+      }
+      for (int b = 0; b < nb; ++b) Kib(a, b) = rotor_.K(I[a], B[b]);
+    }
+    const Eigen::LLT<Eigen::MatrixXd> kll(Kii);
+    if (kll.info() != Eigen::Success)
+      throw std::runtime_error("Craig-Bampton reduction: the shaft with its bearing nodes held is not stiff; "
+                               "set solver.reduction_cutoff = 0");
+    const Eigen::MatrixXd Psi = -kll.solve(Kib);
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kii, Mii);
+    const double wmax = 2.0 * M_PI * reduction_cutoff;
+    int nk = 0;
+    while (nk < ni && es.eigenvalues()(nk) < wmax * wmax) ++nk;
+    cutoff_ = nk < ni ? std::sqrt(es.eigenvalues()(nk)) / (2.0 * M_PI) : 0.0;
+    n_coordinates_ = nb + nk;
+    T_.setZero(N, n_coordinates_);
+    for (int b = 0; b < nb; ++b) T_(B[b], b) = 1.0;
+    for (int a = 0; a < ni; ++a) {
+      T_.row(I[a]).head(nb) = Psi.row(a);
+      T_.row(I[a]).tail(nk) = es.eigenvectors().row(a).head(nk);
+    }
+  } else {
+    n_coordinates_ = N;
+    T_ = Eigen::MatrixXd::Identity(N, N);
+  }
+  M_ = T_.transpose() * rotor_.M * T_;
+  K_ = T_.transpose() * rotor_.K * T_;
+  D_ = T_.transpose() * rotor_.D * T_;
+  G_ = T_.transpose() * rotor_.G * T_;
+  M_ = 0.5 * (M_ + M_.transpose());
+  K_ = 0.5 * (K_ + K_.transpose());
+  gravity_ = T_.transpose() * rotor_.gravity_force;
+  M_inverse_ = M_.llt().solve(Eigen::MatrixXd::Identity(n_coordinates_, n_coordinates_));
+
+  // Each element DOF is a row of T: u_e = R_e q, and its forces act as R_e' f_e.
+  for (const auto& e : elements_) {
+    Eigen::MatrixXd R(e->dofs().size(), n_coordinates_);
+    for (std::size_t i = 0; i < e->dofs().size(); ++i) R.row(i) = T_.row(e->dofs()[i]);
+    element_rows_.push_back(R);
+  }
+  for (const RigidDisk& d : rotor_.disks)
+    disk_rows_.push_back({T_.row(rotor_.dof(d.node, kX)), T_.row(rotor_.dof(d.node, kY))});
+
+  int offset = 2 * n_coordinates_;
+  for (const auto& e : elements_) {
+    state_offsets_.push_back(offset);
+    offset += e->n_states();
+    n_element_states_ += e->n_states();
+  }
+
+  channels_.push_back({"speed", "Hz", "rotor speed f_d", ProbeChannel::Kind::Speed, 0, 0});
+  channels_.push_back({"spin_angle", "rad", "rotor spin angle", ProbeChannel::Kind::Angle, 0, 0});
+  for (const RigidDisk& d : rotor_.disks) {
+    channels_.push_back({"disk." + d.name + ".x", "m", "horizontal displacement of disk '" + d.name + "'",
+                         ProbeChannel::Kind::RotorDof, rotor_.dof(d.node, kX), 0});
+    channels_.push_back({"disk." + d.name + ".y", "m", "vertical displacement of disk '" + d.name + "'",
+                         ProbeChannel::Kind::RotorDof, rotor_.dof(d.node, kY), 0});
+  }
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const std::vector<ProbeInfo> probes = elements_[k]->probes();
+    for (std::size_t p = 0; p < probes.size(); ++p)
+      channels_.push_back({"bearing." + elements_[k]->name() + "." + probes[p].name, probes[p].unit,
+                           probes[p].description, ProbeChannel::Kind::Element, static_cast<int>(k),
+                           static_cast<int>(p)});
+  }
+}
+
+void RunupWorkspaceDeleter::operator()(RunupWorkspace* ws) const { delete ws; }
+
+RunupWorkspacePtr RunupModel::make_workspace() const {
+  RunupWorkspacePtr ws(new RunupWorkspace);
+  const int n = n_coordinates_, m = n_element_states_;
+  ws->f.setZero(n);
+  ws->tmp.setZero(n);
+  for (const auto& e : elements_) {
+    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
+    ws->element_ws.push_back(e->make_workspace());
+    ws->eq.emplace_back(Eigen::VectorXd::Zero(d));
+    ws->ev.emplace_back(Eigen::VectorXd::Zero(d));
+    ws->ef.emplace_back(Eigen::VectorXd::Zero(d));
+    ws->ezdot.emplace_back(Eigen::VectorXd::Zero(me));
+    ws->ejac.emplace_back(Eigen::MatrixXd::Zero(d + me, 2 * d + me));
+    ws->ein.emplace_back(Eigen::VectorXd::Zero(2 * d + me));
+    ws->eout0.emplace_back(Eigen::VectorXd::Zero(d + me));
+    ws->eout1.emplace_back(Eigen::VectorXd::Zero(d + me));
+  }
+  ws->Fq.setZero(n, n);
+  ws->Fv.setZero(n, n);
+  ws->Fz.setZero(n, m);
+  ws->Gq.setZero(m, n);
+  ws->Gv.setZero(m, n);
+  ws->Gz.setZero(m, m);
+  ws->A.setZero(n, n);
+  ws->lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+  for (const auto& e : elements_) {
+    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
+    ws->eA.emplace_back(Eigen::MatrixXd::Zero(me, me));
+    ws->elu.emplace_back(me, e->independent_state_blocks(), std::max(d, 1));
+    ws->eY.emplace_back(Eigen::MatrixXd::Zero(me, d));
+    ws->eT.emplace_back(Eigen::MatrixXd::Zero(me, d));
+    ws->ew0.emplace_back(Eigen::VectorXd::Zero(me));
+    ws->eJY.emplace_back(Eigen::MatrixXd::Zero(d, d));
+    ws->eRJY.emplace_back(Eigen::MatrixXd::Zero(n, d));
+    ws->ew.emplace_back(Eigen::VectorXd::Zero(me));
+    ws->eu.emplace_back(Eigen::VectorXd::Zero(d));
+  }
+  ws->rhs.setZero(n);
+  ws->sol.setZero(n);
+  return ws;
+}
+
+SpinState RunupModel::spin(double t) const {
+  return SpinState{t, speed_.speed(t), speed_.acceleration(t), speed_.angle(t)};
+}
+
+void RunupModel::Gather(const ForceElement& e, const double* q, const double* v, RunupWorkspace& ws, int k) const {
+  (void)e;
+  const int n = n_coordinates_;
+  ws.eq[k].noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(q, n);
+  ws.ev[k].noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(v, n);
+}
+
+void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws) const {
+  ++ws.rhs_calls;
+  const int n = n_coordinates_;
+  const SpinState s = spin(t);
+  const Eigen::Map<const Eigen::VectorXd> q(y, n), v(y + n, n);
+  Eigen::Map<Eigen::VectorXd> qdot(ydot, n), vdot(ydot + n, n);
+
+  Eigen::VectorXd& f = ws.f;
+  f = gravity_;
+  f.noalias() -= K_ * q;
+  f.noalias() -= D_ * v;
+  f.noalias() -= s.speed * (G_ * v);
+  f.noalias() -= s.acceleration * (G_ * q);
+
+  // Unbalance: mass U at angle psi = phi + beta; force on the rotor U (Omega^2 cos psi + Omega' sin psi, ...).
+  double unbalance_power = 0.0;
+  const double w2 = s.speed * s.speed;
+  for (std::size_t k = 0; k < rotor_.disks.size(); ++k) {
+    const RigidDisk& d = rotor_.disks[k];
+    if (d.unbalance == 0.0) continue;
+    const double psi = s.angle + d.unbalance_phase, c = std::cos(psi), sn = std::sin(psi);
+    const double fx = d.unbalance * (w2 * c + s.acceleration * sn), fy = d.unbalance * (w2 * sn - s.acceleration * c);
+    f.noalias() += fx * disk_rows_[k].x.transpose();
+    f.noalias() += fy * disk_rows_[k].y.transpose();
+    unbalance_power += fx * disk_rows_[k].x.dot(v) + fy * disk_rows_[k].y.dot(v);
+  }
+
+  double element_dissipation = 0.0, drive_power = 0.0;
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const ForceElement& e = *elements_[k];
+    Gather(e, y, y + n, ws, static_cast<int>(k));
+    ws.ef[k].setZero();
+    const double* z = y + state_offsets_[k];
+    e.CalcAndAddForces(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k], ws.ef[k].data(),
+                       ydot + state_offsets_[k]);
+    ++ws.element_calls;
+    f.noalias() += element_rows_[k].transpose() * ws.ef[k];
+    if (ws.energy) {
+      element_dissipation += e.DissipatedPower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
+      drive_power += e.DrivePower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
+    }
+  }
+
+  qdot = v;
+  vdot.noalias() = M_inverse_ * f;
+
+  double* energy = ydot + 2 * n + n_element_states_;
+  if (ws.energy) {
+    // Work in: unbalance forces, the spin-acceleration gyroscopic term -Omega' G q and the elements' drag torques
+    // (the drive's share).
+    ws.tmp.noalias() = G_ * q;
+    energy[0] = unbalance_power - s.acceleration * v.dot(ws.tmp) + drive_power;
+    ws.tmp.noalias() = D_ * v;
+    energy[1] = v.dot(ws.tmp) + element_dissipation;
+  } else {
+    energy[0] = energy[1] = 0.0;
+  }
+}
+
+void RunupModel::Probes(double t, const double* y, RunupWorkspace& ws, double* out) const {
+  const int n = n_coordinates_;
+  const Eigen::Map<const Eigen::VectorXd> q(y, n);
+  const SpinState s = spin(t);
+  std::size_t c = 0;
+  for (const ProbeChannel& ch : channels_) {
+    switch (ch.kind) {
+      case ProbeChannel::Kind::Speed: out[c] = s.speed / (2.0 * M_PI); break;
+      case ProbeChannel::Kind::Angle: out[c] = s.angle; break;
+      case ProbeChannel::Kind::RotorDof: out[c] = T_.row(ch.index).dot(q); break;
+      case ProbeChannel::Kind::Element: break;  // filled below, one evaluation per element
+    }
+    ++c;
+  }
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const ForceElement& e = *elements_[k];
+    const std::size_t np = e.probes().size();
+    if (np == 0) continue;
+    Gather(e, y, y + n, ws, static_cast<int>(k));
+    double values[16];
+    std::vector<double> big;
+    double* buf = values;
+    if (np > 16) {
+      big.resize(np);
+      buf = big.data();
+    }
+    e.EvalProbes(s, ws.eq[k].data(), ws.ev[k].data(), y + state_offsets_[k], *ws.element_ws[k], buf);
+    for (std::size_t i = 0; i < channels_.size(); ++i)
+      if (channels_[i].kind == ProbeChannel::Kind::Element && channels_[i].index == static_cast<int>(k))
+        out[i] = buf[channels_[i].element_probe];
+  }
+}
+
+void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
+  ++ws.jacobian_evaluations;
+  const int n = n_coordinates_;
+  const SpinState s = spin(t);
+  ws.jac_t = t;
+  ws.jac_spin = s;
+  ws.Fq = -K_ - s.acceleration * G_;
+  ws.Fv = -D_ - s.speed * G_;
+  ws.Fz.setZero();
+  ws.Gq.setZero();
+  ws.Gv.setZero();
+  ws.Gz.setZero();
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const ForceElement& e = *elements_[k];
+    const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
+    const int zoff = state_offsets_[k];
+    Eigen::MatrixXd& J = ws.ejac[k];
+    J.setZero();
+    Gather(e, y, y + n, ws, static_cast<int>(k));
+    if (e.has_jacobian()) {
+      e.AddJacobian(s, ws.eq[k].data(), ws.ev[k].data(), y + zoff, *ws.element_ws[k], J.data());
+      ws.element_calls += e.jacobian_evaluations();
+    } else {
+      // Forward differences in the element's own inputs: 2d + m evaluations of the element alone.
+      Eigen::VectorXd& in = ws.ein[k];
+      in << ws.eq[k], ws.ev[k], Eigen::Map<const Eigen::VectorXd>(y + zoff, m);
+      auto eval = [&](Eigen::VectorXd& out) {
+        out.setZero();
+        e.CalcAndAddForces(s, in.data(), in.data() + d, in.data() + 2 * d, *ws.element_ws[k], out.data(),
+                           out.data() + d);
+        ++ws.element_calls;
+      };
+      eval(ws.eout0[k]);
+      for (int j = 0; j < 2 * d + m; ++j) {
+        const double saved = in(j);
+        const double h = e.fd_step(j, d, saved);
+        in(j) = saved + h;
+        eval(ws.eout1[k]);
+        in(j) = saved;
+        J.col(j) = (ws.eout1[k] - ws.eout0[k]) / h;
+      }
+    }
+    const Eigen::MatrixXd& Rk = element_rows_[k];
+    const int zs = zoff - 2 * n;  // offset among the element states
+    ws.Fq.noalias() += Rk.transpose() * J.block(0, 0, d, d) * Rk;
+    ws.Fv.noalias() += Rk.transpose() * J.block(0, d, d, d) * Rk;
+    if (m > 0) {
+      ws.Fz.middleCols(zs, m).noalias() += Rk.transpose() * J.block(0, 2 * d, d, m);
+      ws.Gq.middleRows(zs, m).noalias() += J.block(d, 0, m, d) * Rk;
+      ws.Gv.middleRows(zs, m).noalias() += J.block(d, d, m, d) * Rk;
+      ws.Gz.block(zs, zs, m, m) += J.block(d, 2 * d, m, m);
+    }
+  }
+}
+
+bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
+  const double g = gamma;
+  ws.A = M_ - g * ws.Fv - (g * g) * ws.Fq;
+  bool regular = true;
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
+    if (m == 0) continue;
+    const Eigen::MatrixXd& J = ws.ejac[k];  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
+    Eigen::MatrixXd& Ak = ws.eA[k];
+    Ak = -g * J.block(d, 2 * d, m, m);
+    Ak.diagonal().array() += 1.0;
+    regular = ws.elu[k].compute(Ak) && regular;
+    // Y = A_k^-1 (-g (G_zv + g G_zq)) in the element's local DOFs; the Schur term -(-g F_z) Y enters as g R' F_z Y R.
+    ws.eT[k] = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
+    ws.eY[k] = ws.eT[k];
+    ws.elu[k].solve_in_place(ws.eY[k]);
+    // Small products (d = 4): coefficient-wise, without the packing of Eigen's general products.
+    ws.eJY[k].noalias() = J.block(0, 2 * d, d, m).lazyProduct(ws.eY[k]);
+    ws.eRJY[k].noalias() = element_rows_[k].transpose().lazyProduct(ws.eJY[k]);
+    ws.A.noalias() += g * ws.eRJY[k].lazyProduct(element_rows_[k]);
+  }
+  ws.lu.compute(ws.A);
+  ++ws.factorisations;
+  return regular && HasRegularPivots(ws.lu);
+}
+
+void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const {
+  const int n = n_coordinates_;
+  const double g = gamma;
+  const Eigen::Map<const Eigen::VectorXd> rq(b, n), rv(b + n, n);
+  ws.rhs.noalias() = M_ * rv;
+  ws.rhs.noalias() += g * (ws.Fq * rq);
+  // Forward elimination of each element's states: w_k = A_k^-1 (r_z + g G_zq r_q), rhs -= (-g F_z) w_k.
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
+    if (m == 0) continue;
+    const Eigen::MatrixXd& J = ws.ejac[k];
+    const int zoff = state_offsets_[k];
+    ws.eu[k].noalias() = element_rows_[k] * rq;
+    ws.ew0[k] = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
+    ws.ew0[k].noalias() += g * (J.block(d, 0, m, d) * ws.eu[k]);
+    ws.ew[k] = ws.ew0[k];
+    ws.elu[k].solve_in_place(ws.ew[k]);
+    ws.eu[k].noalias() = J.block(0, 2 * d, d, m) * ws.ew[k];
+    ws.rhs.noalias() += g * (element_rows_[k].transpose() * ws.eu[k]);
+  }
+  ws.sol = ws.lu.solve(ws.rhs);
+  Eigen::Map<Eigen::VectorXd> dq(x, n), dv(x + n, n);
+  dv = ws.sol;
+  dq = rq + g * dv;
+  // Back substitution: dz_k = w_k - Y_k R_k dv.
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const int m = elements_[k]->n_states();
+    if (m == 0) continue;
+    const int zoff = state_offsets_[k];
+    ws.eu[k].noalias() = element_rows_[k] * ws.sol;
+    Eigen::Map<Eigen::VectorXd> dz(x + zoff, m);
+    dz = ws.ew[k];
+    dz.noalias() -= ws.eY[k] * ws.eu[k];
+  }
+  // Energy-accounting states: their equations do not depend on y through the Newton matrix.
+  const int ny = n_states();
+  x[ny - 2] = b[ny - 2];
+  x[ny - 1] = b[ny - 1];
+}
+
+Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
+  Eigen::VectorXd a = Eigen::VectorXd::Constant(n_states(), atol);
+  if (!scaled) return a;
+  const int n = n_coordinates_;
+  constexpr double kDisp = ForceElement::kTypicalDisplacement, kVel = ForceElement::kTypicalVelocity;
+  a.segment(n, n).setConstant(atol * kVel / kDisp);
+  for (std::size_t k = 0; k < elements_.size(); ++k)
+    for (int i = 0; i < elements_[k]->n_states(); ++i) {
+      const double typical = elements_[k]->state_scale(i);
+      a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisp) / kDisp;
+    }
+  a.tail(2).setConstant(atol / kDisp);  // energy accounts (J)
+  return a;
+}
+
+Eigen::MatrixXd RunupModel::JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const {
+  Jacobian(t, y, ws);
+  const int n = n_coordinates_, m = n_element_states_;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n_states(), n_states());
+  J.block(0, n, n, n).setIdentity();
+  J.block(n, 0, n, n) = M_inverse_ * ws.Fq;
+  J.block(n, n, n, n) = M_inverse_ * ws.Fv;
+  J.block(n, 2 * n, n, m) = M_inverse_ * ws.Fz;
+  J.block(2 * n, 0, m, n) = ws.Gq;
+  J.block(2 * n, n, m, n) = ws.Gv;
+  J.block(2 * n, 2 * n, m, m) = ws.Gz;
+  return J;
+}
+
+double RunupModel::MechanicalEnergy(double t, const double* y) const {
+  (void)t;
+  const int n = n_coordinates_;
+  const Eigen::Map<const Eigen::VectorXd> q(y, n), v(y + n, n);
+  double e = 0.5 * v.dot(M_ * v) + 0.5 * q.dot(K_ * q) - gravity_.dot(q);
+  std::vector<double> eq;
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const ForceElement& el = *elements_[k];
+    eq.resize(el.dofs().size());
+    Eigen::Map<Eigen::VectorXd>(eq.data(), eq.size()) = element_rows_[k] * q;
+    e += el.PotentialEnergy(eq.data(), y + state_offsets_[k]) + el.KineticEnergy(y + state_offsets_[k]);
+  }
+  return e;
+}
+
+void RunupModel::InitialState(double t, bool static_equilibrium, double* y, RunupWorkspace& ws) const {
+  const int n = n_coordinates_, m = n_element_states_;
+  std::fill(y, y + n_states(), 0.0);
+  const double speed = spin(t).speed;
+  for (std::size_t k = 0; k < elements_.size(); ++k) elements_[k]->initial_states_at_speed(speed, y + state_offsets_[k]);
+  if (!static_equilibrium) return;
+  // Newton on [f(q, 0, z); g(q, 0, z)] = 0 with the exact rotor Jacobian and the element blocks.
+  std::vector<double> ydot(n_states());
+  Eigen::MatrixXd J(n + m, n + m);
+  Eigen::VectorXd r(n + m);
+  const bool energy = ws.energy;
+  ws.energy = false;
+  constexpr int kMaxIterations = 50;
+  constexpr double kTolerance = 1e-12;  // relative change of [q; z]
+  for (int it = 0; it < kMaxIterations; ++it) {
+    Rhs(t, y, ydot.data(), ws);
+    r.head(n) = ws.f;  // the full generalised force at v = 0
+    for (int i = 0; i < m; ++i) r(n + i) = ydot[2 * n + i];
+    Jacobian(t, y, ws);
+    J.topLeftCorner(n, n) = ws.Fq;
+    J.topRightCorner(n, m) = ws.Fz;
+    J.bottomLeftCorner(m, n) = ws.Gq;
+    J.bottomRightCorner(m, m) = ws.Gz;
+    const Eigen::VectorXd dx = J.fullPivLu().solve(-r);
+    if (!dx.allFinite()) break;
+    for (int i = 0; i < n; ++i) y[i] += dx(i);
+    for (int i = 0; i < m; ++i) y[2 * n + i] += dx(n + i);
+    double scale = 0.0;
+    for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(y[i]));
+    if (dx.lpNorm<Eigen::Infinity>() <= kTolerance * std::max(scale, 1e-9)) {
+      ws.energy = energy;
+      return;
+    }
+  }
+  ws.energy = energy;
+  throw std::runtime_error("the static equilibrium under gravity was not found (Newton's method did not converge "
+                           "in 50 iterations); set static_start = false to let the run settle from rest instead");
+}
+
+std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
+  Rotor rotor = build_rotor(spec);
+  std::vector<std::unique_ptr<ForceElement>> elements;
+  for (const LinearBearing& b : rotor.bearings) {
+    Pedestal pedestal;
+    const DamperSpec* damper = nullptr;
+    for (const BearingSpec& bs : spec.bearings)
+      if (bs.name == b.name) {
+        pedestal = Pedestal{bs.pedestal_mass, bs.pedestal_stiffness, bs.pedestal_damping};
+        if (bs.damper.enabled) damper = &bs.damper;
+      }
+    if (damper)
+      elements.push_back(std::make_unique<DamperElement>(b, rotor.dof(b.node, kX), *damper, spec.oil, spec.gravity));
+    else
+      elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
+  }
+  for (const BearingSpec& b : spec.bearings)
+    if (b.type == "journal")
+      elements.push_back(
+          std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, rotor.dof(rotor.node_at(b.z), kX)));
+    else if (b.type == "floating-ring")
+      elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil,
+                                                               rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+    else if (b.type == "ball" && b.damper.enabled)
+      elements.push_back(std::make_unique<BallDamperElement>(b.name, b.ball, b.damper, spec.oil,
+                                                             rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+    else if (b.type == "ball")
+      elements.push_back(
+          std::make_unique<BallBearingElement>(b.name, b.ball, rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+  // The bearings act through the elements; the rotor's own matrices stay bearing-free.
+  double cutoff = spec.solver.reduction_cutoff;
+  if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz
+    const double top = std::max(spec.speed.end, spec.speed.start) / (2.0 * M_PI);
+    cutoff = std::max(3.0 * top, 5000.0);
+  }
+  return std::make_unique<RunupModel>(spec, std::move(rotor), std::move(elements), cutoff);
+}
+
+// ------------------------------------------------------------------------------------------------ integration
+
+namespace {
+
+struct Integration {
+  const RunupModel* model = nullptr;
+  RunupWorkspace* ws = nullptr;
+  void* cvode = nullptr;
+  double gamma_factored = -1.0;
+  std::string last_error;
+  long jacobian_step = 0;       // integrator step count at the last Jacobian
+  long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
+};
+
+int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto* in = static_cast<Integration*>(user);
+  try {
+    in->model->Rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), *in->ws);
+  } catch (const std::exception& e) {
+    // A force element cannot be evaluated here (e.g. a film closes): recoverable, the integrator retries with a
+    // smaller step; the message explains the failure if it persists.
+    in->last_error = e.what();
+    return 1;
+  }
+  for (sunindextype i = 0, n = N_VGetLength(ydot); i < n; ++i)
+    if (!std::isfinite(NV_Ith_S(ydot, i))) return 1;  // recoverable: the integrator retries with a smaller step
+  return 0;
+}
+
+void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
+  (void)code;
+  auto* in = static_cast<Integration*>(user);
+  in->last_error = std::string(module) + "/" + function + ": " + msg;
+}
+
+SUNLinearSolver_Type ls_type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
+
+int ls_setup(SUNLinearSolver S, SUNMatrix) {
+  auto* in = static_cast<Integration*>(S->content);
+  sunrealtype tcur, gamma, rl1;
+  N_Vector ypred, yn, fn, zn1;
+  void* user = nullptr;
+  if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
+    return -1;
+  try {
+    in->model->Jacobian(tcur, N_VGetArrayPointer(ypred), *in->ws);
+  } catch (const std::exception& e) {
+    in->last_error = e.what();
+    return 1;
+  }
+  in->gamma_factored = gamma;
+  return in->model->FactorNewton(gamma, *in->ws) ? 0 : 1;
+}
+
+int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
+  auto* in = static_cast<Integration*>(S->content);
+  const RunupModel& model = *in->model;
+  RunupWorkspace& ws = *in->ws;
+  // CVODE does not call the setup of a matrix-embedded solver on its own schedule, so the solve keeps the Newton
+  // matrix current: a new Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than
+  // 2 % since the last one, when the nonlinear solver failed since then (the Jacobian is stale: nonlinear films),
+  // or every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51); a new factorisation
+  // when gamma (the step size) changed.
+  constexpr double kJacobianSpeedChange = 0.02;
+  constexpr long kJacobianMaxSteps = 50;
+  sunrealtype tcur, gamma, rl1;
+  N_Vector ypred, yn, fn, zn1;
+  void* user = nullptr;
+  if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
+    return -1;
+  const double w = model.speed().speed(tcur), w_jac = ws.jac_spin.speed;
+  long steps = 0, failures = 0;
+  CVodeGetNumSteps(in->cvode, &steps);
+  CVodeGetNumNonlinSolvConvFails(in->cvode, &failures);
+  if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0) ||
+      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps) {
+    in->jacobian_step = steps;
+    in->jacobian_failures = failures;
+    try {
+      model.Jacobian(tcur, N_VGetArrayPointer(ypred), ws);
+    } catch (const std::exception& e) {
+      in->last_error = e.what();
+      return 1;
+    }
+    in->gamma_factored = -1.0;
+  }
+  if (gamma != in->gamma_factored) {
+    in->gamma_factored = gamma;
+    if (!model.FactorNewton(gamma, ws)) return 1;  // recoverable: CVODE retries with a smaller step
+  }
+  model.SolveNewton(gamma, N_VGetArrayPointer(b), N_VGetArrayPointer(x), ws);
+  return 0;
+}
+
+int ls_free(SUNLinearSolver S) {
+  S->content = nullptr;
+  SUNLinSolFreeEmpty(S);
+  return 0;
+}
+
+std::string describe_stop(double t, double speed, const std::string& cause) {
+  std::ostringstream os;
+  os << "stopped at t = " << t << " s (" << std::llround(speed * 60.0 / (2.0 * M_PI)) << " rpm): " << cause;
+  return os.str();
+}
+
+}  // namespace
+
+RunupOptions runup_options(const MachineSpec& spec) {
+  RunupOptions ro;
+  ro.integrator = spec.solver.integrator;
+  ro.rtol = spec.solver.rtol;
+  ro.atol = spec.solver.atol;
+  ro.atol_scaling = spec.solver.atol_scaling;
+  ro.max_step = spec.solver.max_step;
+  ro.max_steps = spec.solver.max_steps;
+  ro.max_order = spec.solver.max_order;
+  ro.sample_rate = spec.output.sample_rate;
+  ro.static_start = spec.solver.static_start;
+  return ro;
+}
+
+std::string resolve_integrator(const RunupModel& model, const std::string& requested) {
+  if (requested != "auto") return requested;
+  // Measured (bench/README.md): with linear bearings BDF with the structured Newton solver beats the explicit
+  // method 1.5x on the reduced rotor and by far more on the unreduced one. New bearing types refine this rule
+  // with their own measurements.
+  (void)model;
+  return "cvode-bdf";
+}
+
+RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options) {
+  if (options.atol_scaling != "uniform" && options.atol_scaling != "typical")
+    throw std::invalid_argument("unknown atol_scaling '" + options.atol_scaling + "' (uniform or typical)");
+  const auto wall0 = std::chrono::steady_clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(); };
+  RunupResult result;
+  result.channels = model.channels();
+  result.columns.assign(result.channels.size(), {});
+
+  auto ws = model.make_workspace();
+  const int ny = model.n_states();
+  const double t0 = options.t_start;
+  const double t_end = options.t_end > 0.0 ? options.t_end : model.speed().duration();
+  const double dt_out = 1.0 / options.sample_rate;
+
+  SUNContext ctx = nullptr;
+  SUNContext_Create(nullptr, &ctx);
+  N_Vector y = N_VNew_Serial(ny, ctx);
+  UseCompiledVectorOps(y);  // the integrators' vectors are clones of y
+  std::vector<double> values(result.channels.size());
+  auto record = [&](double t) {
+    try {
+      model.Probes(t, N_VGetArrayPointer(y), *ws, values.data());
+    } catch (const std::exception&) {
+      std::fill(values.begin(), values.end(), std::nan(""));
+    }
+    result.time.push_back(t);
+    for (std::size_t c = 0; c < values.size(); ++c) result.columns[c].push_back(values[c]);
+    if (options.sink) options.sink(t, values.data());
+  };
+
+  try {
+    model.InitialState(t0, options.static_start, N_VGetArrayPointer(y), *ws);
+  } catch (const std::exception& e) {
+    result.message = describe_stop(t0, model.spin(t0).speed, e.what());
+    N_VDestroy(y);
+    SUNContext_Free(&ctx);
+    return result;
+  }
+  result.energy_initial = model.MechanicalEnergy(t0, N_VGetArrayPointer(y));
+  record(t0);
+
+  N_Vector atol = N_VClone(y);
+  {
+    const Eigen::VectorXd a = model.AbsoluteTolerances(options.atol, options.atol_scaling == "typical");
+    for (int i = 0; i < ny; ++i) NV_Ith_S(atol, i) = a(i);
+  }
+  Integration in;
+  in.model = &model;
+  in.ws = ws.get();
+  void* mem = nullptr;
+  SUNLinearSolver LS = nullptr;
+  const std::string integrator = resolve_integrator(model, options.integrator);
+  const bool bdf = integrator == "cvode-bdf";
+  if (bdf) {
+    mem = CVodeCreate(CV_BDF, ctx);
+    in.cvode = mem;
+    CVodeInit(mem, rhs_callback, t0, y);
+    CVodeSetUserData(mem, &in);
+    CVodeSetErrHandlerFn(mem, error_handler, &in);
+    CVodeSVtolerances(mem, options.rtol, atol);
+    CVodeSetMaxNumSteps(mem, options.max_steps);
+    if (options.max_step > 0) CVodeSetMaxStep(mem, options.max_step);
+    CVodeSetStopTime(mem, t_end);
+    CVodeSetMaxOrd(mem, options.max_order);
+    CVodeSetStabLimDet(mem, options.stability_limit_detection ? SUNTRUE : SUNFALSE);
+    LS = SUNLinSolNewEmpty(ctx);
+    LS->content = &in;
+    LS->ops->gettype = ls_type;
+    LS->ops->setup = ls_setup;
+    LS->ops->solve = ls_solve;
+    LS->ops->free = ls_free;
+    CVodeSetLinearSolver(mem, LS, nullptr);
+  } else if (integrator == "arkode-erk") {
+    mem = ERKStepCreate(rhs_callback, t0, y, ctx);
+    ERKStepSetUserData(mem, &in);
+    ERKStepSetErrHandlerFn(mem, error_handler, &in);
+    ERKStepSVtolerances(mem, options.rtol, atol);
+    ERKStepSetMaxNumSteps(mem, options.max_steps);
+    if (options.max_step > 0) ERKStepSetMaxStep(mem, options.max_step);
+    ERKStepSetStopTime(mem, t_end);
+  } else {
+    N_VDestroy(atol);
+    N_VDestroy(y);
+    SUNContext_Free(&ctx);
+    throw std::invalid_argument("unknown integrator '" + options.integrator + "' (cvode-bdf or arkode-erk)");
+  }
+  N_VDestroy(atol);  // the integrators keep copies
+
+  double last_progress = 0.0;
+  double t = t0;
+  const long n_out = static_cast<long>(std::floor((t_end - t0) * options.sample_rate + 1e-9));
+  result.complete = true;
+  for (long k = 1; k <= n_out; ++k) {
+    const double tout = std::min(t0 + k * dt_out, t_end);
+    const int flag = bdf ? CVode(mem, tout, y, &t, CV_NORMAL) : ERKStepEvolve(mem, tout, y, &t, ARK_NORMAL);
+    if (flag < 0) {
+      const char* name = bdf ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag);
+      std::string cause = std::string(name ? name : "integrator failure");
+      if (name) free(const_cast<char*>(name));
+      if (!in.last_error.empty()) cause += " (" + in.last_error + ")";
+      result.complete = false;
+      result.message = describe_stop(t, model.spin(t).speed, cause);
+      break;
+    }
+    record(t);
+    if (options.cancel && options.cancel->load()) {
+      result.complete = false;
+      result.message = describe_stop(t, model.spin(t).speed, "interrupted");
+      break;
+    }
+    if (options.progress && wall() - last_progress > 0.5) {
+      last_progress = wall();
+      options.progress(t, model.spin(t).speed, last_progress);
+    }
+  }
+  result.t_reached = t;
+  const double* yy = N_VGetArrayPointer(y);
+  result.energy_final = model.MechanicalEnergy(t, yy);
+  result.work_in = yy[ny - 2];
+  result.dissipated = yy[ny - 1];
+
+  long steps = 0, etf = 0, ncf = 0, nfe = 0;
+  if (bdf) {
+    CVodeGetNumSteps(mem, &steps);
+    CVodeGetNumErrTestFails(mem, &etf);
+    CVodeGetNumNonlinSolvConvFails(mem, &ncf);
+    CVodeFree(&mem);
+    SUNLinSolFree(LS);
+  } else {
+    ERKStepGetNumSteps(mem, &steps);
+    ERKStepGetNumErrTestFails(mem, &etf);
+    long expl = 0;
+    ERKStepGetNumRhsEvals(mem, &expl);
+    nfe = expl;
+    ERKStepFree(&mem);
+  }
+  (void)nfe;
+  result.stats.steps = steps;
+  result.stats.error_test_failures = etf;
+  result.stats.nonlinear_failures = ncf;
+  result.stats.rhs_calls = ws->rhs_calls;
+  result.stats.element_calls = ws->element_calls;
+  result.stats.jacobian_evaluations = ws->jacobian_evaluations;
+  result.stats.linear_setups = ws->factorisations;
+  result.stats.wall_time = wall();
+  N_VDestroy(y);
+  SUNContext_Free(&ctx);
+  return result;
+}
+
+}  // namespace turbodyn

@@ -1,0 +1,194 @@
+// The run-up engine: nonlinear time integration of the rotor with its force elements under a prescribed speed.
+//
+// State y = [q (n), v = q' (n), z (internal states of all force elements, m), E_in, E_diss], with
+//   M v' = f_g + f_u(t) - (D + Omega G) v - (K + Omega' G) q + sum_e f_e(q, v, z, t)
+//   z'   = g(q, v, z, t)
+// q are the rotor coordinates: the physical FE DOFs, or (default) a Craig-Bampton reduction of them,
+//   u = T q,  q = [u_B; eta],  T = [I 0; Psi Phi]
+// where u_B are the translations force elements act on and the disks' translations (kept exactly), Psi the static constraint
+// modes and Phi the fixed-interface normal modes below a cutoff frequency (Craig & Bampton 1968, AIAA J. 6(7)).
+// The Timoshenko mesh has element-level modes near 1e7 rad/s that force any BDF method above order 2 into
+// tiny steps; the reduction removes them while keeping the bearing DOFs exact (see bench/README.md).
+// f_u are the unbalance forces of the spinning disks (including the angular-acceleration term), Omega' G q the
+// gyroscopic term of the spin acceleration (d/dt of Ip Omega (theta_y, -theta_x)), and E_in, E_diss accumulate the
+// work of the unbalance/spin-acceleration terms and the dissipated energy for the energy balance.
+//
+// A RunupModel is immutable and shared; each simulation owns a RunupWorkspace (model/workspace split, so that
+// parallel studies can run many simulations of one model). Rhs() allocates nothing.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "model/elements/force_element.h"
+#include "model/spec/model_spec.h"
+#include "model/rotor/rotor.h"
+#include "model/engine/speed_profile.h"
+
+namespace turbodyn {
+
+/// One output channel of a run.
+struct ProbeChannel {
+  std::string name;         ///< e.g. "disk.compressor.x"
+  std::string unit;         ///< e.g. "m"
+  std::string description;
+  enum class Kind { Speed, Angle, RotorDof, Element } kind = Kind::RotorDof;
+  int index = 0;            ///< rotor DOF (RotorDof) or element index (Element)
+  int element_probe = 0;    ///< index among the element's probes
+};
+
+struct RunupWorkspace;
+/// Owns a workspace (its layout is private to the engine).
+struct RunupWorkspaceDeleter {
+  void operator()(RunupWorkspace* ws) const;
+};
+using RunupWorkspacePtr = std::unique_ptr<RunupWorkspace, RunupWorkspaceDeleter>;
+
+class RunupModel {
+ public:
+  /// `reduction_cutoff` (Hz): keep fixed-interface modes below it; 0 = no reduction (physical DOFs).
+  RunupModel(const MachineSpec& spec, Rotor rotor, std::vector<std::unique_ptr<ForceElement>> elements,
+             double reduction_cutoff);
+  ~RunupModel();
+  RunupModel(const RunupModel&) = delete;
+  RunupModel& operator=(const RunupModel&) = delete;
+
+  const MachineSpec& spec() const { return spec_; }
+  const Rotor& rotor() const { return rotor_; }
+  const SpeedFunction& speed() const { return speed_; }
+  const std::vector<std::unique_ptr<ForceElement>>& elements() const { return elements_; }
+  int n_dof() const { return n_coordinates_; }    ///< rotor coordinates (reduced or physical)
+  int n_physical_dof() const { return rotor_.n_dof; }
+  const Eigen::MatrixXd& mass() const { return M_; }
+  /// u = T q: physical displacements from the rotor coordinates (n_physical_dof x n_dof).
+  const Eigen::MatrixXd& reduction_basis() const { return T_; }
+  /// Lowest fixed-interface mode dropped by the reduction (Hz), or 0 when nothing was dropped.
+  double reduction_cutoff() const { return cutoff_; }
+  int n_element_states() const { return n_element_states_; }
+  int n_states() const { return 2 * n_coordinates_ + n_element_states_ + 2; }
+  int state_offset(int element) const { return state_offsets_[element]; }  ///< into y
+  const std::vector<ProbeChannel>& channels() const { return channels_; }
+
+  RunupWorkspacePtr make_workspace() const;
+  SpinState spin(double t) const;
+
+  /// y' = F(t, y). Allocation-free.
+  void Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws) const;
+  /// Values of all channels at (t, y), in channels() order.
+  void Probes(double t, const double* y, RunupWorkspace& ws, double* out) const;
+  /// Fills the Jacobian blocks of ws (F_q, F_v, F_z, G_q, G_v, G_z) at (t, y): exact for the rotor, analytic or
+  /// forward differences for the elements.
+  void Jacobian(double t, const double* y, RunupWorkspace& ws) const;
+  /// Initial state: element initial states, then (static_equilibrium) the static equilibrium under gravity at t;
+  /// throws std::runtime_error if Newton's method fails.
+  void InitialState(double t, bool static_equilibrium, double* y, RunupWorkspace& ws) const;
+  /// Kinetic + potential energy (gravity included) at (t, y), J.
+  double MechanicalEnergy(double t, const double* y) const;
+  /// Factors the Newton matrix I - gamma dF/dy of the BDF corrector at the last Jacobian(). With dq = r_q + gamma dv
+  /// it reduces to
+  ///   [ M - g Fv - g^2 Fq      -g Fz   ] [dv]   [ M r_v + g Fq r_q ]
+  ///   [ -g (Gv + g Gq)      I - g Gz   ] [dz] = [ r_z + g Gq r_q   ]
+  /// whose lower-right block is block-diagonal (each element's states depend on its own states only). Each block is
+  /// factored on its own and eliminated, leaving an n x n Schur complement on the rotor coordinates: for two
+  /// 82-state ball bearings about 10x fewer operations than factoring the (n + m) matrix whole. Within an element,
+  /// independent state blocks (ForceElement::independent_state_blocks(): a ball bearing's balls) are eliminated one
+  /// by one onto the element's border (BlockArrowLU). Returns false if a factor is singular. Allocation-free.
+  bool FactorNewton(double gamma, RunupWorkspace& ws) const;
+  /// Solves (I - gamma dF/dy) x = b with the factors of FactorNewton() (b, x: n_states() values; the two
+  /// energy-accounting states are passed through). Allocation-free.
+  void SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const;
+  /// Absolute tolerance of each state (n_states() values) for a displacement tolerance atol (m). scaled: every
+  /// state's tolerance is atol times its typical magnitude over 1 um: rotor displacements 1 um, rotor velocities
+  /// 1 mm/s, element states ForceElement::state_scale() (the magnitudes the finite-difference Jacobian uses),
+  /// energy accounts 1 J per um, i.e. each state is resolved to the same fraction of its typical size. Otherwise
+  /// atol for every state.
+  Eigen::VectorXd AbsoluteTolerances(double atol, bool scaled) const;
+  /// The Jacobian dF/dy (n_states x n_states) assembled from the blocks of Jacobian(); the rows of the two
+  /// energy-accounting states are left zero. For tests and diagnostics.
+  Eigen::MatrixXd JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const;
+
+ private:
+  void Gather(const ForceElement& e, const double* q, const double* v, RunupWorkspace& ws, int k) const;
+
+  MachineSpec spec_;
+  Rotor rotor_;
+  SpeedFunction speed_;
+  std::vector<std::unique_ptr<ForceElement>> elements_;
+  std::vector<int> state_offsets_;
+  int n_element_states_ = 0;
+  int n_coordinates_ = 0;
+  double cutoff_ = 0.0;
+  Eigen::MatrixXd T_;                 // u = T q
+  Eigen::MatrixXd M_, K_, D_, G_;     // in rotor coordinates
+  Eigen::VectorXd gravity_;           // T' f_g
+  std::vector<Eigen::MatrixXd> element_rows_;  // per element: rows of T for its DOFs (u_e = R q)
+  struct DiskRows {
+    Eigen::RowVectorXd x, y;          // rows of T for the disk's x and y
+  };
+  std::vector<DiskRows> disk_rows_;
+  Eigen::MatrixXd M_inverse_;
+  std::vector<ProbeChannel> channels_;
+};
+
+/// Builds the run-up model of a machine: rotor (reduced as spec.solver says), one force element per bearing.
+std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec);
+
+struct RunupOptions {
+  std::string integrator = "auto";  ///< "auto", "cvode-bdf" or "arkode-erk" (see SolverSpec)
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  std::string atol_scaling = "uniform";  ///< "uniform" or "typical" (see SolverSpec and AbsoluteTolerances())
+  double max_step = 0.0;       ///< s, 0 = none
+  double sample_rate = 20000;  ///< 1/s
+  double t_start = 0.0;        ///< s
+  double t_end = 0.0;          ///< s, 0 = end of the speed profile
+  bool static_start = true;    ///< start from the static equilibrium under gravity
+  long max_steps = 50'000'000; ///< integrator steps before giving up
+  int max_order = 5;           ///< BDF: highest order (1..5)
+  bool stability_limit_detection = true;  ///< BDF: lower the order when higher orders turn unstable
+  /// Called about twice a second of wall time.
+  std::function<void(double t, double speed, double wall_seconds)> progress;
+  /// Called with every output sample (time, channel values); e.g. to stream into a file.
+  std::function<void(double t, const double* values)> sink;
+  const std::atomic<bool>* cancel = nullptr;  ///< set to stop the run early (Ctrl-C)
+};
+
+/// The options a model file's [solver] and [output] tables ask for.
+RunupOptions runup_options(const MachineSpec& spec);
+
+/// The integrator "auto" stands for with this model.
+std::string resolve_integrator(const RunupModel& model, const std::string& requested);
+
+struct RunupStats {
+  long steps = 0;
+  long rhs_calls = 0;             ///< right-hand-side evaluations (including those for Jacobians)
+  long element_calls = 0;         ///< force-element evaluations
+  long jacobian_evaluations = 0;
+  long linear_setups = 0;         ///< Newton matrix factorisations
+  long error_test_failures = 0;
+  long nonlinear_failures = 0;
+  double wall_time = 0.0;         ///< s
+};
+
+struct RunupResult {
+  bool complete = false;
+  std::string message;            ///< why it stopped early (empty when complete)
+  double t_reached = 0.0;
+  std::vector<ProbeChannel> channels;
+  std::vector<double> time;
+  std::vector<std::vector<double>> columns;  ///< columns[c][sample]
+  RunupStats stats;
+  // Energy balance: E(t_end) - E(t0) against the work put in minus the energy dissipated.
+  double energy_initial = 0.0, energy_final = 0.0, work_in = 0.0, dissipated = 0.0;
+};
+
+/// Integrates the run-up. Never throws for integrator failures or cancellation: the result then has
+/// complete == false, a message naming the time, speed and cause, and all samples up to that point.
+RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options);
+
+}  // namespace turbodyn

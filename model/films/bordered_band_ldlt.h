@@ -1,0 +1,239 @@
+// Bordered band L D L^T factorisation of the symmetric positive definite systems of the film discretisation
+// (model/films/reynolds.cpp): the periodic grid's band plus the wrap-around border. Kept apart from the film so that
+// the film code reads as physics and the solver can be tested and reused on its own.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace turbodyn::reynolds {
+
+// Symmetric positive definite system whose unknowns split into a band part (n unknowns, half-bandwidth m) and a
+// border of na unknowns coupled to any of them (the wrap-around column of a periodic grid):
+//   [ A_band  A_b^T ]
+//   [ A_b     A_c   ],
+// factorised as L D L^T without pivoting. Storage is sized once (reserve); reset() starts a new matrix. Band
+// columns flagged as fixed are identity rows and are skipped (Dirichlet and cavitated nodes).
+class BorderedBandLdlt {
+ public:
+  void reserve(int n_max, int m_max) {
+    band_.assign(static_cast<std::size_t>(n_max + 1) * (m_max + 1), 0.0);
+    border_.assign(static_cast<std::size_t>(n_max) * m_max, 0.0);
+    corner_.assign(static_cast<std::size_t>(m_max) * m_max, 0.0);
+    corner_d_.assign(m_max, 0.0);
+    inv_d_.assign(n_max, 0.0);
+    fixed_.assign(n_max, 1);
+    y_.assign(n_max + m_max + 1, 0.0);
+    ya_.assign(m_max, 0.0);
+  }
+  void reset(int n, int m, int na) {
+    n_ = n;
+    m_ = m;
+    na_ = na;
+    std::fill(band_.begin(), band_.begin() + static_cast<std::ptrdiff_t>(n) * (m + 1), 0.0);
+    std::fill(border_.begin(), border_.begin() + static_cast<std::ptrdiff_t>(n) * na, 0.0);
+    std::fill(corner_.begin(), corner_.begin() + na * na, 0.0);
+  }
+  /// Column r of the band: [0] the diagonal, [t] = A(r + t, r), t = 1..m.
+  double* column(int r) { return band_.data() + static_cast<std::ptrdiff_t>(r) * (m_ + 1); }
+  /// A(n + a, r).
+  double& border(int r, int a) { return border_[static_cast<std::size_t>(r) * na_ + a]; }
+  /// A(n + a, n + b), a >= b.
+  double& corner(int a, int b) { return corner_[a * na_ + b]; }
+  void set_fixed(int r, bool f) { fixed_[r] = f ? 1 : 0; }
+  double* rhs() { return y_.data(); }          // n values, then m zeros of padding
+  double* rhs_border() { return ya_.data(); }  // na values
+
+  bool factor() {
+    return with_sizes([this]<int M, bool Full>() { return factor_band<M, Full>(); }) && factor_corner();
+  }
+  void solve() {
+    with_sizes([this]<int M, bool Full>() {
+      solve_band<M, Full>();
+      return true;
+    });
+  }
+
+ private:
+  // Calls f.operator()<M, Full>() with the half-bandwidth as a compile-time constant for the common sizes (M = 0:
+  // run-time size) and Full = (border size == M).
+  template <class F>
+  bool with_sizes(F&& f) const {
+    const bool full = na_ == m_;
+    auto pick = [&]<int M>() { return full ? f.template operator()<M, true>() : f.template operator()<M, false>(); };
+    switch (m_) {
+      case 4: return pick.template operator()<4>();
+      case 5: return pick.template operator()<5>();
+      case 6: return pick.template operator()<6>();
+      case 7: return pick.template operator()<7>();
+      case 8: return pick.template operator()<8>();
+      case 10: return pick.template operator()<10>();
+      case 12: return pick.template operator()<12>();
+      case 16: return pick.template operator()<16>();
+      default: return f.template operator()<0, false>();
+    }
+  }
+
+  // Right-looking band L D L^T; M > 0 fixes the half-bandwidth at compile time (loops unroll and vectorise).
+  template <int M, bool FullBorder>
+  bool factor_band() {
+    const int m = M > 0 ? M : m_, na = FullBorder ? M : na_, n = n_;
+    for (int r = 0; r < n; ++r) {
+      if (fixed_[r]) {
+        inv_d_[r] = 1.0;
+        continue;
+      }
+      double* col = column(r);
+      const double d = col[0];
+      if (!(d > 0.0)) return false;
+      const double inv = 1.0 / d;
+      inv_d_[r] = inv;
+      double* w = na > 0 ? border_.data() + static_cast<std::ptrdiff_t>(r) * na : nullptr;
+      if (M > 0 && na == 0 && r + m + 1 < n && !fixed_[r + 1]) {
+        // Two columns at once (rank-2 update of the trailing triangle: half the loads and stores).
+        double* cs = col + (m + 1);  // column s = r + 1
+        double lr[M + 1], ls[M + 1];
+#pragma GCC unroll 16
+        for (int j = 1; j <= m; ++j) lr[j] = col[j] * inv;
+        for (int q = 0; q < m; ++q) cs[q] -= col[1 + q] * lr[1];
+        const double ds = cs[0];
+        if (!(ds > 0.0)) return false;
+        const double invs = 1.0 / ds;
+        inv_d_[r + 1] = invs;
+#pragma GCC unroll 16
+        for (int j = 1; j <= m; ++j) ls[j] = cs[j] * invs;
+#pragma GCC unroll 16
+        for (int j = 2; j <= m; ++j) {
+          double* t = col + j * (m + 1);  // column r + j
+          const double a = lr[j], b = ls[j - 1];
+          for (int q = 0; q <= m - j; ++q) t[q] -= col[j + q] * a + cs[j - 1 + q] * b;
+          t[m - j + 1] -= cs[m] * b;
+        }
+        col[(m + 1) * (m + 1)] -= cs[m] * ls[m];  // diagonal of column r + m + 1
+        for (int j = 1; j <= m; ++j) {
+          col[j] = lr[j];
+          cs[j] = ls[j];
+        }
+        ++r;
+        continue;
+      }
+      if (r + m < n) {
+#pragma GCC unroll 16
+        for (int j = 1; j <= m; ++j) {
+          const double l = col[j] * inv;
+          double* t = col + j * (m + 1);  // column r + j
+          for (int q = 0; q <= m - j; ++q) t[q] -= col[j + q] * l;
+        }
+      } else {
+        for (int j = 1; j <= n - 1 - r; ++j) {
+          const double l = col[j] * inv;
+          double* t = col + j * (m + 1);
+          for (int q = 0; q <= m - j; ++q) t[q] -= col[j + q] * l;
+        }
+      }
+      if (na > 0) {
+        const int jmax = std::min(m, n - 1 - r);
+        for (int j = 1; j <= jmax; ++j) {
+          const double l = col[j] * inv;
+          if (l == 0.0) continue;
+          double* wt = w + j * na;
+          for (int a = 0; a < na; ++a) wt[a] -= w[a] * l;
+        }
+        for (int a = 0; a < na; ++a) {
+          const double wa = w[a] * inv;
+          double* fr = corner_.data() + a * na;
+          for (int b = 0; b <= a; ++b) fr[b] -= wa * w[b];
+        }
+        for (int a = 0; a < na; ++a) w[a] *= inv;
+      }
+      for (int j = 1; j <= m; ++j) col[j] *= inv;
+    }
+    return true;
+  }
+
+  bool factor_corner() {
+    const int na = na_;
+    // Dense L D L^T of the corner block.
+    for (int i = 0; i < na; ++i) {
+      double* ri = corner_.data() + i * na;
+      for (int j = 0; j < i; ++j) {
+        const double* rj = corner_.data() + j * na;
+        double s = ri[j];
+        for (int k = 0; k < j; ++k) s -= ri[k] * rj[k];  // ri[k] holds G = L * d for k < j
+        ri[j] = s;
+      }
+      double d = ri[i];
+      for (int j = 0; j < i; ++j) {
+        const double l = ri[j] / corner_d_[j];
+        d -= ri[j] * l;
+        ri[j] = l;
+      }
+      if (!(d > 0.0)) return false;
+      corner_d_[i] = d;
+    }
+    return true;
+  }
+
+  template <int M, bool FullBorder>
+  void solve_band() {
+    const int m = M > 0 ? M : m_, na = FullBorder ? M : na_, n = n_;
+    double* y = y_.data();
+    double* ya = ya_.data();
+    std::fill(y + n, y + n + m + 1, 0.0);
+    for (int r = 0; r < n; ++r) {
+      const double yr = y[r];
+      if (yr == 0.0 || fixed_[r]) continue;
+      const double* col = column(r);
+      for (int t = 1; t <= m; ++t) y[r + t] -= col[t] * yr;
+      if (na > 0) {
+        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
+        for (int a = 0; a < na; ++a) ya[a] -= w[a] * yr;
+      }
+    }
+    for (int i = 0; i < na; ++i) {
+      const double* ri = corner_.data() + i * na;
+      double s = ya[i];
+      for (int j = 0; j < i; ++j) s -= ri[j] * ya[j];
+      ya[i] = s;
+    }
+    for (int i = 0; i < na; ++i) ya[i] /= corner_d_[i];
+    for (int i = na - 1; i >= 0; --i) {
+      double s = ya[i];
+      for (int j = i + 1; j < na; ++j) s -= corner_[j * na + i] * ya[j];
+      ya[i] = s;
+    }
+    for (int r = 0; r < n; ++r) y[r] *= inv_d_[r];
+    for (int r = n - 1; r >= 0; --r) {
+      if (fixed_[r]) continue;
+      const double* col = column(r);
+      // Four partial sums: the chain of additions, not the multiplications, bounds this loop.
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+      int t = 1;
+      for (; t + 3 <= m; t += 4) {
+        s0 += col[t] * y[r + t];
+        s1 += col[t + 1] * y[r + t + 1];
+        s2 += col[t + 2] * y[r + t + 2];
+        s3 += col[t + 3] * y[r + t + 3];
+      }
+      for (; t <= m; ++t) s0 += col[t] * y[r + t];
+      if (na > 0) {
+        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
+        int a = 0;
+        for (; a + 1 < na; a += 2) {
+          s1 += w[a] * ya[a];
+          s3 += w[a + 1] * ya[a + 1];
+        }
+        if (a < na) s2 += w[a] * ya[a];
+      }
+      y[r] -= (s0 + s1) + (s2 + s3);
+    }
+  }
+
+  int n_ = 0, m_ = 0, na_ = 0;
+  std::vector<double> band_, border_, corner_, corner_d_, inv_d_, y_, ya_;
+  std::vector<std::uint8_t> fixed_;
+};
+
+}  // namespace turbodyn::reynolds

@@ -1,0 +1,1148 @@
+#include "model/films/reynolds.h"
+
+#include "model/films/bordered_band_ldlt.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace turbodyn::reynolds {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+
+bool finite_state(const FilmState& s) {
+  const double v[] = {s.ex, s.ey, s.vx, s.vy, s.sx, s.sy, s.dsx, s.dsy, s.omega_inner, s.omega_outer};
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  if (s.use_override)
+    for (double x : s.hole_pressure_override)
+      if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace
+
+bool cavitation_from_string(const std::string& name, Cavitation& c) {
+  if (name == "gumbel") c = Cavitation::Gumbel;
+  else if (name == "mass-conserving") c = Cavitation::MassConserving;
+  else if (name == "none") c = Cavitation::None;
+  else return false;
+  return true;
+}
+
+std::string to_string(Cavitation c) {
+  switch (c) {
+    case Cavitation::None: return "none";
+    case Cavitation::Gumbel: return "gumbel";
+    case Cavitation::MassConserving: return "mass_conserving";
+  }
+  return "unknown";
+}
+
+Closed short_bearing(double eta, double omega, double R, double L, double c, double eps) {
+  if (!(eps >= 0.0 && eps < 1.0)) throw std::invalid_argument("short_bearing: eccentricity ratio must be in [0, 1)");
+  const double q = 1.0 - eps * eps;
+  const double aw = std::abs(omega);
+  return {eta * aw * R * L * L * L * eps * eps / (c * c * q * q),
+          kPi * eta * omega * R * L * L * L * eps / (4.0 * c * c * std::pow(q, 1.5))};
+}
+
+Closed long_bearing(double eta, double omega, double R, double L, double c, double eps) {
+  if (!(eps >= 0.0 && eps < 1.0)) throw std::invalid_argument("long_bearing: eccentricity ratio must be in [0, 1)");
+  const double q = 1.0 - eps * eps;
+  const double aw = std::abs(omega);
+  return {12.0 * eta * aw * R * R * R * L * eps * eps / (c * c * (2.0 + eps * eps) * q),
+          6.0 * kPi * eta * omega * R * R * R * L * eps / (c * c * (2.0 + eps * eps) * std::sqrt(q))};
+}
+
+// Node states of the cavitation models (full film; cavitated: p = p_cav, and for the mass-conserving model a film
+// fraction theta < 1; fallback of the mass-conserving model: p = p_cav, theta = 1, Swift-Stieber condition).
+constexpr std::uint8_t kFull = 0, kCav = 1, kFallback = 2;
+
+struct FilmSolver::Impl {
+  FilmGeometry g;
+  double eta = 0;
+  SolverOptions o;
+  int n = 0, nz = 0, nzf = 0;  // circumferential nodes, axial nodes, axial faces (nz + 1)
+  double dth = 0, dx = 0, dz = 0;
+  double seal_conductance = 0;  // m^3/(Pa s) per grid column of an end seal's slot (0: open ends)
+  std::vector<double> th, ct, st, cte, ste, zn, zf;  // node angles, cos/sin at nodes and east faces, z nodes/faces
+  std::vector<int> iwest, ieast;                     // neighbouring columns (periodic)
+  // Dirichlet nodes (full grid): kind -1 free, h >= 0 hole h, -2 - k groove k.
+  std::vector<int> kind, dir_nodes;
+  bool mask_symmetric = false;
+
+  // Per call, full grid (i * nz + j; faces i * nzf + jf).
+  std::vector<double> hN, hE, hF, aE, aF, cE, sq, dval;
+  std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
+  std::vector<std::uint8_t> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
+  bool warm = false;
+
+  // Reduced grid (i * m + j, j < m): the unknowns actually solved for.
+  int m = 0;
+  bool sym = false;
+  double w_last = 1.0;  // row weight of the last reduced row (1/2 for the mid-width row when nz is odd)
+  std::vector<double> Cw, Ce, Cs, Cn, Dg, FE, SQ, b0, pr, thr;
+  std::vector<std::uint8_t> dirr, cr, fr;
+  std::vector<int> colcount, border_j;
+  int i0 = 0, last_col = 0, na = 0;
+  // Mass-conserving model: cavitated nodes feeding a full node, and GMRES storage.
+  static constexpr int kGmresRestart = 40;
+  std::vector<int> feed;
+  int nfeed = 0;
+  std::vector<double> gm_x, gm_f, gm_t, gm_v, gm_h, gm_g, gm_y, gm_cs, gm_sn;
+  std::vector<int> mk_node, mk_up, mk_kw, mk_ke, mk_ks, mk_kn;
+  std::vector<double> mk_alpha, mk_invden, mk_const;
+  int mk_count = 0;
+  bool mk_generic = false;
+  static constexpr int kMaxSwitches = 6;
+  std::vector<std::uint8_t> switches;  // per cell and call
+  BorderedBandLdlt band;
+  double U = 0, pcav = 0, pamb = 0;
+  double pscale = 1, fscale = 1;
+  int iterations = 0, solves = 0;
+  std::string err;
+
+  Impl(const FilmGeometry& geo, double viscosity, const SolverOptions& opt) : g(geo), eta(viscosity), o(opt) {
+    auto bad = [](const std::string& what) { throw std::invalid_argument("reynolds::FilmSolver: " + what); };
+    if (!(g.radius > 0.0) || !std::isfinite(g.radius)) bad("radius must be > 0");
+    if (!(g.length > 0.0) || !std::isfinite(g.length)) bad("length must be > 0");
+    if (!(g.clearance > 0.0) || !std::isfinite(g.clearance)) bad("clearance must be > 0");
+    if (!(eta > 0.0) || !std::isfinite(eta)) bad("viscosity must be > 0");
+    if (g.n_circ < 8 || g.n_axial < 4)
+      bad("grid must be at least 8 x 4 (n_circ x n_axial), got " + std::to_string(g.n_circ) + " x " +
+          std::to_string(g.n_axial));
+    if (!std::isfinite(g.ambient_pressure) || !std::isfinite(g.cavitation_pressure))
+      bad("ambient and cavitation pressures must be finite");
+    if (g.holes.size() > 8) bad("at most 8 holes (FilmState::hole_pressure_override has 8 entries)");
+    if (!(o.tolerance > 0.0) || o.tolerance >= 1.0) bad("tolerance must be in (0, 1)");
+    if (o.max_iterations < 1) bad("max_iterations must be >= 1");
+    n = g.n_circ;
+    nz = g.n_axial;
+    nzf = nz + 1;
+    dth = kTwoPi / n;
+    dx = g.radius * dth;
+    dz = g.length / (nz + 1);
+    if (!(g.end_seal_gap >= 0.0) || !std::isfinite(g.end_seal_gap)) bad("end_seal_gap must be >= 0");
+    if (g.end_seal_gap > 0.0) {
+      if (!(g.end_seal_length > 0.0) || !std::isfinite(g.end_seal_length))
+        bad("an end seal needs end_seal_length > 0");
+      const double gap = g.end_seal_gap;
+      seal_conductance = dx * gap * gap * gap / (12.0 * eta * g.end_seal_length);
+    }
+    th.resize(n);
+    ct.resize(n);
+    st.resize(n);
+    cte.resize(n);
+    ste.resize(n);
+    for (int i = 0; i < n; ++i) {
+      th[i] = i * dth;
+      ct[i] = std::cos(th[i]);
+      st[i] = std::sin(th[i]);
+      cte[i] = std::cos(th[i] + 0.5 * dth);
+      ste[i] = std::sin(th[i] + 0.5 * dth);
+    }
+    iwest.resize(n);
+    ieast.resize(n);
+    for (int i = 0; i < n; ++i) {
+      iwest[i] = (i + n - 1) % n;
+      ieast[i] = (i + 1) % n;
+    }
+    zn.resize(nz);
+    zf.resize(nzf);
+    // From half-integer multiples of dz: exactly antisymmetric about mid-width (mirrored holes find mirrored nodes).
+    for (int j = 0; j < nz; ++j) zn[j] = (j + 1 - 0.5 * (nz + 1)) * dz;
+    for (int j = 0; j < nzf; ++j) zf[j] = (j + 0.5 - 0.5 * (nz + 1)) * dz;
+
+    const int N = n * nz;
+    kind.assign(N, -1);
+    const double half = 0.5 * g.length * (1.0 + 1e-12);
+    for (std::size_t k = 0; k < g.grooves.size(); ++k) {
+      const Groove& gr = g.grooves[k];
+      if (!(gr.width > 0.0) || !std::isfinite(gr.z) || !std::isfinite(gr.pressure))
+        bad("groove " + std::to_string(k) + ": width must be > 0 and position and pressure finite");
+      if (std::abs(gr.z) + 0.5 * gr.width > half)
+        bad("groove " + std::to_string(k) + " is not inside the film (|z| + width/2 > L/2)");
+      int nearest = 0;
+      bool any = false;
+      for (int j = 0; j < nz; ++j) {
+        if (std::abs(zn[j] - gr.z) < std::abs(zn[nearest] - gr.z)) nearest = j;
+        if (std::abs(zn[j] - gr.z) <= 0.5 * gr.width) {
+          any = true;
+          for (int i = 0; i < n; ++i) kind[i * nz + j] = -2 - static_cast<int>(k);
+        }
+      }
+      if (!any)
+        for (int i = 0; i < n; ++i) kind[i * nz + nearest] = -2 - static_cast<int>(k);
+    }
+    for (std::size_t h = 0; h < g.holes.size(); ++h) {
+      const Hole& ho = g.holes[h];
+      if (!(ho.diameter > 0.0) || !std::isfinite(ho.theta) || !std::isfinite(ho.z) || !std::isfinite(ho.pressure))
+        bad("hole " + std::to_string(h) + ": diameter must be > 0 and position and pressure finite");
+      if (std::abs(ho.z) + 0.5 * ho.diameter > half)
+        bad("hole " + std::to_string(h) + " is not inside the film (|z| + diameter/2 > L/2)");
+      if (ho.diameter >= kTwoPi * g.radius) bad("hole " + std::to_string(h) + " is wider than the circumference");
+      const double r2 = 0.25 * ho.diameter * ho.diameter;
+      int nearest = -1;
+      double best = std::numeric_limits<double>::infinity();
+      bool any = false;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < nz; ++j) {
+          const double ddx = g.radius * std::remainder(th[i] - ho.theta, kTwoPi), ddz = zn[j] - ho.z;
+          const double d2 = ddx * ddx + ddz * ddz;
+          const int k = i * nz + j;
+          if (d2 < best) {
+            best = d2;
+            nearest = k;
+          }
+          if (d2 <= r2) {
+            if (kind[k] != -1) bad("hole " + std::to_string(h) + " overlaps another hole or a groove");
+            kind[k] = static_cast<int>(h);
+            any = true;
+          }
+        }
+      if (!any) {
+        if (kind[nearest] != -1) bad("hole " + std::to_string(h) + " overlaps another hole or a groove");
+        kind[nearest] = static_cast<int>(h);
+      }
+    }
+    mask_symmetric = true;
+    for (int k = 0; k < N; ++k) {
+      if (kind[k] != -1) dir_nodes.push_back(k);
+      const int i = k / nz, j = k % nz;
+      if (kind[k] != kind[i * nz + (nz - 1 - j)]) {
+        // Different holes at mirrored nodes are fine if their pressures agree (checked per call).
+        if ((kind[k] == -1) != (kind[i * nz + (nz - 1 - j)] == -1)) mask_symmetric = false;
+      }
+    }
+
+    hN.assign(N, 0.0);
+    hE.assign(N, 0.0);
+    aE.assign(N, 0.0);
+    cE.assign(N, 0.0);
+    sq.assign(N, 0.0);
+    dval.assign(N, 0.0);
+    hF.assign(n * nzf, 0.0);
+    aF.assign(n * nzf, 0.0);
+    p.assign(N, g.ambient_pressure);
+    theta.assign(N, 1.0);
+    ff.assign(N, 1.0);
+    cav.assign(N, 0);
+    for (auto* v : {&Cw, &Ce, &Cs, &Cn, &Dg, &FE, &SQ, &b0, &thr}) v->assign(N, 0.0);
+    dirr.assign(N, 0);
+    cr.assign(N, 0);
+    fr.assign(N, 0);
+    colcount.assign(n, 0);
+    border_j.assign(nz, -1);
+    band.reserve(N, nz);
+    feed.assign(N, 0);
+    switches.assign(N, 0);
+    for (auto* v : {&mk_node, &mk_up, &mk_kw, &mk_ke, &mk_ks, &mk_kn}) v->assign(N, 0);
+    for (auto* v : {&mk_alpha, &mk_invden, &mk_const}) v->assign(N, 0.0);
+    pr.assign(N + 1, 0.0);  // + sentinel
+    for (auto* v : {&gm_x, &gm_f, &gm_t}) v->assign(N, 0.0);
+    gm_v.assign(static_cast<std::size_t>(kGmresRestart + 1) * N, 0.0);
+    gm_h.assign((kGmresRestart + 1) * (kGmresRestart + 1), 0.0);
+    for (auto* v : {&gm_g, &gm_y, &gm_cs, &gm_sn}) v->assign(kGmresRestart + 1, 0.0);
+  }
+
+  // ---- per-call set-up -------------------------------------------------------------------------------------------
+
+  bool symmetric_values() const {
+    for (int k : dir_nodes) {
+      const int i = k / nz, j = k % nz;
+      if (dval[k] != dval[i * nz + (nz - 1 - j)]) return false;
+    }
+    return true;
+  }
+
+  void geometry_arrays(const FilmState& s) {
+    const double c = g.clearance;
+    const double kx = dz / (12.0 * eta * dx), kz = dx / (12.0 * eta * dz);
+    const double couette = 0.5 * U * dz, area = dx * dz;
+    const int jn = sym ? m : nz;  // rows computed (the rest mirrored)
+    for (int j = 0; j < jn; ++j) {
+      const double z = zn[j];
+      const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
+      const double vxz = s.vx + z * s.dsx, vyz = s.vy + z * s.dsy;
+      for (int i = 0; i < n; ++i) {
+        const int k = i * nz + j;
+        const double h = c - exz * ct[i] - eyz * st[i];
+        const double he = c - exz * cte[i] - eyz * ste[i];
+        hN[k] = h;
+        hE[k] = he;
+        aE[k] = kx * he * he * he;
+        cE[k] = couette * he;
+        sq[k] = -(vxz * ct[i] + vyz * st[i]) * area;
+      }
+    }
+    const int jfn = sym ? m + 1 : nzf;
+    for (int jf = 0; jf < jfn; ++jf) {
+      const double z = zf[jf];
+      const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
+      const bool end = jf == 0 || jf == nzf - 1;
+      for (int i = 0; i < n; ++i) {
+        const double h = c - exz * ct[i] - eyz * st[i];
+        hF[i * nzf + jf] = h;
+        const double a = kz * h * h * h;
+        // An end face with a seal: the land's last half cell and the seal's slot in series.
+        aF[i * nzf + jf] = end && seal_conductance > 0.0 ? a * seal_conductance / (a + seal_conductance) : a;
+      }
+    }
+    if (sym) {
+      for (int i = 0; i < n; ++i) {
+        for (int j = jn; j < nz; ++j) {
+          const int k = i * nz + j, km = i * nz + (nz - 1 - j);
+          hN[k] = hN[km];
+          hE[k] = hE[km];
+          aE[k] = aE[km];
+          cE[k] = cE[km];
+          sq[k] = sq[km];
+        }
+        for (int jf = jfn; jf < nzf; ++jf) {
+          hF[i * nzf + jf] = hF[i * nzf + nz - jf];
+          aF[i * nzf + jf] = aF[i * nzf + nz - jf];
+        }
+      }
+    }
+  }
+
+  // Coefficients of the reduced system: per node west/east/south/north couplings, diagonal, Couette flux through
+  // the east face for a full film (FE), squeeze volume rate (SQ), and the full-film source with the end terms (b0).
+  void reduced_system() {
+    double amax = 0.0, fmax = 0.0;
+    const int last = sym ? m - 1 : -1;
+    for (int i = 0; i < n; ++i) {
+      const int iw = iwest[i];
+      const double* aEi = aE.data() + i * nz;
+      const double* aEw = aE.data() + iw * nz;
+      const double* aFi = aF.data() + i * nzf;
+      const double* cEi = cE.data() + i * nz;
+      const double* sqi = sq.data() + i * nz;
+      const int* kindi = kind.data() + i * nz;
+      for (int j = 0; j < m; ++j) {
+        const int kr = i * m + j;
+        const double w = j == last ? w_last : 1.0;
+        const double cw = w * aEw[j], ce = w * aEi[j], cs = aFi[j], cn = j == last ? 0.0 : aFi[j + 1];
+        Cw[kr] = cw;
+        Ce[kr] = ce;
+        Cs[kr] = cs;
+        Cn[kr] = cn;
+        Dg[kr] = cw + ce + cs + cn;
+        FE[kr] = w * cEi[j];
+        SQ[kr] = w * sqi[j];
+        amax = std::max(amax, Dg[kr]);
+        fmax = std::max(fmax, std::abs(FE[kr]) + std::abs(SQ[kr]));
+        dirr[kr] = kindi[j] != -1;
+      }
+    }
+    for (int k : dir_nodes) {
+      const int i = k / nz, j = k % nz;
+      if (j < m) pr[i * m + j] = dval[k];
+    }
+    double bmax = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const int iw = iwest[i];
+      for (int j = 0; j < m; ++j) {
+        const int kr = i * m + j;
+        b0[kr] = -(FE[kr] - FE[iw * m + j]) - SQ[kr];
+        bmax = std::max(bmax, std::abs(b0[kr]));
+      }
+      b0[i * m] += Cs[i * m] * pamb;
+      if (!sym) b0[i * m + m - 1] += Cn[i * m + m - 1] * pamb;
+    }
+    // Add the couplings to hole and groove nodes (fixed for the whole call) to the source of their neighbours.
+    for (int k : dir_nodes) {
+      const int i = k / nz, j = k % nz;
+      if (j >= m) continue;
+      const double v = dval[k];
+      const int kr = i * m + j, kw = iwest[i] * m + j, ke = ieast[i] * m + j;
+      b0[kw] += Ce[kw] * v;
+      b0[ke] += Cw[ke] * v;
+      if (j > 0) b0[kr - 1] += Cn[kr - 1] * v;
+      if (j + 1 < m) b0[kr + 1] += Cs[kr + 1] * v;
+    }
+    // Scales for the sign tests: pressure from the Dirichlet data (refined after the first solve), flux from the
+    // sources and the couplings.
+    double pd = std::abs(pamb - pcav);
+    for (int k : dir_nodes) pd = std::max(pd, std::abs(dval[k] - pcav));
+    pscale = std::max(pd, std::numeric_limits<double>::min());
+    fscale = std::max({fmax, bmax, amax * pd, std::numeric_limits<double>::min()});
+  }
+
+  // ---- linear algebra on the reduced grid ------------------------------------------------------------------------
+
+  // Factorises the system restricted to the free nodes (fr[kr] = 1); other nodes keep their value in pr.
+  bool factor_free() {
+    int best = 0;
+    for (int i = 0; i < n; ++i) {
+      int c = 0;
+      for (int j = 0; j < m; ++j) c += fr[i * m + j];
+      colcount[i] = c;
+      if (c < colcount[best]) best = i;
+    }
+    last_col = best;
+    i0 = (best + 1) % n;
+    na = 0;
+    for (int j = 0; j < m; ++j) border_j[j] = fr[last_col * m + j] ? na++ : -1;
+    const int N1 = (n - 1) * m;
+    band.reset(N1, m, na);
+    for (int q = 0; q < n - 1; ++q) {
+      const int i = (i0 + q) % n, ie = (i + 1) % n;
+      for (int j = 0; j < m; ++j) {
+        const int r = q * m + j, kr = i * m + j;
+        double* col = band.column(r);
+        if (!fr[kr]) {
+          col[0] = 1.0;
+          band.set_fixed(r, true);
+          continue;
+        }
+        band.set_fixed(r, false);
+        col[0] = Dg[kr];
+        if (j + 1 < m && fr[kr + 1]) col[1] = -Cn[kr];
+        if (q + 1 < n - 1) {
+          if (fr[ie * m + j]) col[m] = -Ce[kr];
+        } else if (border_j[j] >= 0) {
+          band.border(r, border_j[j]) = -Ce[kr];
+        }
+        if (q == 0 && border_j[j] >= 0) band.border(r, border_j[j]) += -Cw[kr];
+      }
+    }
+    for (int j = 0; j < m; ++j) {
+      const int a = border_j[j];
+      if (a < 0) continue;
+      const int kr = last_col * m + j;
+      band.corner(a, a) = Dg[kr];
+      if (j + 1 < m && border_j[j + 1] >= 0) band.corner(border_j[j + 1], a) = -Cn[kr];
+    }
+    ++iterations;
+    return band.factor();
+  }
+
+  // Couplings of free node kr to its cavitated neighbours (held at p_cav), times p_cav: zero for p_cav = 0.
+  double cavitated_couplings(int i, int j, int kr) const {
+    if (pcav == 0.0) return 0.0;
+    const int kw = iwest[i] * m + j, ke = ieast[i] * m + j;
+    double c = 0.0;
+    if (cr[kw]) c += Cw[kr];
+    if (cr[ke]) c += Ce[kr];
+    if (j > 0 && cr[kr - 1]) c += Cs[kr];
+    if (j + 1 < m && cr[kr + 1]) c += Cn[kr];
+    return c * pcav;
+  }
+
+  // Solves for the free nodes (fr) with rhs(i, j, kr) the complete right-hand side of free node kr = i m + j
+  // (sources and couplings to fixed nodes). Writes the solution into pr.
+  template <class Rhs>
+  void solve_free(Rhs rhs) {
+    double* y = band.rhs();
+    double* ya = band.rhs_border();
+    for (int q = 0; q < n; ++q) {
+      const int i = q + i0 < n ? q + i0 : q + i0 - n;
+      const int kr0 = i * m;
+      if (q < n - 1) {
+        double* yq = y + q * m;
+        for (int j = 0; j < m; ++j) yq[j] = fr[kr0 + j] ? rhs(i, j, kr0 + j) : 0.0;
+      } else {
+        for (int j = 0; j < m; ++j)
+          if (border_j[j] >= 0) ya[border_j[j]] = rhs(i, j, kr0 + j);
+      }
+    }
+    band.solve();
+    ++solves;
+    for (int q = 0; q < n; ++q) {
+      const int i = q + i0 < n ? q + i0 : q + i0 - n;
+      const int kr0 = i * m;
+      for (int j = 0; j < m; ++j) {
+        const int kr = kr0 + j;
+        if (!fr[kr]) continue;
+        pr[kr] = q < n - 1 ? y[q * m + j] : ya[border_j[j]];
+      }
+    }
+  }
+
+  // Net volume outflow of the control volume of reduced node kr with the current pr (and thr for the
+  // mass-conserving model): the residual (A p - b)_kr, the Lagrange multiplier of the Swift-Stieber problem.
+  double outflow(int i, int j, bool jfo) const {
+    const int kr = i * m + j;
+    const int kw = iwest[i] * m + j, ke = ieast[i] * m + j;
+    const double pk = pr[kr];
+    const double ps = j > 0 ? pr[kr - 1] : pamb;
+    const double pn = j + 1 < m ? pr[kr + 1] : pamb;  // sym: Cn = 0 on the last row
+    double q = Cw[kr] * (pk - pr[kw]) + Ce[kr] * (pk - pr[ke]) + Cs[kr] * (pk - ps) + Cn[kr] * (pk - pn);
+    if (!jfo) return q + FE[kr] - FE[kw] + SQ[kr];
+    const double te = U >= 0.0 ? thr[kr] : thr[ke], tw = U >= 0.0 ? thr[kw] : thr[kr];
+    return q + te * FE[kr] - tw * FE[kw] + thr[kr] * SQ[kr];
+  }
+
+  void update_pscale() {
+    double pm = std::abs(pamb - pcav);
+    for (int kr = 0; kr < n * m; ++kr) pm = std::max(pm, std::abs(pr[kr] - pcav));
+    pscale = std::max(pm, std::numeric_limits<double>::min());
+  }
+
+  // ---- models ----------------------------------------------------------------------------------------------------
+
+  bool solve_none() {
+    for (int kr = 0; kr < n * m; ++kr) fr[kr] = !dirr[kr];
+    if (!factor_free()) return fail("factorisation failed (matrix not positive definite)");
+    solve_free([&](int, int, int kr) { return b0[kr]; });  // no cavitated nodes
+    return true;
+  }
+
+  // Swift-Stieber conditions as the complementarity problem p >= p_cav, A p - b >= 0, (p - p_cav)(A p - b) = 0,
+  // solved by the primal-dual active-set method (Hintermueller, Ito & Kunisch 2002), warm-started from the last
+  // cavitated set.
+  bool solve_gumbel() {
+    const double tol = o.tolerance;
+    for (int kr = 0; kr < n * m; ++kr) {
+      if (dirr[kr]) cr[kr] = 0;
+      if (cr[kr]) pr[kr] = pcav;
+    }
+    for (int it = 0; it < o.max_iterations; ++it) {
+      for (int kr = 0; kr < n * m; ++kr) fr[kr] = !dirr[kr] && !cr[kr];
+      if (!factor_free()) return fail("factorisation failed (matrix not positive definite)");
+      solve_free([&](int i, int j, int kr) { return b0[kr] + cavitated_couplings(i, j, kr); });
+      if (it == 0) update_pscale();
+      int changed = 0;
+      const double plim = pcav - tol * pscale, qlim = -tol * fscale;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+          const int kr = i * m + j;
+          if (dirr[kr]) continue;
+          if (!cr[kr]) {
+            if (pr[kr] < plim) {
+              cr[kr] = 1;
+              ++changed;
+            }
+          } else if (outflow(i, j, false) < qlim) {
+            cr[kr] = 0;
+            ++changed;
+          }
+        }
+      if (changed == 0) return true;
+      for (int kr = 0; kr < n * m; ++kr)
+        if (cr[kr]) pr[kr] = pcav;
+    }
+    return fail("Swift-Stieber active set did not settle in " + std::to_string(o.max_iterations) + " sweeps");
+  }
+
+  // Film fraction of the cavitated nodes from the current pressures: in a cavitated control volume the pressure is
+  // p_cav and the mass balance  theta_k (F_out + SQ_k) = theta_up F_in + pressure inflow  is marched downstream
+  // from the last full node of each axial row (Elrod-Adams upwinding of the Couette flux). Nodes where no film
+  // fraction can be found (den <= 0) are flagged with theta = +inf.
+  void march_theta() {
+    const bool fwd = U >= 0.0;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < m; ++j) {
+      auto node = [&](int i) { return ((i % n) + n) % n * m + j; };
+      const int step = fwd ? 1 : -1;
+      // Start at a cavitated node whose upstream neighbour is full (theta_up = 1).
+      int start = -1;
+      bool anyc = false;
+      for (int i = 0; i < n; ++i) {
+        anyc |= cr[i * m + j] == kCav;
+        if (cr[i * m + j] == kCav && cr[node(i - step)] != kCav) {
+          start = i;
+          break;
+        }
+      }
+      if (!anyc) continue;
+      double up = 1.0;
+      if (start < 0) {
+        // The whole row is cavitated: theta_i = alpha_i theta_up + beta_i around the circle has the fixed point
+        // theta_up = B / (1 - A) of the composed map.
+        start = 0;
+        double A = 1.0, B = 0.0;
+        for (int s = 0; s < n; ++s) {
+          double alpha, beta;
+          theta_coefficients(node(start + step * s), alpha, beta);
+          A = alpha * A;
+          B = alpha * B + beta;
+        }
+        up = (std::isfinite(A) && std::isfinite(B) && 1.0 - A > 1e-12) ? B / (1.0 - A) : inf;
+        if (!std::isfinite(up)) {
+          // No steady film fraction on a closed cavitated ring: flag the row (it must carry pressure).
+          for (int i = 0; i < n; ++i) thr[i * m + j] = inf;
+          continue;
+        }
+      }
+      for (int s = 0; s < n; ++s) {
+        const int kr = node(start + step * s);
+        if (cr[kr] != kCav) {
+          up = 1.0;
+          continue;
+        }
+        double alpha, beta;
+        theta_coefficients(kr, alpha, beta);
+        const double t = std::isfinite(alpha) ? alpha * up + beta : inf;
+        thr[kr] = t;
+        up = std::isfinite(t) ? t : 1.0;
+      }
+    }
+  }
+
+  // theta_kr = alpha * theta_upstream + beta in a cavitated node (alpha = +inf when no film fraction exists).
+  void theta_coefficients(int kr, double& alpha, double& beta) const {
+    const int i = kr / m, j = kr % m;
+    const int kw = iwest[i] * m + j, ke = ieast[i] * m + j;
+    const double ps = j > 0 ? pr[kr - 1] : pamb;
+    const double pn = j + 1 < m ? pr[kr + 1] : pamb;
+    const double inflow = Cw[kr] * (pr[kw] - pcav) + Ce[kr] * (pr[ke] - pcav) + Cs[kr] * (ps - pcav) +
+                          Cn[kr] * (pn - pcav);
+    double fin, fout;
+    if (U >= 0.0) {
+      fin = FE[kw];
+      fout = FE[kr];
+    } else {
+      fin = -FE[kr];
+      fout = -FE[kw];
+    }
+    const double den = fout + SQ[kr];
+    if (!(den > 1e-14 * fscale)) {
+      alpha = std::numeric_limits<double>::infinity();
+      beta = 0.0;
+      return;
+    }
+    alpha = fin / den;
+    beta = inflow / den;
+  }
+
+  // Film fractions of the feeding nodes -> full-film pressures (one back-substitution) -> march -> new film
+  // fractions of the feeding nodes: an affine map x -> phi(x) on the r cavitated nodes just upstream of a full node,
+  // the only place where theta enters the pressure equations (Couette inflow at a reformation boundary).
+  void jfo_phi(const double* x, double* out) {
+    const bool fwd = U >= 0.0;
+    for (int a = 0; a < nfeed; ++a) thr[feed[a]] = x[a];
+    // Full-film source b0 corrected for the film fraction carried in from an upstream cavitated node.
+    solve_free([&](int i, int j, int kr) {
+      double b = b0[kr] + cavitated_couplings(i, j, kr);
+      if (fwd) {
+        const int kw = iwest[i] * m + j;
+        if (cr[kw] == kCav) b += (thr[kw] - 1.0) * FE[kw];
+      } else {
+        const int ke = ieast[i] * m + j;
+        if (cr[ke] == kCav) b -= (thr[ke] - 1.0) * FE[kr];
+      }
+      return b;
+    });
+    if (mk_generic)
+      march_theta();
+    else
+      march_program();
+    for (int a = 0; a < nfeed; ++a) out[a] = thr[feed[a]];
+  }
+
+  // The march of march_theta() for a fixed cavitated set, compiled once per active-set sweep: cavitated nodes in
+  // marching order with their upstream link (-1: a full node, theta_up = 1), alpha, 1/den, the constant inflow from
+  // the ends and the neighbour indices (index n m is a sentinel holding p_cav). Not used when a whole row is
+  // cavitated (its cyclic fixed point needs the general march).
+  void build_march_program() {
+    mk_count = 0;
+    mk_generic = false;
+    const bool fwd = U >= 0.0;
+    const int N = n * m;
+    pr[N] = pcav;
+    for (int j = 0; j < m; ++j) {
+      int start = -1;
+      bool anyc = false;
+      for (int i = 0; i < n; ++i) {
+        const int iu = fwd ? iwest[i] : ieast[i];
+        anyc |= cr[i * m + j] == kCav;
+        if (cr[i * m + j] == kCav && cr[iu * m + j] != kCav) {
+          start = i;
+          break;
+        }
+      }
+      if (!anyc) continue;
+      if (start < 0) {
+        mk_generic = true;
+        return;
+      }
+      int prev = -1, i = start;
+      for (int s = 0; s < n; ++s, i = fwd ? ieast[i] : iwest[i]) {
+        const int kr = i * m + j;
+        if (cr[kr] != kCav) {
+          prev = -1;
+          continue;
+        }
+        const int t = mk_count++;
+        double alpha, beta;
+        theta_coefficients(kr, alpha, beta);  // for alpha and the denominator
+        const int kw = iwest[i] * m + j, ke = ieast[i] * m + j;
+        const double fout = fwd ? FE[kr] : -FE[kw];
+        const double den = fout + SQ[kr];
+        mk_node[t] = kr;
+        mk_up[t] = prev;
+        mk_alpha[t] = alpha;
+        mk_invden[t] = std::isfinite(alpha) ? 1.0 / den : 0.0;
+        mk_kw[t] = kw;
+        mk_ke[t] = ke;
+        mk_ks[t] = j > 0 ? kr - 1 : N;
+        mk_kn[t] = j + 1 < m ? kr + 1 : N;
+        double c = 0.0;
+        if (j == 0) c += Cs[kr] * (pamb - pcav);
+        if (j == m - 1 && !sym) c += Cn[kr] * (pamb - pcav);
+        mk_const[t] = c;
+        prev = t;
+      }
+    }
+  }
+
+  void march_program() {
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < mk_count; ++t) {
+      const int kr = mk_node[t];
+      if (!std::isfinite(mk_alpha[t])) {
+        thr[kr] = inf;
+        continue;
+      }
+      const double inflow = mk_const[t] + Cw[kr] * (pr[mk_kw[t]] - pcav) + Ce[kr] * (pr[mk_ke[t]] - pcav) +
+                            Cs[kr] * (pr[mk_ks[t]] - pcav) + Cn[kr] * (pr[mk_kn[t]] - pcav);
+      const int up = mk_up[t];
+      double tu = up < 0 ? 1.0 : thr[mk_node[up]];
+      if (!std::isfinite(tu)) tu = 1.0;
+      thr[kr] = mk_alpha[t] * tu + inflow * mk_invden[t];
+    }
+  }
+
+  // Solves x = phi(x) by GMRES on (I - G) x = phi(0) with G the linear part of phi (restarted after kmax steps).
+  // Returns false if phi produced non-finite film fractions (the active set is inconsistent).
+  bool jfo_inner(double tol) {
+    const int r = nfeed;
+    double* x = gm_x.data();
+    double* f0 = gm_f.data();
+    // Start from a full film at the feeding nodes rather than from the last call's film fractions: the result is
+    // then a function of the state and the active set alone (repeated solves agree bit for bit), at a cost of
+    // 5-10 % more back-substitutions in the whirl benchmark.
+    std::fill(x, x + r, 1.0);
+    const int kmax = std::min(r, kGmresRestart);
+    for (int restart = 0; restart < o.max_iterations; ++restart) {
+      jfo_phi(x, f0);
+      double beta = 0.0;
+      for (int a = 0; a < r; ++a) {
+        if (!std::isfinite(f0[a])) return false;
+        gm_v[a] = f0[a] - x[a];
+        beta += gm_v[a] * gm_v[a];
+      }
+      beta = std::sqrt(beta);
+      if (r == 0 || beta <= tol) {
+        for (int kr = 0; kr < n * m; ++kr)
+          if (cr[kr] == kCav && !std::isfinite(thr[kr])) return false;
+        return true;
+      }
+      for (int a = 0; a < r; ++a) gm_v[a] /= beta;
+      std::fill(gm_g.begin(), gm_g.begin() + kmax + 1, 0.0);
+      gm_g[0] = beta;
+      int k = 0;
+      double res = beta;
+      for (; k < kmax && res > tol; ++k) {
+        double* vk = gm_v.data() + static_cast<std::ptrdiff_t>(k) * r;
+        double* w = gm_v.data() + static_cast<std::ptrdiff_t>(k + 1) * r;
+        for (int a = 0; a < r; ++a) gm_t[a] = x[a] + vk[a];
+        jfo_phi(gm_t.data(), w);
+        for (int a = 0; a < r; ++a) {
+          if (!std::isfinite(w[a])) return false;
+          w[a] = vk[a] - (w[a] - f0[a]);  // (I - G) v_k
+        }
+        double* hk = gm_h.data() + static_cast<std::ptrdiff_t>(k) * (kmax + 1);
+        for (int l = 0; l <= k; ++l) {
+          const double* vl = gm_v.data() + static_cast<std::ptrdiff_t>(l) * r;
+          double d = 0.0;
+          for (int a = 0; a < r; ++a) d += w[a] * vl[a];
+          hk[l] = d;
+          for (int a = 0; a < r; ++a) w[a] -= d * vl[a];
+        }
+        double nw = 0.0;
+        for (int a = 0; a < r; ++a) nw += w[a] * w[a];
+        nw = std::sqrt(nw);
+        hk[k + 1] = nw;
+        if (nw > 0.0)
+          for (int a = 0; a < r; ++a) w[a] /= nw;
+        for (int l = 0; l < k; ++l) {  // previous Givens rotations
+          const double t = gm_cs[l] * hk[l] + gm_sn[l] * hk[l + 1];
+          hk[l + 1] = -gm_sn[l] * hk[l] + gm_cs[l] * hk[l + 1];
+          hk[l] = t;
+        }
+        const double den = std::hypot(hk[k], hk[k + 1]);
+        gm_cs[k] = den > 0.0 ? hk[k] / den : 1.0;
+        gm_sn[k] = den > 0.0 ? hk[k + 1] / den : 0.0;
+        hk[k] = den;
+        hk[k + 1] = 0.0;
+        gm_g[k + 1] = -gm_sn[k] * gm_g[k];
+        gm_g[k] = gm_cs[k] * gm_g[k];
+        res = std::abs(gm_g[k + 1]);
+        if (nw == 0.0) {
+          ++k;
+          break;
+        }
+      }
+      // x += V y with H y = g (upper triangular, k x k)
+      for (int l = k - 1; l >= 0; --l) {
+        double s = gm_g[l];
+        for (int q = l + 1; q < k; ++q) s -= gm_h[static_cast<std::ptrdiff_t>(q) * (kmax + 1) + l] * gm_y[q];
+        gm_y[l] = s / gm_h[static_cast<std::ptrdiff_t>(l) * (kmax + 1) + l];
+      }
+      for (int l = 0; l < k; ++l) {
+        const double* vl = gm_v.data() + static_cast<std::ptrdiff_t>(l) * r;
+        for (int a = 0; a < r; ++a) x[a] += gm_y[l] * vl[a];
+      }
+    }
+    return false;
+  }
+
+  // JFO (Jakobsson-Floberg-Olsson) mass-conserving cavitation in the Elrod-Adams form: in the full film p >= p_cav
+  // and theta = 1, in the cavitated zone p = p_cav and 0 <= theta < 1; the Couette flux carries theta h
+  // (upwinded). Active-set (semismooth Newton) iteration on (full, cavitated); for a fixed set the pressures of the
+  // full nodes (SPD system, factorised once) and the film fractions (downstream march) are solved exactly through
+  // the small fixed-point problem of jfo_inner().
+  bool solve_jfo() {
+    const double tol = o.tolerance;
+    for (int kr = 0; kr < n * m; ++kr) {
+      if (dirr[kr]) {
+        cr[kr] = kFull;
+        thr[kr] = 1.0;
+        continue;
+      }
+      if (cr[kr] == kFallback) {  // keep the fallback only where a film fraction still cannot exist
+        double alpha, beta;
+        theta_coefficients(kr, alpha, beta);
+        if (std::isfinite(alpha)) cr[kr] = kCav;
+      }
+      if (cr[kr] == kFull || cr[kr] == kFallback) thr[kr] = 1.0;
+      if (cr[kr] != kFull) pr[kr] = pcav;
+    }
+    std::fill(switches.begin(), switches.end(), 0);
+    const bool fwd = U >= 0.0;
+    for (int it = 0; it < o.max_iterations; ++it) {
+      for (int kr = 0; kr < n * m; ++kr) fr[kr] = !dirr[kr] && !cr[kr];
+      if (!factor_free()) return fail("factorisation failed (matrix not positive definite)");
+      nfeed = 0;
+      if (U != 0.0)
+        for (int kr = 0; kr < n * m; ++kr) {
+          if (cr[kr] != kCav) continue;
+          const int i = kr / m, j = kr % m;
+          const int kd = (fwd ? (i + 1) % n : (i + n - 1) % n) * m + j;
+          if (fr[kd]) feed[nfeed++] = kr;
+        }
+      build_march_program();
+      const bool consistent = jfo_inner(tol);
+      update_pscale();
+      // Full -> cavitated where p < p_cav; cavitated -> full where theta > 1; cavitated -> fallback where no film
+      // fraction exists (the gap closes faster than the Couette flow empties the cell: den <= 0); fallback -> full
+      // where the Swift-Stieber multiplier asks for pressure. While theta is not finite somewhere (inconsistent
+      // set), the pressures are not trusted and only the last two switches are made.
+      // Anti-cycling: simultaneous switching is not monotone here (the Couette coupling of theta makes the system
+      // no M-matrix), and sets can cycle in squeeze-dominated states; a cell that has switched kMaxSwitches times
+      // in this call is frozen in the fallback state, which is always admissible.
+      int changed = 0;
+      const double qlim = -tol * fscale;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+          const int kr = i * m + j;
+          if (dirr[kr] || switches[kr] > kMaxSwitches) continue;
+          const std::uint8_t before = cr[kr];
+          switch (cr[kr]) {
+            case kFull:
+              if (consistent && pr[kr] < pcav - tol * pscale) {
+                cr[kr] = kCav;
+                ++changed;
+              }
+              break;
+            case kCav:
+              if (!std::isfinite(thr[kr])) {
+                cr[kr] = kFallback;
+                ++changed;
+              } else if (thr[kr] > 1.0 + tol) {
+                cr[kr] = kFull;
+                ++changed;
+              }
+              break;
+            default:  // kFallback
+              if (consistent && outflow(i, j, true) < qlim) {
+                cr[kr] = kFull;
+                ++changed;
+              }
+          }
+          if (cr[kr] != before && ++switches[kr] > kMaxSwitches) cr[kr] = kFallback;
+        }
+      if (changed == 0) {
+        if (!consistent) return fail("mass-conserving iteration failed (no film fraction for the cavitated set)");
+        for (int kr = 0; kr < n * m; ++kr)
+          if (cr[kr] == kCav) thr[kr] = std::clamp(thr[kr], 0.0, 1.0);
+        return true;
+      }
+      for (int kr = 0; kr < n * m; ++kr) {
+        if (cr[kr] == kCav) {
+          pr[kr] = pcav;
+          if (!std::isfinite(thr[kr]) || thr[kr] > 1.0) thr[kr] = 1.0;
+          if (thr[kr] < 0.0) thr[kr] = 0.0;
+        } else {
+          if (cr[kr] == kFallback) pr[kr] = pcav;
+          thr[kr] = 1.0;
+        }
+      }
+    }
+    return fail("mass-conserving active set did not settle in " + std::to_string(o.max_iterations) + " sweeps");
+  }
+
+  bool fail(const std::string& msg) {
+    err = msg;
+    return false;
+  }
+
+  // ---- outputs ---------------------------------------------------------------------------------------------------
+
+  // Net volume outflow of the control volume of full-grid node (i, j) with the full-grid fields: for a Dirichlet
+  // node, the flow that the hole or groove feeds into the film there.
+  double outflow_full(int i, int j, bool jfo) const {
+    const int k = i * nz + j, iw = (i + n - 1) % n, ie = (i + 1) % n;
+    const int kw = iw * nz + j, ke = ie * nz + j;
+    const double pk = p[k];
+    const double ps = j > 0 ? p[k - 1] : pamb, pn = j + 1 < nz ? p[k + 1] : pamb;
+    double q = aE[kw] * (pk - p[kw]) + aE[k] * (pk - p[ke]) + aF[i * nzf + j] * (pk - ps) +
+               aF[i * nzf + j + 1] * (pk - pn);
+    if (!jfo) return q + cE[k] - cE[kw] + sq[k];
+    const double te = U >= 0.0 ? theta[k] : theta[ke], tw = U >= 0.0 ? theta[kw] : theta[k];
+    return q + te * cE[k] - tw * cE[kw] + theta[k] * sq[k];
+  }
+
+  void outputs(const FilmState& s, FilmResult& r) {
+    const bool jfo = o.cavitation == Cavitation::MassConserving;
+    // Expand the reduced solution to the full grid.
+    int ncav = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j) {
+        const int kr = i * m + j, k = i * nz + j;
+        p[k] = pr[kr];
+        theta[k] = jfo ? thr[kr] : 1.0;
+        cav[k] = cr[kr];
+        ff[k] = jfo ? thr[kr] : (cr[kr] != kFull ? 0.0 : 1.0);
+      }
+    if (sym)
+      for (int i = 0; i < n; ++i)
+        for (int j = m; j < nz; ++j) {
+          const int k = i * nz + j, km = i * nz + (nz - 1 - j);
+          p[k] = p[km];
+          theta[k] = theta[km];
+          cav[k] = cav[km];
+          ff[k] = ff[km];
+        }
+    int nfallback = 0;
+    for (int k = 0; k < n * nz; ++k) {
+      ncav += cav[k] != kFull;
+      nfallback += cav[k] == kFallback;
+    }
+
+    const double R = g.radius;
+    double sc = 0, ss = 0, zc = 0, zs = 0, couette = 0, pois = 0, pmax = pamb;
+    for (int i = 0; i < n; ++i) {
+      const int ie = (i + 1) % n;
+      double rp = 0, rz = 0, rc = 0, rpz = 0;
+      for (int j = 0; j < nz; ++j) {
+        const int k = i * nz + j;
+        const double pk = p[k];
+        rp += pk;
+        rpz += pk * zn[j];
+        rc += theta[k] / hN[k];
+        rz += hE[k] * (p[ie * nz + j] - pk);
+        pmax = std::max(pmax, pk);
+      }
+      if (seal_conductance > 0.0) {
+        // Behind a seal the land's ends carry p_end = p_amb + (a / c_s) (p_node - p_amb) (flow continuity through
+        // the end face a, in series, and the slot c_s); the end strips of width dz/2 between the first node's cell
+        // and the land end, negligible at open ends, are integrated with p linear from p_end to the face.
+        const double zend = 0.5 * g.length - 0.25 * dz;
+        const double p0 = p[i * nz], p1 = p[i * nz + nz - 1];
+        const double e0 = pamb + aF[i * nzf] / seal_conductance * (p0 - pamb);
+        const double e1 = pamb + aF[i * nzf + nz] / seal_conductance * (p1 - pamb);
+        const double s0 = (3.0 * e0 + p0) / 8.0, s1 = (3.0 * e1 + p1) / 8.0;  // strip integral / dz
+        rp += s0 + s1;
+        rpz += zend * (s1 - s0);
+      }
+      sc += rp * ct[i];
+      ss += rp * st[i];
+      zc += rpz * ct[i];
+      zs += rpz * st[i];
+      couette += rc;
+      pois += rz;
+    }
+    // Couette end strips with h at the end planes.
+    const double c = g.clearance, zl = -0.5 * g.length, zu = 0.5 * g.length;
+    double ends = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double hl = c - (s.ex + zl * s.sx) * ct[i] - (s.ey + zl * s.sy) * st[i];
+      const double hu = c - (s.ex + zu * s.sx) * ct[i] - (s.ey + zu * s.sy) * st[i];
+      ends += 0.5 * (theta[i * nz] / hl + theta[i * nz + nz - 1] / hu);
+    }
+    couette += ends;
+    const double area = dx * dz;
+    r.fx = -R * dth * dz * sc;
+    r.fy = -R * dth * dz * ss;
+    r.my = -R * dth * dz * zc;  // sum of z dFx
+    r.mx = R * dth * dz * zs;   // -sum of z dFy
+    if (sym) r.mx = r.my = 0.0;
+    const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * area;
+    const double tp = -R * 0.5 * pois * dz;
+    r.torque_inner = tc + tp;
+    r.torque_outer = -tc + tp;
+    double qe = 0.0;
+    for (int i = 0; i < n; ++i)
+      qe += aF[i * nzf] * (p[i * nz] - pamb) + aF[i * nzf + nz] * (p[i * nz + nz - 1] - pamb);
+    r.flow_ends = qe;
+    r.hole_flows.resize(g.holes.size());
+    std::fill(r.hole_flows.begin(), r.hole_flows.end(), 0.0);
+    for (int k : dir_nodes)
+      if (kind[k] >= 0) r.hole_flows[kind[k]] += outflow_full(k / nz, k % nz, jfo);
+    r.max_pressure = pmax;
+    r.cavitated_fraction = static_cast<double>(ncav) / (n * nz);
+    r.fallback_nodes = nfallback;
+    r.iterations = iterations;
+    r.linear_solves = solves;
+    r.symmetric = sym;
+  }
+
+  bool solve(const FilmState& s, FilmResult& r) {
+    err.clear();
+    if (!finite_state(s)) return fail("state is not finite");
+    // Film closure: |e(z)| is convex in z, so the thinnest film is at one of the ends.
+    const double hl = 0.5 * g.length;
+    const double e1 = std::hypot(s.ex - hl * s.sx, s.ey - hl * s.sy);
+    const double e2 = std::hypot(s.ex + hl * s.sx, s.ey + hl * s.sy);
+    if (std::max(e1, e2) >= g.clearance) {
+      std::ostringstream os;
+      os << "film closes: eccentricity " << std::max(e1, e2) << " m >= clearance " << g.clearance
+         << " m (eccentricity ratio " << std::max(e1, e2) / g.clearance << ")";
+      return fail(os.str());
+    }
+    U = g.radius * (s.omega_inner + s.omega_outer);
+    pcav = g.cavitation_pressure;
+    pamb = g.ambient_pressure;
+    for (int k : dir_nodes) {
+      const int kd = kind[k];
+      dval[k] = kd >= 0 ? (s.use_override ? s.hole_pressure_override[kd] : g.holes[kd].pressure)
+                        : g.grooves[-2 - kd].pressure;
+    }
+    if (o.cavitation == Cavitation::MassConserving) {
+      double supply = pamb;
+      for (int k : dir_nodes) supply = std::max(supply, dval[k]);
+      if (!(supply > pcav))
+        return fail(
+            "mass-conserving cavitation needs an oil supply: a hole or groove above the cavitation pressure, or "
+            "ambient pressure above it (without one the steady film runs dry)");
+    }
+    sym = o.use_symmetry && mask_symmetric && s.sx == 0.0 && s.sy == 0.0 && s.dsx == 0.0 && s.dsy == 0.0 &&
+          symmetric_values();
+    m = sym ? (nz + 1) / 2 : nz;
+    w_last = (sym && nz % 2 == 1) ? 0.5 : 1.0;
+    geometry_arrays(s);
+    reduced_system();
+    // Warm start from the full-grid state of the last call.
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j) {
+        const int kr = i * m + j, k = i * nz + j;
+        cr[kr] = warm ? cav[k] : 0;
+        thr[kr] = warm ? theta[k] : 1.0;
+        pr[kr] = dirr[kr] ? dval[k] : (warm ? p[k] : pamb);
+      }
+    iterations = 0;
+    solves = 0;
+    bool ok = false;
+    switch (o.cavitation) {
+      case Cavitation::None:
+        for (int kr = 0; kr < n * m; ++kr) cr[kr] = 0;
+        ok = solve_none();
+        break;
+      case Cavitation::Gumbel: ok = solve_gumbel(); break;
+      case Cavitation::MassConserving: ok = solve_jfo(); break;
+    }
+    if (!ok) {
+      warm = false;
+      return false;
+    }
+    outputs(s, r);
+    warm = true;
+    return true;
+  }
+};
+
+FilmSolver::FilmSolver(const FilmGeometry& g, double viscosity, const SolverOptions& o)
+    : impl_(std::make_unique<Impl>(g, viscosity, o)) {}
+FilmSolver::~FilmSolver() = default;
+FilmSolver::FilmSolver(const FilmSolver& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+FilmSolver& FilmSolver::operator=(const FilmSolver& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+FilmSolver::FilmSolver(FilmSolver&&) noexcept = default;
+FilmSolver& FilmSolver::operator=(FilmSolver&&) noexcept = default;
+
+bool FilmSolver::solve(const FilmState& s, FilmResult& r) { return impl_->solve(s, r); }
+const std::string& FilmSolver::last_error() const { return impl_->err; }
+const std::vector<double>& FilmSolver::pressure() const { return impl_->p; }
+const std::vector<double>& FilmSolver::film_fraction() const { return impl_->ff; }
+std::vector<double> FilmSolver::theta_nodes() const { return impl_->th; }
+std::vector<double> FilmSolver::z_nodes() const { return impl_->zn; }
+void FilmSolver::reset_warm_start() { impl_->warm = false; }
+const FilmGeometry& FilmSolver::geometry() const { return impl_->g; }
+double FilmSolver::viscosity() const { return impl_->eta; }
+const SolverOptions& FilmSolver::options() const { return impl_->o; }
+
+void FilmSolver::assemble_full_film_system(const FilmState& s, Eigen::SparseMatrix<double>& A,
+                                           Eigen::VectorXd& b) const {
+  const Impl& d = *impl_;
+  const int n = d.n, nz = d.nz, N = n * nz;
+  const double c = d.g.clearance, U = d.g.radius * (s.omega_inner + s.omega_outer);
+  const double kx = d.dz / (12.0 * d.eta * d.dx), kz = d.dx / (12.0 * d.eta * d.dz);
+  auto h_at = [&](double cth, double sth, double z) {
+    return c - (s.ex + z * s.sx) * cth - (s.ey + z * s.sy) * sth;
+  };
+  auto value = [&](int k) {
+    const int kd = d.kind[k];
+    return kd >= 0 ? (s.use_override ? s.hole_pressure_override[kd] : d.g.holes[kd].pressure)
+                   : d.g.grooves[-2 - kd].pressure;
+  };
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(5 * N);
+  b.setZero(N);
+  const double pamb = d.g.ambient_pressure;
+  for (int i = 0; i < n; ++i) {
+    const int iw = (i + n - 1) % n, ie = (i + 1) % n;
+    for (int j = 0; j < nz; ++j) {
+      const int k = i * nz + j;
+      if (d.kind[k] != -1) {
+        t.emplace_back(k, k, 1.0);
+        b[k] = value(k);
+        continue;
+      }
+      const double z = d.zn[j];
+      const double he = h_at(d.cte[i], d.ste[i], z), hw = h_at(d.cte[iw], d.ste[iw], z);
+      const double hs = h_at(d.ct[i], d.st[i], d.zf[j]), hn = h_at(d.ct[i], d.st[i], d.zf[j + 1]);
+      const double ae = kx * he * he * he, aw = kx * hw * hw * hw, as = kz * hs * hs * hs, an = kz * hn * hn * hn;
+      const double hdot = -((s.vx + z * s.dsx) * d.ct[i] + (s.vy + z * s.dsy) * d.st[i]);
+      double rhs = -0.5 * U * d.dz * (he - hw) - hdot * d.dx * d.dz;
+      t.emplace_back(k, k, ae + aw + as + an);
+      auto couple = [&](int kn, double a) {
+        if (d.kind[kn] != -1)
+          rhs += a * value(kn);
+        else
+          t.emplace_back(k, kn, -a);
+      };
+      couple(ie * nz + j, ae);
+      couple(iw * nz + j, aw);
+      if (j > 0) couple(k - 1, as); else rhs += as * pamb;
+      if (j + 1 < nz) couple(k + 1, an); else rhs += an * pamb;
+      b[k] = rhs;
+    }
+  }
+  A.resize(N, N);
+  A.setFromTriplets(t.begin(), t.end());
+}
+
+}  // namespace turbodyn::reynolds

@@ -1,0 +1,640 @@
+#include "model/io/model_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "model/io/toml_reader.h"
+#include "model/spec/units.h"
+
+namespace turbodyn {
+namespace {
+
+using namespace input;
+
+// ----------------------------------------------------------------------------------------------- overrides
+
+struct PathSegment {
+  std::string key;
+  long index = -1;  // >= 0 for key[index]
+};
+
+std::vector<PathSegment> split_path(const std::string& path) {
+  std::vector<PathSegment> segments;
+  std::size_t pos = 0;
+  while (pos <= path.size()) {
+    const std::size_t dot = path.find('.', pos);
+    std::string part = path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
+    PathSegment seg;
+    const std::size_t bracket = part.find('[');
+    if (bracket != std::string::npos) {
+      if (part.back() != ']') throw ModelError("--set " + path + ": malformed index in '" + part + "'");
+      const std::string idx = part.substr(bracket + 1, part.size() - bracket - 2);
+      if (idx.empty() || idx.find_first_not_of("0123456789") != std::string::npos)
+        throw ModelError("--set " + path + ": index '" + idx + "' is not a whole number");
+      seg.index = std::stol(idx);
+      part = part.substr(0, bracket);
+    }
+    if (part.empty()) throw ModelError("--set " + path + ": empty key in the path");
+    seg.key = part;
+    segments.push_back(seg);
+    if (dot == std::string::npos) break;
+    pos = dot + 1;
+  }
+  return segments;
+}
+
+// Parses VALUE as TOML, falling back to a plain string; the node's source names the override.
+toml::table parse_override_value(const Override& o) {
+  const std::string source = std::string(kOverridePrefix) + o.path + "=" + o.value;
+  try {
+    return toml::parse("v = " + o.value, std::string_view(source));
+  } catch (const toml::parse_error&) {
+    std::string escaped;
+    for (char ch : o.value) {
+      if (ch == '"' || ch == '\\') escaped += '\\';
+      escaped += ch;
+    }
+    try {
+      return toml::parse("v = \"" + escaped + "\"", std::string_view(source));
+    } catch (const toml::parse_error& e) {
+      throw ModelError(source + ": cannot read the value: " + std::string(e.description()));
+    }
+  }
+}
+
+void apply_override(toml::table& root, const Override& o, Sources& sources) {
+  const std::vector<PathSegment> segments = split_path(o.path);
+  toml::table parsed = parse_override_value(o);
+  const toml::node& value = *parsed.get("v");
+  const std::string context = std::string(kOverridePrefix) + o.path + "=" + o.value;
+
+  toml::table* table = &root;
+  std::string walked;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const PathSegment& seg = segments[i];
+    const bool last = i + 1 == segments.size();
+    walked += (walked.empty() ? "" : ".") + seg.key;
+    toml::node* n = table->get(seg.key);
+    if (seg.index >= 0) {
+      if (!n || !n->is_array())
+        throw ModelError(context + ": '" + walked + "' is not an array in the model file");
+      toml::array& arr = *n->as_array();
+      if (static_cast<std::size_t>(seg.index) >= arr.size())
+        throw ModelError(context + ": index " + std::to_string(seg.index) + " is out of range ('" + walked +
+                         "' has " + std::to_string(arr.size()) + " entries, counted from 0)");
+      toml::node& elem = arr[static_cast<std::size_t>(seg.index)];
+      if (last) {
+        value.visit([&](auto&& v) { arr.replace(arr.cbegin() + seg.index, v); });
+        sources.overrides[arr.get(static_cast<std::size_t>(seg.index))] = context;
+        return;
+      }
+      if (!elem.is_table()) throw ModelError(context + ": '" + walked + "[...]' is not a table");
+      table = elem.as_table();
+    } else if (last) {
+      value.visit([&](auto&& v) { table->insert_or_assign(seg.key, v); });
+      sources.overrides[table->get(seg.key)] = context;
+      return;
+    } else {
+      if (!n) {
+        n = table->insert_or_assign(seg.key, toml::table{}).first->second.as_table();
+        sources.overrides[n] = context;
+      }
+      if (!n->is_table())
+        throw ModelError(context + ": '" + walked + "' is a value, not a table, so it has no key '" +
+                         segments[i + 1].key + "'");
+      table = n->as_table();
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------------------- sections
+
+Material read_material(Reader& r) {
+  Material m;
+  m.name = r.path().substr(r.path().find('.') + 1);
+  m.youngs_modulus = r.quantity("E", dim::pressure, Bound::Positive);
+  m.density = r.quantity("rho", dim::density, Bound::Positive);
+  const bool has_g = r.has("G"), has_nu = r.has("nu");
+  if (has_g == has_nu) r.fail_table("give exactly one of G (shear modulus) and nu (Poisson's ratio)");
+  if (has_g) {
+    m.shear_modulus = r.quantity("G", dim::pressure, Bound::Positive);
+    m.poisson_ratio = m.youngs_modulus / (2.0 * m.shear_modulus) - 1.0;
+  } else {
+    m.poisson_ratio = r.quantity("nu", dim::dimensionless);
+    m.shear_modulus = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+  }
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
+    r.fail(has_g ? "G" : "nu", "Poisson's ratio must lie in (-1, 0.5), got " + std::to_string(m.poisson_ratio));
+  r.finish();
+  return m;
+}
+
+void read_disk(Reader& r, const MachineSpec& spec, DiskSpec& d) {
+  d.z = r.quantity("z", dim::length);
+  const bool by_mass = r.has("mass");
+  const bool by_geometry = r.has("width") || r.has("outer_diameter");
+  if (by_mass == by_geometry)
+    r.fail_table("give either mass (with polar_inertia and diametral_inertia) or the geometry "
+                 "(width, outer_diameter, inner_diameter, material)");
+  if (by_mass) {
+    d.mass = r.quantity("mass", dim::mass, Bound::Positive);
+    d.polar_inertia = r.quantity_or("polar_inertia", dim::inertia, 0.0, Bound::NonNegative);
+    d.diametral_inertia = r.quantity_or("diametral_inertia", dim::inertia, 0.0, Bound::NonNegative);
+  } else {
+    // Thin cylinder formulas as in Friswell et al. (2010), Example 5.9.1.
+    const double w = r.quantity("width", dim::length, Bound::Positive);
+    const double dout = r.quantity("outer_diameter", dim::length, Bound::Positive);
+    const double din = r.quantity_or("inner_diameter", dim::length, 0.0, Bound::NonNegative);
+    if (din >= dout) r.fail("inner_diameter", "must be smaller than outer_diameter");
+    const std::string mat = r.text_or("material", "");
+    if (mat.empty()) r.fail("material", "missing required key (the material of the disk, e.g. \"steel\")");
+    const auto it = spec.materials.find(mat);
+    if (it == spec.materials.end()) r.fail("material", "no material '" + mat + "' in [materials]");
+    const double rho = it->second.density;
+    d.mass = rho * M_PI * w * (dout * dout - din * din) / 4.0;
+    d.polar_inertia = d.mass * (dout * dout + din * din) / 8.0;
+    d.diametral_inertia = d.polar_inertia / 2.0 + d.mass * w * w / 12.0;
+  }
+  d.unbalance = r.quantity_or("unbalance", dim::unbalance, 0.0, Bound::NonNegative);
+  d.unbalance_phase = r.quantity_or("unbalance_phase", dim::angle, 0.0);
+  r.finish();
+}
+
+void read_linear_bearing(Reader& r, BearingSpec& b) {
+  LinearBearingSpec& lin = b.linear;
+  lin.speeds = r.quantity_list("speeds", dim::angular_speed, Bound::NonNegative);
+  for (std::size_t i = 1; i < lin.speeds.size(); ++i)
+    if (!(lin.speeds[i] > lin.speeds[i - 1])) r.fail("speeds", "speeds must be strictly increasing");
+  const std::size_t n = lin.speeds.empty() ? 1 : lin.speeds.size();
+
+  auto read_set = [&](const char* iso, const char* const names[4], const Dimension& d,
+                      std::array<std::vector<double>, 4>& out) {
+    const bool has_iso = r.has(iso);
+    bool has_any = false;
+    for (int i = 0; i < 4; ++i) has_any = has_any || r.has(names[i]);
+    if (has_iso && has_any)
+      r.fail(iso, std::string("give either ") + iso + " (isotropic) or the four " + names[0] + "... keys, not both");
+    for (int i = 0; i < 4; ++i) {
+      const bool diagonal = i == 0 || i == 3;
+      const char* key = has_iso && diagonal ? iso : names[i];
+      out[i] = (has_iso && !diagonal) ? std::vector<double>{} : r.quantity_list(key, d);
+      if (out[i].empty()) out[i].assign(n, 0.0);
+      if (out[i].size() == 1 && n > 1) out[i].assign(n, out[i][0]);
+      if (out[i].size() != n)
+        r.fail(key, "has " + std::to_string(out[i].size()) + " values but 'speeds' has " + std::to_string(n));
+    }
+  };
+  static const char* const k_names[4] = {"kxx", "kxy", "kyx", "kyy"};
+  static const char* const c_names[4] = {"cxx", "cxy", "cyx", "cyy"};
+  read_set("k", k_names, dim::stiffness, lin.k);
+  read_set("c", c_names, dim::damping, lin.c);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (lin.k[0][j] < 0 || lin.k[3][j] < 0)
+      r.fail(lin.k[0][j] < 0 ? "kxx" : "kyy", "direct stiffness must not be negative");
+    if (lin.c[0][j] < 0 || lin.c[3][j] < 0)
+      r.fail(lin.c[0][j] < 0 ? "cxx" : "cyy", "direct damping must not be negative");
+  }
+}
+
+// Keys shared by the single-film specs (JournalBearingSpec, DamperSpec); `width` names the film's length in
+// messages.
+template <class Film>
+void read_film(Reader& r, Film& f, const std::string& width) {
+  f.diameter = r.quantity("diameter", dim::length, Bound::Positive);
+  f.length = r.quantity("length", dim::length, Bound::Positive);
+  f.clearance = r.quantity("clearance", dim::length, Bound::Positive);
+  if (f.clearance >= 0.05 * f.diameter)
+    r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
+  f.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, f.cavitation);
+  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
+  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
+  f.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
+  f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
+  if (f.feed_hole_diameter >= f.length) r.fail("feed_hole_diameter", "must be smaller than the " + width);
+  if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
+    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
+  if (f.cavitation == "mass-conserving" && !(f.feed_hole_diameter > 0.0 && f.supply_pressure > 0.0))
+    r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) with "
+                         "supply_pressure > 0");
+}
+
+void read_journal_bearing(Reader& r, BearingSpec& b) { read_film(r, b.journal, "bearing length"); }
+
+void read_damper(Reader& r, DamperSpec& d, bool needs_ring_mass) {
+  d.enabled = true;
+  read_film(r, d, "land width");
+  if (needs_ring_mass)
+    d.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
+  else if (r.has("ring_mass"))
+    r.fail("ring_mass", "the damper's ring is the ball bearing's outer ring: give its outer_ring_mass instead");
+  d.centring_stiffness = r.quantity_or("centring_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
+  d.end_seal_gap = r.quantity_or("end_seal_gap", dim::length, 0.0, Bound::NonNegative);
+  d.end_seal_length = r.quantity_or("end_seal_length", dim::length, 0.0, Bound::NonNegative);
+  if (d.end_seal_gap > 0.0 && d.end_seal_length == 0.0)
+    r.fail("end_seal_gap", "an end seal needs its axial length too (end_seal_length)");
+  if (d.end_seal_length > 0.0 && d.end_seal_gap == 0.0)
+    r.fail("end_seal_length", "an end seal needs its radial gap too (end_seal_gap; open ends: give neither)");
+  if (d.end_seal_gap > d.clearance)
+    r.fail("end_seal_gap", "is larger than the damper clearance: such a seal seals nothing (open ends: give neither)");
+  r.finish();
+}
+
+void read_floating_ring(Reader& r, BearingSpec& b) {
+  FloatingRingSpec& f = b.ring;
+  f.inner_diameter = r.quantity("inner_diameter", dim::length, Bound::Positive);
+  f.inner_length = r.quantity("inner_length", dim::length, Bound::Positive);
+  f.inner_clearance = r.quantity("inner_clearance", dim::length, Bound::Positive);
+  f.outer_diameter = r.quantity("outer_diameter", dim::length, Bound::Positive);
+  f.outer_length = r.quantity("outer_length", dim::length, Bound::Positive);
+  f.outer_clearance = r.quantity("outer_clearance", dim::length, Bound::Positive);
+  if (f.outer_diameter <= f.inner_diameter) r.fail("outer_diameter", "must be larger than inner_diameter");
+  for (const char* k : {"inner_clearance", "outer_clearance"})
+    if (r.quantity(k, dim::length) >= 0.05 * f.inner_diameter)
+      r.fail(k, "is not small against the diameter (the film model needs c << D): a unit mistake?");
+  f.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
+  f.ring_polar_inertia = r.quantity("ring_polar_inertia", dim::inertia, Bound::Positive);
+  f.ring_diametral_inertia = r.quantity_or("ring_diametral_inertia", dim::inertia, 0.0, Bound::Positive);
+  f.ring_tilt = r.flag_or("ring_tilt", f.ring_tilt);
+  f.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, f.cavitation);
+  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
+  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
+  f.inner_oil_temperature = r.quantity_or("inner_oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  f.outer_oil_temperature = r.quantity_or("outer_oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
+  f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
+  if (f.feed_hole_diameter >= f.outer_length) r.fail("feed_hole_diameter", "must be smaller than outer_length");
+  if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
+    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
+  f.drill_holes = static_cast<int>(r.integer_or("drill_holes", f.drill_holes, 0));
+  if (f.drill_holes > 8) r.fail("drill_holes", "at most 8 drill holes");
+  f.drill_hole_diameter = r.quantity_or("drill_hole_diameter", dim::length, 0.0, Bound::NonNegative);
+  f.drill_hole_angle = r.quantity_or("drill_hole_angle", dim::angle, f.drill_hole_angle);
+  f.drill_hole_centrifugal = r.flag_or("drill_hole_centrifugal", f.drill_hole_centrifugal);
+  if (f.drill_holes > 0 && f.drill_hole_diameter == 0.0)
+    r.fail("drill_holes", "needs drill_hole_diameter");
+  if (f.drill_holes == 0 && f.drill_hole_diameter > 0.0)
+    r.fail("drill_hole_diameter", "given without drill_holes (the number of holes)");
+  if (f.drill_hole_diameter >= f.inner_length) r.fail("drill_hole_diameter", "must be smaller than inner_length");
+  if (f.drill_holes > 0 && f.drill_hole_diameter * f.drill_holes >= M_PI * f.inner_diameter)
+    r.fail("drill_hole_diameter", "the drill holes overlap around the bore");
+  if (f.cavitation == "mass-conserving" && (f.supply_pressure == 0.0 || f.drill_holes == 0))
+    r.fail("cavitation", "the mass-conserving model needs an oil supply in each film: a supply_pressure at the feed "
+                         "hole (outer film) and drill_holes through the ring (inner film)");
+}
+
+void read_ball_bearing(Reader& r, BearingSpec& b) {
+  BallBearingSpec& s = b.ball;
+  s.n_balls = static_cast<int>(r.integer_or("n_balls", s.n_balls, 3));
+  s.ball_diameter = r.quantity_or("ball_diameter", dim::length, s.ball_diameter, Bound::Positive);
+  s.pitch_diameter = r.quantity_or("pitch_diameter", dim::length, s.pitch_diameter, Bound::Positive);
+  s.inner_groove_ratio = r.quantity_or("inner_groove_ratio", dim::dimensionless, s.inner_groove_ratio, Bound::Positive);
+  s.outer_groove_ratio = r.quantity_or("outer_groove_ratio", dim::dimensionless, s.outer_groove_ratio, Bound::Positive);
+  s.contact_angle = r.quantity_or("contact_angle", dim::angle, s.contact_angle, Bound::NonNegative);
+  const long side = r.integer_or("side", s.side, -1);
+  if (side != 1 && side != -1) r.fail("side", "must be 1 or -1 (the side of the outer contact, see the manual)");
+  s.side = static_cast<int>(side);
+  s.ball_youngs_modulus = r.quantity_or("ball_modulus", dim::pressure, s.ball_youngs_modulus, Bound::Positive);
+  s.ball_poisson_ratio = r.quantity_or("ball_poisson_ratio", dim::dimensionless, s.ball_poisson_ratio, Bound::NonNegative);
+  s.ball_density = r.quantity_or("ball_density", dim::density, s.ball_density, Bound::Positive);
+  s.ring_youngs_modulus = r.quantity_or("ring_modulus", dim::pressure, s.ring_youngs_modulus, Bound::Positive);
+  s.ring_poisson_ratio = r.quantity_or("ring_poisson_ratio", dim::dimensionless, s.ring_poisson_ratio, Bound::NonNegative);
+  s.cage_mass = r.quantity_or("cage_mass", dim::mass, s.cage_mass, Bound::Positive);
+  s.cage_polar_inertia = r.quantity_or("cage_polar_inertia", dim::inertia, 0.0, Bound::Positive);
+  s.pocket_clearance = r.quantity_or("pocket_clearance", dim::length, s.pocket_clearance, Bound::Positive);
+  s.cage_youngs_modulus = r.quantity_or("cage_modulus", dim::pressure, s.cage_youngs_modulus, Bound::Positive);
+  s.cage_poisson_ratio = r.quantity_or("cage_poisson_ratio", dim::dimensionless, s.cage_poisson_ratio, Bound::NonNegative);
+  s.pocket_damping = r.quantity_or("pocket_damping", dim::damping, s.pocket_damping, Bound::NonNegative);
+  s.contact_damping = r.quantity_or("contact_damping", dim::damping, s.contact_damping, Bound::NonNegative);
+  s.friction_static = r.quantity_or("friction_static", dim::dimensionless, s.friction_static, Bound::NonNegative);
+  s.friction_sliding = r.quantity_or("friction_sliding", dim::dimensionless, s.friction_sliding, Bound::NonNegative);
+  s.friction_v1 = r.quantity_or("friction_v1", dim::velocity, s.friction_v1, Bound::Positive);
+  s.friction_v2 = r.quantity_or("friction_v2", dim::velocity, s.friction_v2, Bound::Positive);
+  s.spin_friction = r.flag_or("spin_friction", s.spin_friction);
+  s.preload = r.quantity_or("preload", dim::force, s.preload, Bound::NonNegative);
+  s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
+  s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);
+  const std::string mode = r.choice("outer_ring", {"fixed", "spring"}, "fixed");
+  s.outer_ring_mode = mode == "spring" ? OuterRingMode::kSpring : OuterRingMode::kFixed;
+  s.outer_ring_stiffness =
+      r.quantity_or("outer_ring_stiffness", dim::stiffness, s.outer_ring_stiffness, Bound::Positive);
+  s.outer_ring_damping = r.quantity_or("outer_ring_damping", dim::damping, s.outer_ring_damping, Bound::NonNegative);
+  if (mode == "fixed" && (r.has("outer_ring_stiffness") || r.has("outer_ring_damping")))
+    r.fail("outer_ring", "outer_ring_stiffness/outer_ring_damping need outer_ring = \"spring\"");
+  std::string why;
+  if (!s.IsValid(&why)) r.fail("type", "ball bearing: " + why);
+}
+
+void read_bearing(Reader& r, BearingSpec& b) {
+  b.type = r.choice("type", {"linear", "journal", "floating-ring", "ball"}, "");
+  b.z = r.quantity("z", dim::length);
+  if (b.type == "linear") read_linear_bearing(r, b);
+  if (b.type == "journal") read_journal_bearing(r, b);
+  if (b.type == "floating-ring") read_floating_ring(r, b);
+  if (b.type == "ball") read_ball_bearing(r, b);
+  if (b.type == "linear" || b.type == "ball") {
+    if (const toml::table* damper = r.table("damper")) {
+      Reader d(*damper, r.key_path("damper"), r.sources());
+      read_damper(d, b.damper, b.type == "linear");
+    }
+  }
+  if (b.type == "ball" && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::kSpring)
+    r.fail("outer_ring", "\"spring\" and a [damper] both hold the outer ring: choose one");
+  b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
+  b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
+  b.pedestal_damping = r.quantity_or("pedestal_damping", dim::damping, 0.0, Bound::NonNegative);
+  if (b.pedestal_mass > 0.0 && b.pedestal_stiffness <= 0.0)
+    r.fail("pedestal_stiffness", "a pedestal mass needs a positive pedestal_stiffness to ground");
+  if (b.pedestal_mass == 0.0 && (r.has("pedestal_stiffness") || r.has("pedestal_damping")))
+    r.fail("pedestal_mass", "missing: pedestal_stiffness/pedestal_damping need a pedestal_mass");
+  if (b.pedestal_mass > 0.0 && b.damper.enabled)
+    r.fail("damper", "a bearing sits either on a pedestal or in a squeeze-film damper, not both");
+  r.finish();
+}
+
+void read_speed(Reader& r, SpeedProfile& s) {
+  const std::string profile = r.choice("profile", {"ramp", "table"}, "ramp");
+  if (profile == "ramp") {
+    s.kind = SpeedProfile::Kind::Ramp;
+    s.start = r.quantity_or("start", dim::angular_speed, 0.0, Bound::NonNegative);
+    s.end = r.quantity("end", dim::angular_speed, Bound::NonNegative);
+    s.duration = r.quantity("duration", dim::time, Bound::Positive);
+  } else {
+    s.kind = SpeedProfile::Kind::Table;
+    s.times = r.quantity_list("times", dim::time, Bound::NonNegative);
+    s.speeds = r.quantity_list("speeds", dim::angular_speed, Bound::NonNegative);
+    if (s.times.size() < 2) r.fail("times", "a speed table needs at least two points");
+    if (s.times.size() != s.speeds.size())
+      r.fail("speeds", "has " + std::to_string(s.speeds.size()) + " values but 'times' has " +
+                           std::to_string(s.times.size()));
+    for (std::size_t i = 1; i < s.times.size(); ++i)
+      if (!(s.times[i] > s.times[i - 1])) r.fail("times", "times must be strictly increasing");
+    s.start = s.speeds.front();
+    s.end = s.speeds.back();
+    s.duration = s.times.back();
+  }
+  r.finish();
+}
+
+void read_mesh(Reader& r, MeshSpec& m) {
+  m.max_element_length = r.quantity_or("max_element_length", dim::length, m.max_element_length, Bound::Positive);
+  m.shear_deformation = r.flag_or("shear_deformation", m.shear_deformation);
+  m.rotary_inertia = r.flag_or("rotary_inertia", m.rotary_inertia);
+  m.gyroscopic = r.flag_or("gyroscopic", m.gyroscopic);
+  if (const toml::node* n = r.get("shear_factor")) {
+    if (n->is_number()) {
+      m.shear_factor_formula = ShearFactorFormula::Given;
+      m.shear_factor = r.quantity("shear_factor", dim::dimensionless, Bound::Positive);
+      if (m.shear_factor > 1.0) r.fail("shear_factor", "a shear factor lies in (0, 1]");
+    } else {
+      const std::string f = r.choice("shear_factor", {"cowper", "hutchinson"}, "cowper");
+      m.shear_factor_formula = f == "cowper" ? ShearFactorFormula::Cowper : ShearFactorFormula::Hutchinson;
+    }
+  }
+  r.finish();
+}
+
+void read_modal(Reader& r, ModalSpec& m) {
+  m.speed_min = r.quantity_or("speed_min", dim::angular_speed, m.speed_min, Bound::NonNegative);
+  m.speed_max = r.quantity_or("speed_max", dim::angular_speed, m.speed_max, Bound::NonNegative);
+  m.n_speeds = static_cast<int>(r.integer_or("n_speeds", m.n_speeds, 2));
+  m.n_modes = static_cast<int>(r.integer_or("n_modes", m.n_modes, 1));
+  if (r.has("orders")) m.orders = r.quantity_list("orders", dim::dimensionless, Bound::Positive);
+  m.frequency_max = r.quantity_or("frequency_max", dim::frequency, m.frequency_max, Bound::NonNegative);
+  m.mode_shape_speeds = r.quantity_list("mode_shape_speeds", dim::angular_speed, Bound::NonNegative);
+  m.torsion = r.flag_or("torsion", m.torsion);
+  if (r.has("speed_max") && m.speed_max <= m.speed_min) r.fail("speed_max", "must be larger than speed_min");
+  r.finish();
+}
+
+MachineSpec read_machine(const toml::table& root, const Sources& src) {
+  const std::string& file = src.file;
+  MachineSpec spec;
+  spec.source = file;
+  Reader top(root, "", src);
+  spec.name = top.text_or("name", std::filesystem::path(file).stem().string());
+  spec.description = top.text_or("description", "");
+  spec.gravity = top.quantity_or("gravity", dim::acceleration, 9.81, Bound::NonNegative);
+
+  // Materials first: sections and disks refer to them.
+  if (const toml::table* mats = top.table("materials")) {
+    for (auto&& [k, v] : *mats) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": materials." + key + ": expected a table [materials." + key + "]");
+      Reader r(*v.as_table(), "materials." + key, src);
+      spec.materials[key] = read_material(r);
+    }
+  }
+  if (spec.materials.empty()) top.fail("materials", "missing: at least one [materials.NAME] table is needed");
+
+  const toml::array* shaft = top.array("shaft");
+  if (!shaft || shaft->empty())
+    top.fail("shaft", "missing: the shaft is given as [[shaft]] sections (length, outer_diameter, material)");
+  double z = 0.0;
+  for (std::size_t i = 0; i < shaft->size(); ++i) {
+    const std::string path = "shaft[" + std::to_string(i) + "]";
+    const toml::node& node = (*shaft)[i];
+    if (!node.is_table()) throw ModelError(where(node, src, file) + ": " + path + ": expected a table");
+    Reader r(*node.as_table(), path, src);
+    ShaftSection s;
+    s.length = r.quantity("length", dim::length, Bound::Positive);
+    s.outer_diameter = r.quantity("outer_diameter", dim::length, Bound::Positive);
+    s.inner_diameter = r.quantity_or("inner_diameter", dim::length, 0.0, Bound::NonNegative);
+    if (s.inner_diameter >= s.outer_diameter) r.fail("inner_diameter", "must be smaller than outer_diameter");
+    s.material = r.text_or("material", spec.materials.size() == 1 ? spec.materials.begin()->first : "");
+    if (s.material.empty()) r.fail("material", "missing (several materials are defined, say which)");
+    if (!spec.materials.count(s.material)) {
+      std::vector<std::string> names;
+      for (const auto& [n, m] : spec.materials) names.push_back(n);
+      const std::string hint = closest_match(s.material, names);
+      r.fail("material", "no material '" + s.material + "' in [materials]" +
+                             (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+    }
+    s.z_start = z;
+    z += s.length;
+    r.finish();
+    spec.shaft.push_back(s);
+  }
+  const double length = z;
+  constexpr double kPositionTolerance = 1e-9;  // m; positions this close to the shaft ends count as on the shaft
+  auto check_on_shaft = [&](Reader& r, double zpos, const std::string& what) {
+    if (zpos < -kPositionTolerance || zpos > length + kPositionTolerance) {
+      std::ostringstream os;
+      os << what << " at z = " << zpos * 1e3 << " mm lies outside the shaft (0 to " << length * 1e3 << " mm)";
+      r.fail("z", os.str());
+    }
+  };
+
+  if (const toml::table* mesh = top.table("mesh")) {
+    Reader r(*mesh, "mesh", src);
+    read_mesh(r, spec.mesh);
+  }
+  if (const toml::table* damping = top.table("damping")) {
+    Reader r(*damping, "damping", src);
+    spec.damping.alpha = r.quantity_or("alpha", dim::frequency, 0.0, Bound::NonNegative);
+    spec.damping.beta = r.quantity_or("beta", dim::time, 0.0, Bound::NonNegative);
+    r.finish();
+  }
+  if (const toml::table* disks = top.table("disks")) {
+    for (auto&& [k, v] : *disks) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": disks." + key + ": expected a table [disks." + key + "]");
+      Reader r(*v.as_table(), "disks." + key, src);
+      DiskSpec d;
+      d.name = key;
+      read_disk(r, spec, d);
+      check_on_shaft(r, d.z, "disk '" + key + "'");
+      spec.disks.push_back(d);
+    }
+  }
+  if (const toml::table* bearings = top.table("bearings")) {
+    for (auto&& [k, v] : *bearings) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": bearings." + key + ": expected a table [bearings." + key +
+                         "]");
+      Reader r(*v.as_table(), "bearings." + key, src);
+      BearingSpec b;
+      b.name = key;
+      read_bearing(r, b);
+      check_on_shaft(r, b.z, "bearing '" + key + "'");
+      spec.bearings.push_back(b);
+    }
+  }
+  if (const toml::table* oil = top.table("oil")) {
+    Reader r(*oil, "oil", src);
+    OilSpec& o = spec.oil;
+    o.vogel_a = r.quantity_or("vogel_a", dim::viscosity, o.vogel_a, Bound::Positive);
+    o.vogel_b = r.quantity_or("vogel_b", dim::temperature, o.vogel_b, Bound::Positive);
+    o.vogel_c = r.quantity_or("vogel_c", dim::temperature, o.vogel_c);
+    o.viscosity = r.quantity_or("viscosity", dim::viscosity, 0.0, Bound::NonNegative);
+    o.density = r.quantity_or("density", dim::density, o.density, Bound::Positive);
+    o.temperature = r.quantity_or("temperature", dim::temperature, o.temperature, Bound::Positive);
+    for (const char* key : {"vogel_b", "vogel_c"})
+      if (r.has(key) && r.get(key)->is_string() && r.get(key)->value<std::string>()->find("degC") != std::string::npos)
+        r.fail(key, "is a temperature difference: write it in K (or as a plain number)");
+    if (o.temperature - 273.15 + o.vogel_c <= 0.0) r.fail("temperature", "lies below the Vogel pole T = -C");
+    r.finish();
+  }
+  if (const toml::table* speed = top.table("speed")) {
+    Reader r(*speed, "speed", src);
+    read_speed(r, spec.speed);
+  }
+  if (const toml::table* solver = top.table("solver")) {
+    Reader r(*solver, "solver", src);
+    spec.solver.integrator = r.choice("integrator", {"auto", "cvode-bdf", "arkode-erk"}, spec.solver.integrator);
+    spec.solver.rtol = r.quantity_or("rtol", dim::dimensionless, spec.solver.rtol, Bound::Positive);
+    spec.solver.atol = r.quantity_or("atol", dim::dimensionless, spec.solver.atol, Bound::Positive);
+    spec.solver.atol_scaling = r.choice("atol_scaling", {"uniform", "typical"}, spec.solver.atol_scaling);
+    spec.solver.max_step = r.quantity_or("max_step", dim::time, spec.solver.max_step, Bound::NonNegative);
+    spec.solver.static_start = r.flag_or("static_start", spec.solver.static_start);
+    spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1);
+    spec.solver.max_order = static_cast<int>(r.integer_or("max_order", spec.solver.max_order, 1));
+    if (spec.solver.max_order > 5) r.fail("max_order", "BDF orders go from 1 to 5");
+    if (const toml::node* n = r.get("reduction_cutoff"); n && n->is_string() && *n->value<std::string>() == "auto")
+      spec.solver.reduction_cutoff = -1.0;
+    else
+      spec.solver.reduction_cutoff =
+          r.quantity_or("reduction_cutoff", dim::frequency, spec.solver.reduction_cutoff, Bound::NonNegative);
+    if (spec.solver.rtol >= 1.0) r.fail("rtol", "a relative tolerance must be below 1");
+    r.finish();
+  }
+  if (const toml::table* output = top.table("output")) {
+    Reader r(*output, "output", src);
+    OutputSpec& o = spec.output;
+    o.sample_rate = r.quantity_or("sample_rate", dim::frequency, o.sample_rate, Bound::Positive);
+    o.csv = r.flag_or("csv", o.csv);
+    o.spectrogram_segment = static_cast<int>(r.integer_or("spectrogram_segment", o.spectrogram_segment, 8));
+    o.spectrogram_overlap = r.quantity_or("spectrogram_overlap", dim::dimensionless, o.spectrogram_overlap,
+                                          Bound::NonNegative);
+    if (o.spectrogram_overlap >= 1.0) r.fail("spectrogram_overlap", "must be below 1");
+    o.spectrogram_window =
+        r.choice("spectrogram_window", {"hann", "hamming", "blackman", "flattop", "rectangular"}, o.spectrogram_window);
+    o.frequency_max = r.quantity_or("frequency_max", dim::frequency, o.frequency_max, Bound::NonNegative);
+    o.orbit_speeds = r.quantity_list("orbit_speeds", dim::angular_speed, Bound::NonNegative);
+    r.finish();
+  }
+  if (const toml::table* modal = top.table("modal")) {
+    Reader r(*modal, "modal", src);
+    read_modal(r, spec.modal);
+  }
+  top.finish();
+  return spec;
+}
+
+MachineSpec load_parsed(toml::table root, const std::string& source_name, const std::vector<Override>& overrides) {
+  Sources sources{source_name, {}};
+  for (const Override& o : overrides) apply_override(root, o, sources);
+  return read_machine(root, sources);
+}
+
+}  // namespace
+
+Override parse_override(const std::string& assignment) {
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos)
+    throw ModelError("--set " + assignment + ": expected PATH=VALUE, e.g. --set bearings.compressor.kxx=2e7");
+  Override o{assignment.substr(0, eq), assignment.substr(eq + 1)};
+  auto trim = [](std::string& s) {
+    s.erase(0, s.find_first_not_of(" \t"));
+    s.erase(s.find_last_not_of(" \t") + 1);
+  };
+  trim(o.path);
+  trim(o.value);
+  if (o.path.empty()) throw ModelError("--set " + assignment + ": the path before '=' is empty");
+  if (o.value.empty()) throw ModelError("--set " + assignment + ": the value after '=' is empty");
+  return o;
+}
+
+MachineSpec load_model(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ModelError(file.string() + ": cannot open the model file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_model_from_string(text.str(), file.string(), overrides);
+}
+
+MachineSpec load_model_from_string(const std::string& toml_text, const std::string& source_name,
+                                   const std::vector<Override>& overrides) {
+  return load_parsed(input::parse_toml(toml_text, source_name), source_name, overrides);
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t sub = prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const std::string& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  // A plausible typo: at most a third of the word changed (at least one edit allowed).
+  const std::size_t allowed = std::max<std::size_t>(1, word.size() / 3);
+  return best_d <= allowed ? best : std::string();
+}
+
+}  // namespace turbodyn

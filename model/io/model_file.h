@@ -1,0 +1,42 @@
+// Reading a machine from a TOML model file (docs/model-format.md), with command-line overrides.
+//
+// Every error names where the problem is (file:line:column, or "--set" for an override), the full key path and
+// what was expected; unknown keys are errors with a "did you mean" suggestion.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "model/spec/errors.h"
+#include "model/spec/model_spec.h"
+
+namespace turbodyn {
+
+/// One `--set PATH=VALUE` override. PATH uses the model-file key syntax: dotted table keys, and `name[i]` (0-based)
+/// for the i-th entry of an array of tables, e.g. `bearings.compressor.kxx`, `shaft[2].outer_diameter`.
+/// VALUE is read as a TOML value (number, boolean, quoted string, array); anything that is not valid TOML is taken
+/// as a plain string, so `--set disks.turbine.unbalance=580 mg*mm` needs no quotes.
+struct Override {
+  std::string path;
+  std::string value;
+};
+
+/// Splits "PATH=VALUE"; throws ModelError when there is no '=' or the path is empty.
+Override parse_override(const std::string& assignment);
+
+/// Reads and validates a model file, applying the overrides first (so they are validated like file values).
+MachineSpec load_model(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
+
+/// Same, from TOML text; `source_name` is used in messages and as MachineSpec::source.
+MachineSpec load_model_from_string(const std::string& toml_text, const std::string& source_name,
+                                   const std::vector<Override>& overrides = {});
+
+/// Levenshtein distance (for "did you mean" suggestions).
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
+/// The closest candidate to `word` if it is close enough to be a plausible typo, else "".
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace turbodyn

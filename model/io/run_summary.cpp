@@ -1,0 +1,56 @@
+#include "model/io/run_summary.h"
+
+#include <cmath>
+
+namespace turbodyn {
+
+nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, const RunupOptions& ro,
+                           const RunupResult& r, const std::vector<Override>& overrides) {
+  nlohmann::json j;
+  j["turbodyn_version"] = "0.1.0";
+  j["complete"] = r.complete;
+  j["message"] = r.message;
+  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}, {"n_dof", model.n_dof()},
+                {"n_states", model.n_states()}, {"n_force_elements", model.elements().size()}};
+  nlohmann::json ov = nlohmann::json::array();
+  for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
+  j["overrides"] = ov;
+  const double t_end = ro.t_end > 0.0 ? ro.t_end : model.speed().duration();
+  j["options"] = {{"integrator", resolve_integrator(model, ro.integrator)}, {"rtol", ro.rtol}, {"atol", ro.atol}, {"atol_scaling", ro.atol_scaling},
+                  {"max_step_s", ro.max_step}, {"max_steps", ro.max_steps}, {"max_order", ro.max_order},
+                  {"sample_rate_hz", ro.sample_rate}, {"static_start", ro.static_start},
+                  {"t_start_s", ro.t_start}, {"t_end_s", t_end}, {"rotor_coordinates", model.n_dof()},
+                  {"rotor_fe_dof", model.n_physical_dof()},
+                  {"reduction_lowest_dropped_mode_hz", model.reduction_cutoff()}};
+  j["t_reached_s"] = r.t_reached;
+  j["stats"] = {{"wall_time_s", r.stats.wall_time}, {"steps", r.stats.steps}, {"rhs_calls", r.stats.rhs_calls},
+                {"force_element_calls", r.stats.element_calls},
+                {"jacobian_evaluations", r.stats.jacobian_evaluations},
+                {"newton_matrix_factorisations", r.stats.linear_setups},
+                {"error_test_failures", r.stats.error_test_failures},
+                {"nonlinear_solver_failures", r.stats.nonlinear_failures}};
+  j["energy"] = {{"initial_j", r.energy_initial}, {"final_j", r.energy_final}, {"work_in_j", r.work_in},
+                 {"dissipated_j", r.dissipated},
+                 {"balance_error_j", r.energy_final - r.energy_initial - r.work_in + r.dissipated}};
+  int speed_col = 0;
+  for (std::size_t c = 0; c < r.channels.size(); ++c)
+    if (r.channels[c].kind == ProbeChannel::Kind::Speed) speed_col = static_cast<int>(c);
+  nlohmann::json probes = nlohmann::json::object();
+  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+    const ProbeChannel& ch = r.channels[c];
+    if (ch.kind == ProbeChannel::Kind::Speed || ch.kind == ProbeChannel::Kind::Angle) continue;
+    double max_abs = 0.0, time = 0.0, speed_hz = 0.0;
+    for (std::size_t i = 0; i < r.columns[c].size(); ++i)
+      if (std::abs(r.columns[c][i]) > max_abs) {
+        max_abs = std::abs(r.columns[c][i]);
+        time = r.time[i];
+        speed_hz = r.columns[speed_col][i];
+      }
+    probes[ch.name] = {{"unit", ch.unit}, {"description", ch.description}, {"max_abs", max_abs},
+                       {"time_at_max_s", time}, {"speed_at_max_hz", speed_hz}, {"speed_at_max_rpm", speed_hz * 60.0}};
+  }
+  j["probes"] = probes;
+  return j;
+}
+
+}  // namespace turbodyn

@@ -1,0 +1,18 @@
+// The summary of a run-up (summary.json, docs/output-format.md), shared by `turbodyn run` and the studies.
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "model/io/model_file.h"
+#include "model/engine/runup.h"
+
+namespace turbodyn {
+
+/// Everything of summary.json except the pictures and warnings: model, overrides, options, statistics, energy
+/// balance, and per probe the maximum absolute value with the time and speed where it occurs.
+nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, const RunupOptions& options,
+                           const RunupResult& result, const std::vector<Override>& overrides);
+
+}  // namespace turbodyn

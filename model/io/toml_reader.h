@@ -1,0 +1,254 @@
+// Reading TOML input (model files, study files) with errors that point at the line: every value knows its
+// file:line:column (or the --set override that put it there); a Reader remembers which keys of a table the
+// program asked for and rejects all others with a "did you mean" suggestion.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "model/spec/errors.h"
+#include "model/spec/units.h"
+
+namespace turbodyn::input {
+
+inline constexpr const char* kOverridePrefix = "--set ";
+
+/// Parses TOML text; a syntax error is a ModelError naming source:line:column.
+inline toml::table parse_toml(const std::string& text, const std::string& source_name) {
+  try {
+    return toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << source_name << ':' << e.source().begin.line << ':' << e.source().begin.column
+       << ": TOML syntax error: " << e.description();
+    throw ModelError(os.str());
+  }
+}
+
+/// Reads the whole file (a ModelError "FILE: cannot open the WHAT" if it cannot).
+inline std::string read_text_file(const std::filesystem::path& file, const std::string& what) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ModelError(file.string() + ": cannot open the " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Where values came from: the file, or the --set override that put a node into the tree.
+struct Sources {
+  std::string file;
+  std::map<const toml::node*, std::string> overrides;
+};
+
+inline std::string where(const toml::source_region& src, const std::string& fallback) {
+  if (!src.path || src.begin.line == 0) return fallback;
+  std::ostringstream os;
+  os << *src.path << ':' << src.begin.line << ':' << src.begin.column;
+  return os.str();
+}
+
+// "file:line:column" of a node, or the override that created it.
+inline std::string where(const toml::node& n, const Sources& sources, const std::string& fallback) {
+  if (const auto it = sources.overrides.find(&n); it != sources.overrides.end()) return it->second;
+  return where(n.source(), fallback);
+}
+
+// Position of a key (where a user looks for a misspelt name), else of its value.
+inline std::string where_key(const toml::key& k, const toml::node& v, const Sources& sources, const std::string& fallback) {
+  if (sources.overrides.count(&v)) return where(v, sources, fallback);
+  return where(k.source(), where(v, sources, fallback));
+}
+
+inline std::string describe_node(const toml::node& n) {
+  std::ostringstream os;
+  switch (n.type()) {
+    case toml::node_type::string: os << "'" << *n.value<std::string>() << "'"; break;
+    case toml::node_type::table: os << "a table"; break;
+    case toml::node_type::array: os << "an array"; break;
+    case toml::node_type::boolean: os << (*n.value<bool>() ? "true" : "false"); break;
+    default: n.visit([&](auto&& v) { os << v; }); break;
+  }
+  return os.str();
+}
+
+enum class Bound { Any, Positive, NonNegative };
+
+// Reads the keys of one table, remembers which keys the program knows, and rejects all others in finish().
+class Reader {
+ public:
+  Reader(const toml::table& table, std::string path, const Sources& sources)
+      : table_(table), path_(std::move(path)), sources_(sources) {}
+
+  const std::string& path() const { return path_; }
+  const Sources& sources() const { return sources_; }
+  std::string key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  std::string location(std::string_view key) const {
+    const toml::node* n = table_.get(key);
+    const std::string table_loc = where(table_, sources_, sources_.file);
+    return n ? where(*n, sources_, table_loc) : table_loc;
+  }
+
+  const toml::node* get(std::string_view key) {
+    known_.emplace(key);
+    return table_.get(key);
+  }
+  bool has(std::string_view key) { return get(key) != nullptr; }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
+    throw ModelError(location(key) + ": " + key_path(key) + ": " + message);
+  }
+  // A required key is absent: if an unknown key looks like a misspelling of it, that is the better message.
+  [[noreturn]] void fail_missing(std::string_view key, const std::string& expected) const {
+    for (auto&& [k, v] : table_) {
+      const std::string other(k.str());
+      if (known_.count(other)) continue;
+      if (closest_match(other, {std::string(key)}) == key)
+        throw ModelError(where_key(k, v, sources_, sources_.file) + ": " + key_path(other) +
+                         ": unknown key; did you mean '" + std::string(key) + "'?");
+    }
+    fail(key, "missing required key (" + expected + ")");
+  }
+  [[noreturn]] void fail_table(const std::string& message) const {
+    throw ModelError(where(table_, sources_, sources_.file) + ": " + (path_.empty() ? "(top level)" : path_) +
+                     ": " + message);
+  }
+
+  double quantity(std::string_view key, const Dimension& d, Bound bound = Bound::Any) {
+    const toml::node* n = get(key);
+    if (!n) fail_missing(key, "expected " + describe(d));
+    return convert(key, *n, d, bound);
+  }
+  double quantity_or(std::string_view key, const Dimension& d, double fallback, Bound bound = Bound::Any) {
+    const toml::node* n = get(key);
+    return n ? convert(key, *n, d, bound) : fallback;
+  }
+  // An array of quantities (a single value is taken as a list of one).
+  std::vector<double> quantity_list(std::string_view key, const Dimension& d, Bound bound = Bound::Any) {
+    std::vector<double> out;
+    const toml::node* n = get(key);
+    if (!n) return out;
+    if (const toml::array* a = n->as_array()) {
+      if (a->empty()) fail(key, "the list is empty");
+      for (const toml::node& e : *a) out.push_back(convert(key, e, d, bound));
+    } else {
+      out.push_back(convert(key, *n, d, bound));
+    }
+    return out;
+  }
+  std::string text_or(std::string_view key, const std::string& fallback) {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    if (!n->is_string()) fail(key, "expected a string, got " + describe_node(*n));
+    return *n->value<std::string>();
+  }
+  std::string choice(std::string_view key, const std::vector<std::string>& options, const std::string& fallback) {
+    const std::string value = text_or(key, fallback);
+    if (std::find(options.begin(), options.end(), value) != options.end()) return value;
+    std::string list;
+    for (const auto& o : options) list += (list.empty() ? "'" : ", '") + o + "'";
+    std::string hint = closest_match(value, options);
+    fail(key, "unknown value '" + value + "' (expected one of " + list + ")" +
+                  (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+  }
+  bool flag_or(std::string_view key, bool fallback) {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "expected true or false, got " + describe_node(*n));
+    return *n->value<bool>();
+  }
+  long integer_or(std::string_view key, long fallback, long minimum) {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    if (!n->is_integer()) fail(key, "expected a whole number, got " + describe_node(*n));
+    const long v = static_cast<long>(*n->value<int64_t>());
+    if (v < minimum) fail(key, "must be at least " + std::to_string(minimum) + ", got " + std::to_string(v));
+    return v;
+  }
+  const toml::table* table(std::string_view key) {
+    const toml::node* n = get(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "expected a table ([" + key_path(key) + "]), got " + describe_node(*n));
+    return n->as_table();
+  }
+  const toml::array* array(std::string_view key) {
+    const toml::node* n = get(key);
+    if (!n) return nullptr;
+    if (!n->is_array()) fail(key, "expected an array, got " + describe_node(*n));
+    return n->as_array();
+  }
+
+  // Every key of the table must have been asked for.
+  void finish() const {
+    std::vector<std::string> known(known_.begin(), known_.end());
+    for (auto&& [k, v] : table_) {
+      const std::string key(k.str());
+      if (known_.count(key)) continue;
+      const std::string hint = closest_match(key, known);
+      std::string message = "unknown key";
+      if (!hint.empty()) message += "; did you mean '" + hint + "'?";
+      else if (!known.empty()) {
+        message += " (known here: ";
+        for (std::size_t i = 0; i < known.size(); ++i) message += (i ? ", " : "") + known[i];
+        message += ")";
+      }
+      throw ModelError(where_key(k, v, sources_, where(table_, sources_, sources_.file)) + ": " + key_path(key) +
+                       ": " + message);
+    }
+  }
+
+ private:
+  double convert(std::string_view key, const toml::node& n, const Dimension& d, Bound bound) const {
+    double v = 0.0;
+    if (n.is_integer()) {
+      v = static_cast<double>(*n.value<int64_t>());
+    } else if (n.is_floating_point()) {
+      v = *n.value<double>();
+    } else if (n.is_string()) {
+      try {
+        v = parse_quantity(*n.value<std::string>(), d);
+      } catch (const UnitError& e) {
+        throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": " + e.what());
+      }
+    } else {
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": expected " + describe(d) +
+                       " (a number in SI units or a string such as \"" + example_for(d) + "\"), got " +
+                       describe_node(n));
+    }
+    if (!std::isfinite(v))
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": value is not finite");
+    if (bound == Bound::Positive && !(v > 0.0))
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": must be positive, got " +
+                       describe_node(n));
+    if (bound == Bound::NonNegative && v < 0.0)
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": must not be negative, got " +
+                       describe_node(n));
+    return v;
+  }
+  static std::string example_for(const Dimension& d) {
+    if (d == dim::length) return "15 um";
+    if (d == dim::angular_speed) return "150000 rpm";
+    if (d == dim::unbalance) return "390 mg*mm";
+    if (d == dim::temperature) return "90 degC";
+    if (d == dim::mass) return "0.119 kg";
+    return "1 " + d.si_unit();
+  }
+
+  const toml::table& table_;
+  std::string path_;
+  const Sources& sources_;
+  std::set<std::string> known_;
+};
+
+
+}  // namespace turbodyn::input

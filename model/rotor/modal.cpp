@@ -1,0 +1,248 @@
+#include "model/rotor/modal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
+namespace turbodyn {
+
+std::string to_string(Whirl w) {
+  switch (w) {
+    case Whirl::Forward: return "forward";
+    case Whirl::Backward: return "backward";
+    case Whirl::Mixed: return "mixed";
+    case Whirl::Planar: return "planar";
+    case Whirl::Torsional: return "torsional";
+  }
+  return "?";
+}
+
+Whirl classify_whirl(const Rotor& rotor, const Eigen::VectorXcd& shape, std::vector<int>* node_whirl) {
+  // Node orbit x = Re(a e^{i w t}), y = Re(b e^{i w t}). It runs in the spin direction (x towards y, forward) when
+  // Im(conj(a) b) < 0. Orbits whose minor/major axis ratio is below kPlanar, or nodes moving less than kSmall of
+  // the largest orbit, do not vote.
+  constexpr double kPlanar = 1e-3;
+  constexpr double kSmall = 1e-2;
+  const int n_nodes = rotor.n_dof / kDofPerNode;
+  std::vector<double> size(n_nodes), signed_area(n_nodes);
+  double largest = 0.0;
+  for (int n = 0; n < n_nodes; ++n) {
+    const std::complex<double> a = shape(rotor.dof(n, kX)), b = shape(rotor.dof(n, kY));
+    size[n] = std::norm(a) + std::norm(b);
+    signed_area[n] = -(std::conj(a) * b).imag();  // = major * minor semi-axis product, sign = direction
+    largest = std::max(largest, size[n]);
+  }
+  int forward = 0, backward = 0;
+  if (node_whirl) node_whirl->assign(n_nodes, 0);
+  for (int n = 0; n < n_nodes; ++n) {
+    if (largest == 0.0 || size[n] < kSmall * kSmall * largest) continue;
+    // 2|major*minor| / (major^2 + minor^2) >= ratio-ish; small values mean a nearly straight-line orbit.
+    if (2.0 * std::abs(signed_area[n]) < kPlanar * size[n]) continue;
+    const int dir = signed_area[n] > 0 ? 1 : -1;
+    (dir > 0 ? forward : backward)++;
+    if (node_whirl) (*node_whirl)[n] = dir;
+  }
+  if (forward == 0 && backward == 0) return Whirl::Planar;
+  if (backward == 0) return Whirl::Forward;
+  if (forward == 0) return Whirl::Backward;
+  return Whirl::Mixed;
+}
+
+namespace {
+
+// Diagonal similarity scaling A <- S^-1 A S with powers of two so that each row and column have similar norms
+// (Parlett & Reinsch 1969, "Balancing a matrix for calculation of eigenvalues and eigenvectors", Numer. Math. 13;
+// the scaling part of LAPACK's xGEBAL). Returns the diagonal of S; eigenvectors of the original A are S v.
+Eigen::VectorXd balance(Eigen::MatrixXd& A) {
+  const Eigen::Index n = A.rows();
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(n);
+  constexpr double kRadix = 2.0, kConverged = 0.95;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double c = A.col(i).norm(), r = A.row(i).norm();
+      const double cd = std::sqrt(std::max(0.0, c * c - A(i, i) * A(i, i)));
+      const double rd = std::sqrt(std::max(0.0, r * r - A(i, i) * A(i, i)));
+      if (cd == 0.0 || rd == 0.0) continue;
+      double f = 1.0, cc = cd, rr = rd;
+      const double total = cd + rd;
+      while (cc < rr / kRadix) {
+        cc *= kRadix;
+        rr /= kRadix;
+        f *= kRadix;
+      }
+      while (cc >= rr * kRadix) {
+        cc /= kRadix;
+        rr *= kRadix;
+        f /= kRadix;
+      }
+      if (cc + rr < kConverged * total) {
+        changed = true;
+        s(i) *= f;
+        A.col(i) *= f;
+        A.row(i) /= f;
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options) {
+  const int n = rotor.n_dof;
+  Eigen::MatrixXd K = rotor.K, C = rotor.D;
+  rotor.add_bearings(speed, K, C);
+  Eigen::MatrixXd Cg = C + speed * rotor.G;
+  if (options.frame == Frame::Rotating) {
+    const Eigen::MatrixXd J = rotor.quarter_turn();
+    constexpr double kSymmetryTolerance = 1e-9;
+    Eigen::MatrixXd Kb = K - rotor.K, Cb = C - rotor.D;
+    if ((Kb * J - J * Kb).norm() > kSymmetryTolerance * (1.0 + Kb.norm()) ||
+        (Cb * J - J * Cb).norm() > kSymmetryTolerance * (1.0 + Cb.norm()))
+      throw std::runtime_error(
+          "the rotating-frame form of Eq. (9) has constant coefficients only on isotropic bearings "
+          "(kxx = kyy, kxy = -kyx, likewise c); this model's bearings are anisotropic");
+    // Damping acting on inertial velocities q' = R (q_r' + Omega J q_r) adds Omega C J to the stiffness.
+    Cg = C + speed * rotor.rotating_frame_gyroscopic();
+    K += speed * speed * rotor.spin_softening() + speed * C * J;
+  }
+  // First-order form z = [q; q'], z' = A z with A = [0 I; -M^-1 K, -M^-1 Cg].
+  const Eigen::LLT<Eigen::MatrixXd> llt(rotor.M);
+  if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix is not positive definite");
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomLeftCorner(n, n) = -llt.solve(K);
+  A.bottomRightCorner(n, n) = -llt.solve(Cg);
+  // Rotations, displacements and velocities differ by many orders of magnitude in A; without balancing the
+  // low eigenvalues lose all accuracy (errors ~ eps * ||A||).
+  const Eigen::VectorXd scale = balance(A);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+  if (es.info() != Eigen::Success) throw std::runtime_error("the eigenvalue solver did not converge");
+
+  const Eigen::VectorXcd lambda = es.eigenvalues();
+  std::vector<int> index;
+  // Eigenvalues with a (relatively) positive imaginary part are oscillating modes; their conjugates are dropped.
+  constexpr double kOscillatory = 1e-9;
+  for (int i = 0; i < lambda.size(); ++i)
+    if (lambda(i).imag() > kOscillatory * std::max(1.0, std::abs(lambda(i)))) index.push_back(i);
+  std::sort(index.begin(), index.end(), [&](int a, int b) { return lambda(a).imag() < lambda(b).imag(); });
+  if (static_cast<int>(index.size()) > options.n_modes) index.resize(options.n_modes);
+
+  ModalResult result;
+  result.speed = speed;
+  for (int i : index) {
+    Mode m;
+    m.eigenvalue = lambda(i);
+    m.frequency = lambda(i).imag() / (2.0 * M_PI);
+    m.damping_ratio = -lambda(i).real() / std::abs(lambda(i));
+    m.shape = scale.head(n).cast<std::complex<double>>().cwiseProduct(es.eigenvectors().col(i).head(n));
+    // Normalise: largest translation 1 and real.
+    int imax = 0;
+    double amax = -1.0;
+    for (int k = 0; k < n; ++k) {
+      if (k % kDofPerNode >= 2) continue;
+      if (std::abs(m.shape(k)) > amax) {
+        amax = std::abs(m.shape(k));
+        imax = k;
+      }
+    }
+    if (amax > 0.0) m.shape /= m.shape(imax);
+    m.whirl = classify_whirl(rotor, m.shape, &m.node_whirl);
+    result.modes.push_back(std::move(m));
+  }
+  if (options.torsion) {
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ts(rotor.K_torsion, rotor.M_torsion);
+    if (ts.info() != Eigen::Success) throw std::runtime_error("the torsional eigenvalue solver did not converge");
+    const double largest = ts.eigenvalues().maxCoeff();
+    constexpr double kRigidBody = 1e-10;  // relative size below which an eigenvalue is the free rigid rotation
+    for (Eigen::Index i = 0; i < ts.eigenvalues().size(); ++i) {
+      if (ts.eigenvalues()(i) <= kRigidBody * largest) continue;
+      Mode m;
+      const double w = std::sqrt(ts.eigenvalues()(i));
+      m.eigenvalue = {0.0, w};
+      m.frequency = w / (2.0 * M_PI);
+      m.whirl = Whirl::Torsional;
+      m.shape = Eigen::VectorXcd::Zero(n);
+      m.twist = ts.eigenvectors().col(i);
+      m.twist /= m.twist.cwiseAbs().maxCoeff();
+      result.modes.push_back(std::move(m));
+    }
+    std::stable_sort(result.modes.begin(), result.modes.end(),
+                     [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
+    if (static_cast<int>(result.modes.size()) > options.n_modes) result.modes.resize(options.n_modes);
+  }
+  return result;
+}
+
+namespace {
+
+// Frequency (Hz) of the `branch`-th mode of whirl class `whirl` at `speed`, NaN if absent.
+double branch_frequency(const ModalResult& r, Whirl whirl, int branch) {
+  int k = 0;
+  for (const Mode& m : r.modes) {
+    if (m.whirl != whirl) continue;
+    if (k++ == branch) return m.frequency;
+  }
+  return std::nan("");
+}
+
+const Mode* branch_mode(const ModalResult& r, Whirl whirl, int branch) {
+  int k = 0;
+  for (const Mode& m : r.modes)
+    if (m.whirl == whirl && k++ == branch) return &m;
+  return nullptr;
+}
+
+}  // namespace
+
+Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds, const std::vector<double>& orders,
+                          const ModalOptions& options) {
+  Campbell c;
+  for (double s : speeds) c.points.push_back(modal_analysis(rotor, s, options));
+
+  constexpr double kRelativeSpeedTolerance = 1e-6;
+  for (double order : orders) {
+    for (Whirl whirl : {Whirl::Forward, Whirl::Backward}) {
+      for (int branch = 0; branch < options.n_modes; ++branch) {
+        auto residual = [&](const ModalResult& r) {
+          return branch_frequency(r, whirl, branch) - order * r.speed / (2.0 * M_PI);
+        };
+        for (std::size_t i = 1; i < c.points.size(); ++i) {
+          double lo = speeds[i - 1], hi = speeds[i];
+          double flo = residual(c.points[i - 1]), fhi = residual(c.points[i]);
+          if (!(std::isfinite(flo) && std::isfinite(fhi)) || flo * fhi > 0.0 || (flo == 0.0 && i > 1)) continue;
+          // Bisection on the branch frequency minus the order line.
+          ModalResult mid_r = c.points[i];
+          for (int it = 0; it < 100 && hi - lo > kRelativeSpeedTolerance * std::max(1.0, hi); ++it) {
+            const double mid = 0.5 * (lo + hi);
+            mid_r = modal_analysis(rotor, mid, options);
+            const double fm = residual(mid_r);
+            if (!std::isfinite(fm)) break;
+            if ((fm > 0.0) == (flo > 0.0)) {
+              lo = mid;
+              flo = fm;
+            } else {
+              hi = mid;
+            }
+          }
+          CriticalSpeed cs;
+          cs.order = order;
+          cs.branch = branch;
+          cs.whirl = whirl;
+          cs.speed = 0.5 * (lo + hi);
+          cs.frequency = order * cs.speed / (2.0 * M_PI);
+          if (const Mode* m = branch_mode(mid_r, whirl, branch)) cs.damping_ratio = m->damping_ratio;
+          c.critical.push_back(cs);
+        }
+      }
+    }
+  }
+  std::sort(c.critical.begin(), c.critical.end(),
+            [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.speed < b.speed; });
+  return c;
+}
+
+}  // namespace turbodyn

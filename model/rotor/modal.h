@@ -1,0 +1,71 @@
+// Linear analyses of the rotor on its linear bearings: complex modes at a speed, Campbell diagram, critical speeds.
+//
+// The free motion M q'' + (D + D_b + Omega G) q' + (K + K_b) q = 0 is written in first-order form and solved as a
+// real non-symmetric eigenproblem; each mode with Im(lambda) > 0 is one damped natural frequency.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "model/rotor/rotor.h"
+
+namespace turbodyn {
+
+/// Direction of a lateral mode's orbits; Torsional marks a twist mode (no lateral motion).
+enum class Whirl { Forward, Backward, Mixed, Planar, Torsional };
+std::string to_string(Whirl w);
+
+enum class Frame { Inertial, Rotating };
+
+struct Mode {
+  std::complex<double> eigenvalue;  ///< lambda = sigma + i omega_d in 1/s
+  double frequency = 0.0;           ///< damped natural frequency omega_d / (2 pi) in Hz
+  double damping_ratio = 0.0;       ///< zeta = -sigma / |lambda| [-]
+  Whirl whirl = Whirl::Planar;
+  Eigen::VectorXcd shape;           ///< n_dof, normalised to a largest translation of 1 (real there)
+  /// Per node: +1 forward, -1 backward, 0 planar (orbit nearly a line) or too small to judge.
+  std::vector<int> node_whirl;
+  Eigen::VectorXd twist;            ///< torsional modes: twist per node, largest 1 (empty for lateral modes)
+};
+
+struct ModalResult {
+  double speed = 0.0;  ///< rad/s
+  std::vector<Mode> modes;  ///< ascending frequency
+};
+
+struct ModalOptions {
+  int n_modes = 8;
+  Frame frame = Frame::Inertial;  ///< Rotating: paper Eq. (9) in the shaft frame (axisymmetric rotors only)
+  bool torsion = false;           ///< also list the free-free torsional modes (independent of speed)
+};
+
+/// Modes of the rotor at spin speed `speed` (rad/s). Throws std::runtime_error when the rotor cannot be analysed
+/// (e.g. the rotating frame with anisotropic bearings).
+ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options = {});
+
+/// Whirl direction of a mode shape at each node and overall.
+Whirl classify_whirl(const Rotor& rotor, const Eigen::VectorXcd& shape, std::vector<int>* node_whirl = nullptr);
+
+struct CriticalSpeed {
+  double order = 1.0;       ///< excitation order (1 = synchronous)
+  int branch = 0;           ///< index of the branch among the modes of the same whirl direction, from 0
+  Whirl whirl = Whirl::Forward;
+  double speed = 0.0;       ///< rad/s
+  double frequency = 0.0;   ///< Hz, = order * speed / (2 pi)
+  double damping_ratio = 0.0;
+};
+
+struct Campbell {
+  std::vector<ModalResult> points;      ///< one per speed
+  std::vector<CriticalSpeed> critical;  ///< ascending speed
+};
+
+/// Campbell diagram over `speeds` (rad/s, ascending) with the crossings of the order lines `orders` with the
+/// forward and backward branches, refined by bisection to a relative speed tolerance of 1e-6.
+Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds, const std::vector<double>& orders,
+                          const ModalOptions& options = {});
+
+}  // namespace turbodyn

@@ -1,0 +1,70 @@
+// Data of an angular-contact ball bearing as the model file gives it (plain data, SI units); the force element that
+// uses it is model/elements/ball/ball_bearing.h, the equations are in docs/ball-bearing.md.
+#pragma once
+
+#include <string>
+
+namespace turbodyn {
+
+/// How the outer ring moves radially.
+enum class OuterRingMode {
+  kFixed,     ///< radially held in the housing (rigid); axial DOF on the preload spring only
+  kSpring,    ///< radial x, y on an isotropic spring-damper to the housing (4 extra states at the end)
+  kExternal,  ///< radial x, y given by a wrapping element (squeeze-film damper) through CalcBearing()
+};
+
+/// Data of one ball bearing, SI units. Defaults: reference-turbocharger.md, variant II.
+struct BallBearingSpec {
+  // Geometry.
+  int n_balls = 8;                  ///< Z, number of balls (>= 3)
+  double ball_diameter = 4.5e-3;    ///< D in m
+  double pitch_diameter = 17.5e-3;  ///< d_m in m
+  double inner_groove_ratio = 0.52; ///< f_i = inner groove radius / D (> 0.5)
+  double outer_groove_ratio = 0.53; ///< f_o = outer groove radius / D (> 0.5)
+  /// Free (unloaded) contact angle alpha_0 in rad, [0, pi/2). It fixes the unloaded geometry: the groove centres
+  /// are A = (f_i + f_o - 1) D apart along the line at alpha_0, i.e. the radial (diametral/2) clearance is
+  /// P_d / 2 = A (1 - cos alpha_0) (Harris & Kotzalas 2007, ch. 2).
+  double contact_angle = 15.0 * 3.14159265358979323846 / 180.0;
+  /// +1: the outer contact lies on the +z side of the ball (the outer ring is pushed towards -z by the preload),
+  /// -1: the mirror image. A back-to-back pair has opposite sides.
+  int side = +1;
+
+  // Materials.
+  double ball_youngs_modulus = 208e9;  ///< Pa
+  double ball_poisson_ratio = 0.3;     ///< -
+  double ball_density = 7800.0;        ///< kg/m^3
+  double ring_youngs_modulus = 208e9;  ///< Pa (both rings)
+  double ring_poisson_ratio = 0.3;     ///< -
+
+  // Cage (ball-guided: located by the balls in its pockets; ring guidance is not modelled).
+  double cage_mass = 1.0e-3;              ///< kg
+  double cage_polar_inertia = 0.0;        ///< kg m^2; 0 = thin ring at the pitch radius, m R_p^2
+  double cage_diametral_inertia = 0.0;    ///< kg m^2; 0 = m R_p^2 / 2 (unused: cage tilt is not modelled)
+  double pocket_clearance = 0.10e-3;      ///< m, clearance between ball and pocket (spherical pocket)
+  double cage_youngs_modulus = 8.0e9;     ///< Pa (glass-fibre polyamide; brass: 100e9)
+  double cage_poisson_ratio = 0.35;       ///< -
+  double pocket_damping = 5.0;            ///< N s/m, linear damping of a pocket contact
+
+  // Contact laws (paper Eqs. 21, 23).
+  double contact_damping = 15.0;   ///< d in N s/m, ball-race contacts
+  double friction_static = 0.10;   ///< mu_0
+  double friction_sliding = 0.05;  ///< mu_r
+  double friction_v1 = 0.05;       ///< v_1 in m/s (decay of mu_0 towards mu_r)
+  double friction_v2 = 0.005;      ///< v_2 in m/s (tanh regularisation of sgn)
+  bool spin_friction = true;       ///< add the spin moment of each race contact (3 pi / 16) mu Q a
+
+  // Axial preload (spring-preloaded outer ring).
+  double preload = 40.0;               ///< F_p in N (>= 0), spring force at the unloaded geometry
+  double preload_stiffness = 1.0e4;    ///< k_p in N/m (>= 0), stiffness of the preload spring
+
+  // Outer ring.
+  OuterRingMode outer_ring_mode = OuterRingMode::kFixed;
+  double outer_ring_mass = 8.0e-3;        ///< kg (axial motion; radial motion in kSpring)
+  double outer_ring_stiffness = 1.0e9;    ///< N/m, radial, kSpring only
+  double outer_ring_damping = 200.0;      ///< N s/m, radial, kSpring only
+
+  /// True if every field is acceptable; otherwise *error names the first bad field and why.
+  bool IsValid(std::string* error) const;
+};
+
+}  // namespace turbodyn
