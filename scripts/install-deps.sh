@@ -11,6 +11,7 @@ packages=(
   libcli11-dev           # command line
   libsundials-dev        # time integration (CVODE, ARKODE)
   libhdf5-dev            # time-series results (HDF5)
+  hdf5-tools             # h5dump: a test reads the time series as other HDF5 readers do
   libtbb-dev             # parallel parameter studies
   gnuplot-nox            # PNG pictures (pngcairo terminal)
   libgtest-dev libgmock-dev  # tests

@@ -13,7 +13,7 @@
 #include "model/io/model_file.h"
 #include "optim/evaluation_log.h"
 #include "optim/model_patch.h"
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn::optim {
 namespace {

@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn::studies {
 namespace {

@@ -29,8 +29,9 @@ using ::testing::Not;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-#define SKIP_WITHOUT_GNUPLOT() \
-  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed"
+// gnuplot is a dependency (scripts/install-deps.sh installs gnuplot-nox): its absence fails, it does not skip.
+#define REQUIRE_GNUPLOT() \
+  ASSERT_TRUE(gnuplot_available()) << "gnuplot is not installed (scripts/install-deps.sh installs gnuplot-nox)"
 
 struct PngInfo {
   bool signature = false;
@@ -146,7 +147,7 @@ int leftover_temp_dirs() {
 // Rendering
 
 TEST_F(PlotTest, LineChartWithTwoSeriesIsAPngOfTheDefaultSize) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   const fs::path f = file("line.png");
   render_png(two_series(), f);
   ASSERT_TRUE(fs::exists(f));
@@ -159,7 +160,7 @@ TEST_F(PlotTest, LineChartWithTwoSeriesIsAPngOfTheDefaultSize) {
 }
 
 TEST_F(PlotTest, LineChartOfAnotherSizeLogAxisAndEqualAxes) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   LineChart c = two_series();
   c.logy = true;
   c.series[0].y[1] = 0.0;  // a gap on the log axis, no failure
@@ -185,7 +186,7 @@ TEST_F(PlotTest, LineChartOfAnotherSizeLogAxisAndEqualAxes) {
 }
 
 TEST_F(PlotTest, HeatmapWithOverlayIsAPngOfTheRequestedSize) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   const fs::path f = file("heat.png");
   render_png(ridge(), f, Size{900, 600});
   const PngInfo info = png_info(f);
@@ -196,7 +197,7 @@ TEST_F(PlotTest, HeatmapWithOverlayIsAPngOfTheRequestedSize) {
 }
 
 TEST_F(PlotTest, HeatmapOnAnUnevenGridWithBlankCellsAndZeros) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   Heatmap m = ridge(false);
   m.z[5] = kNaN;
   m.z[6] = 0.0;  // clipped on the log scale
@@ -215,7 +216,7 @@ TEST_F(PlotTest, HeatmapOnAnUnevenGridWithBlankCellsAndZeros) {
 }
 
 TEST_F(PlotTest, ExistingFileIsReplaced) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   const fs::path f = file("old.png");
   std::ofstream(f) << "not a picture";
   render_png(two_series(), f);
@@ -223,7 +224,7 @@ TEST_F(PlotTest, ExistingFileIsReplaced) {
 }
 
 TEST_F(PlotTest, TwoThreadsRenderAtTheSameTime) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   std::string e1, e2;
   std::thread a([&] {
     try {
@@ -256,7 +257,7 @@ TEST_F(PlotTest, TwoThreadsRenderAtTheSameTime) {
 }
 
 TEST_F(PlotTest, AwkwardTextIsDrawnLiterally) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   LineChart c = two_series();
   c.title = "it's a \"test\" with `echo injected` @macro $var \\n and a\nsecond line";
   c.series[0].label = "f_d's ^{} 'label'";
@@ -408,7 +409,7 @@ TEST_F(PlotTest, MissingGnuplotByNameIsAClearError) {
 }
 
 TEST_F(PlotTest, GnuplotFailureReportsItsMessages) {
-  SKIP_WITHOUT_GNUPLOT();
+  REQUIRE_GNUPLOT();
   LineChart c = two_series();
   c.series[0].color = "no-such-colour";
   const std::string msg = error_of([&] { render_png(c, file("fail.png")); });
@@ -423,7 +424,7 @@ TEST_F(PlotTest, GnuplotFailureReportsItsMessages) {
 TEST_F(PlotTest, AProgramThatIsNotGnuplotFails) {
   // 'true' exits 0 but writes no picture.
   ScopedEnv env("TURBODYN_GNUPLOT", "true");
-  if (!gnuplot_available()) GTEST_SKIP() << "no 'true' program on PATH";
+  ASSERT_TRUE(gnuplot_available()) << "no 'true' program on PATH";
   const std::string msg = error_of([&] { render_png(two_series(), file("fake.png")); });
   EXPECT_THAT(msg, HasSubstr("wrote no PNG picture"));
   EXPECT_THAT(msg, Not(HasSubstr("gnuplot not found")));

@@ -7,7 +7,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "model/rotor/rotor.h"
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {
@@ -29,69 +29,9 @@ BeamProperties solid(double L, double d, double kappa, bool shear = true) {
   return p;
 }
 
-TEST(ShearFactor, PublishedFormulas) {
-  // Cowper (1966) solid circle 6(1+nu)/(7+6nu); Hutchinson (2001) 6(1+nu)^2/(7+12nu+4nu^2).
-  EXPECT_NEAR(cowper_shear_factor(0.3, 0.0), 7.8 / 8.8, 1e-15);
-  EXPECT_NEAR(hutchinson_shear_factor_solid(0.3), 10.14 / 10.96, 1e-15);
-  // Thin-walled tube limit of Cowper's formula: 2(1+nu)/(4+3nu).
-  EXPECT_NEAR(cowper_shear_factor(0.3, 0.999999), 2.6 / 4.9, 1e-6);
-}
-
-TEST(BeamElement, StiffnessMatchesTimoshenkoClosedForm) {
-  // Przemieniecki (1968) Timoshenko element: K(w1,w1) = 12EI/((1+Phi)L^3), K(phi1,phi1) = (4+Phi)EI/((1+Phi)L),
-  // K(phi1,phi2) = (2-Phi)EI/((1+Phi)L).
-  const BeamProperties p = solid(0.02, 0.01, cowper_shear_factor(kNu, 0.0));
-  const double EI = kE * p.second_moment(), L = p.length, Phi = p.shear_parameter();
-  ASSERT_GT(Phi, 0.05);
-  const BeamElementMatrices m = beam_element(p);
-  const double tol = 1e-10;
-  EXPECT_NEAR(m.stiffness(0, 0) / (12 * EI / ((1 + Phi) * L * L * L)), 1.0, tol);
-  EXPECT_NEAR(m.stiffness(3, 3) / ((4 + Phi) * EI / ((1 + Phi) * L)), 1.0, tol);
-  EXPECT_NEAR(m.stiffness(3, 7) / ((2 - Phi) * EI / ((1 + Phi) * L)), 1.0, tol);
-  EXPECT_NEAR(m.stiffness(0, 3) / (6 * EI / ((1 + Phi) * L * L)), 1.0, tol);
-  // y-z plane uses theta_x = -dy/dz: same magnitudes, opposite coupling sign.
-  EXPECT_NEAR(m.stiffness(1, 1), m.stiffness(0, 0), 1e-6 * m.stiffness(0, 0));
-  EXPECT_NEAR(m.stiffness(1, 2), -m.stiffness(0, 3), 1e-6 * m.stiffness(0, 3));
-  // Rigid translation and rigid rotation carry no strain energy.
-  Eigen::Matrix<double, 8, 1> tx = Eigen::Matrix<double, 8, 1>::Zero();
-  tx << 1, 0, 0, 0, 1, 0, 0, 0;
-  EXPECT_NEAR((m.stiffness * tx).norm(), 0.0, 1e-6 * m.stiffness.norm());
-  Eigen::Matrix<double, 8, 1> rot;  // rotation about y by 1 rad: x = z, theta_y = 1
-  rot << 0, 0, 0, 1, L, 0, 0, 1;
-  EXPECT_NEAR((m.stiffness * rot).norm(), 0.0, 1e-6 * m.stiffness.norm());
-}
-
-TEST(BeamElement, MassAndGyroscopicInvariants) {
-  const BeamProperties p = solid(0.01, 0.01, 0.886);
-  const BeamElementMatrices m = beam_element(p);
-  Eigen::Matrix<double, 8, 1> tx;
-  tx << 1, 0, 0, 0, 1, 0, 0, 0;
-  const double mass = kRho * p.area() * p.length;
-  EXPECT_NEAR(tx.dot(m.mass * tx) / mass, 1.0, 1e-12);
-  EXPECT_NEAR((m.mass - m.mass.transpose()).norm(), 0.0, 1e-15);
-  EXPECT_NEAR((m.gyroscopic + m.gyroscopic.transpose()).norm(), 0.0, 1e-18);
-  // Uniform tilt theta_y = 1 of the whole element: rotary energy = rho I L, gyroscopic coupling to theta_x = 2 rho I L.
-  Eigen::Matrix<double, 8, 1> ty = Eigen::Matrix<double, 8, 1>::Zero(), txr = Eigen::Matrix<double, 8, 1>::Zero();
-  ty << 0, 0, 0, 1, p.length, 0, 0, 1;
-  txr << 0, 0, 1, 0, 0, -p.length, 1, 0;
-  EXPECT_NEAR(ty.dot(m.mass_rotary * ty) / (kRho * p.second_moment() * p.length), 1.0, 1e-10);
-  EXPECT_NEAR(txr.dot(m.gyroscopic * ty) / (2 * kRho * p.second_moment() * p.length), 1.0, 1e-10);
-}
-
 // ---------------------------------------------------------------------------------- whole beams, closed forms
 
 constexpr double kLength = 1.0, kDiameter = 0.05;
-
-double eb_pinned(int n) {  // Euler-Bernoulli simply supported: (n pi / L)^2 sqrt(EI / rho A)
-  const double A = M_PI * kDiameter * kDiameter / 4, I = M_PI * std::pow(kDiameter, 4) / 64;
-  return std::pow(n * M_PI / kLength, 2) * std::sqrt(kE * I / (kRho * A));
-}
-
-double eb_free(int n) {  // Euler-Bernoulli free-free: (beta_n L)^2 / L^2 sqrt(EI / rho A)
-  const double betaL[] = {4.730040744862704, 7.853204624095838, 10.995607838001671};
-  const double A = M_PI * kDiameter * kDiameter / 4, I = M_PI * std::pow(kDiameter, 4) / 64;
-  return std::pow(betaL[n - 1] / kLength, 2) * std::sqrt(kE * I / (kRho * A));
-}
 
 // Timoshenko simply supported (Timoshenko 1921; e.g. Han, Benaroya & Wei 1999, J. Sound Vib. 225): the lower root of
 // (rho^2 I / kGA') w^4 - (rho A + rho I k^2 (1 + E / (kappa G))) w^2 + EI k^4 = 0, k = n pi / L, per unit area terms.
@@ -150,37 +90,6 @@ constexpr double kMeshTolerance = 1e-4;
 
 std::vector<int> end_nodes(const Rotor& r) { return {0, static_cast<int>(r.node_z.size()) - 1}; }
 
-TEST(BeamModes, EulerBernoulliPinnedPinned) {
-  const Rotor r = build_rotor(uniform_beam(kLength, kDiameter, 20, false, false));
-  const std::vector<double> w = planar_frequencies(r, end_nodes(r));
-  for (int n = 1; n <= 3; ++n) EXPECT_NEAR(w[n - 1] / eb_pinned(n), 1.0, kMeshTolerance) << "mode " << n;
-}
-
-TEST(BeamModes, EulerBernoulliFreeFree) {
-  const Rotor r = build_rotor(uniform_beam(kLength, kDiameter, 20, false, false));
-  const std::vector<double> w = planar_frequencies(r, {}, 1.0);
-  for (int n = 1; n <= 3; ++n) EXPECT_NEAR(w[n - 1] / eb_free(n), 1.0, kMeshTolerance) << "mode " << n;
-}
-
-TEST(BeamModes, TimoshenkoPinnedPinnedThickBeam) {
-  // L/d = 5: shear and rotary inertia lower the first frequency by several per cent.
-  const double L = 0.25, d = 0.05, kappa = cowper_shear_factor(kNu, 0.0);
-  const Rotor r = build_rotor(uniform_beam(L, d, 80, true, true));
-  const std::vector<double> w = planar_frequencies(r, end_nodes(r));
-  for (int n = 1; n <= 3; ++n)
-    EXPECT_NEAR(w[n - 1] / timoshenko_pinned(n, L, d, kappa), 1.0, 3 * kMeshTolerance) << "mode " << n;
-  const double eb1 = std::pow(M_PI / L, 2) * std::sqrt(kE * d * d / 16 / kRho);
-  EXPECT_LT(w[0], 0.97 * eb1);  // the effect is really there
-}
-
-TEST(BeamModes, TimoshenkoFreeFreeThickBeam) {
-  const double L = 0.25, d = 0.05, kappa = cowper_shear_factor(kNu, 0.0);
-  const Rotor r = build_rotor(uniform_beam(L, d, 80, true, true));
-  const std::vector<double> w = planar_frequencies(r, {}, 10.0);
-  const std::vector<double> exact = timoshenko_free(3, L, d, kappa, 100.0, 50.0);
-  for (int n = 0; n < 3; ++n) EXPECT_NEAR(w[n] / exact[n], 1.0, 3 * kMeshTolerance) << "mode " << n + 1;
-}
-
 // Convergence under mesh refinement, observed order log2(e(h) / e(h/2)) of the second frequency.
 // - Euler-Bernoulli (Hermite cubics, consistent mass): order 4 (Strang & Fix 1973, "An Analysis of the Finite
 //   Element Method", eigenvalue error h^(2(k+1-m)) with k = 3, m = 2).
@@ -203,6 +112,23 @@ double observed_order(bool shear, int mode, bool pinned, int coarse) {
     err.push_back(std::abs(w[mode - 1] - exact) / exact);
   }
   return std::log2(err[0] / err[1]);
+}
+
+TEST(BeamElement, MassAndGyroscopicInvariants) {
+  const BeamProperties p = solid(0.01, 0.01, 0.886);
+  const BeamElementMatrices m = beam_element(p);
+  Eigen::Matrix<double, 8, 1> tx;
+  tx << 1, 0, 0, 0, 1, 0, 0, 0;
+  const double mass = kRho * p.area() * p.length;
+  EXPECT_NEAR(tx.dot(m.mass * tx) / mass, 1.0, 1e-12);
+  EXPECT_NEAR((m.mass - m.mass.transpose()).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((m.gyroscopic + m.gyroscopic.transpose()).norm(), 0.0, 1e-18);
+  // Uniform tilt theta_y = 1 of the whole element: rotary energy = rho I L, gyroscopic coupling to theta_x = 2 rho I L.
+  Eigen::Matrix<double, 8, 1> ty = Eigen::Matrix<double, 8, 1>::Zero(), txr = Eigen::Matrix<double, 8, 1>::Zero();
+  ty << 0, 0, 0, 1, p.length, 0, 0, 1;
+  txr << 0, 0, 1, 0, 0, -p.length, 1, 0;
+  EXPECT_NEAR(ty.dot(m.mass_rotary * ty) / (kRho * p.second_moment() * p.length), 1.0, 1e-10);
+  EXPECT_NEAR(txr.dot(m.gyroscopic * ty) / (2 * kRho * p.second_moment() * p.length), 1.0, 1e-10);
 }
 
 TEST(BeamModes, ConvergenceOrderUnderMeshRefinement) {

@@ -1,29 +1,12 @@
-// The ball bearing's force evaluation allocates nothing (STYLE.md; Drake's LimitMalloc idea): this executable
-// replaces the global operator new with a counting one, like rhs_alloc_test.cpp.
-#include <atomic>
+// The ball bearing's force evaluation allocates nothing (STYLE.md; Drake's LimitMalloc idea); the counting
+// operator new comes from tests/support/alloc_counter.cpp.
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "model/elements/ball/ball_bearing.h"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/alloc_counter.h"
 
 namespace turbodyn {
 namespace {
@@ -43,7 +26,7 @@ TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
     double f[4] = {0, 0, 0, 0};
     const SpinState s{0.0, W, 0.0, 0.0};
     e.CalcAndAddForces(s, q, v, z.data(), *ws, f, zdot.data());  // warm-up
-    const long before = g_allocations.load();
+    const long before = testing::allocation_count();
     double sink = 0.0;
     for (int i = 0; i < 100; ++i) {
       z[0] += 1e-4;
@@ -54,14 +37,14 @@ TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
       e.CalcBearing(s, q, v, z.data(), OuterRingKinematics{1e-7, 0, 0, 0}, loads, zdot.data());
       sink += loads.max_contact_force;
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << "outer-ring mode " << static_cast<int>(mode);
+    EXPECT_EQ(testing::allocation_count() - before, 0) << "outer-ring mode " << static_cast<int>(mode);
     EXPECT_TRUE(std::isfinite(sink));
     EXPECT_GT(f[0] * f[0] + f[1] * f[1], 0.0);
   }
   // The counter works: a vector allocates.
-  const long before = g_allocations.load();
+  const long before = testing::allocation_count();
   std::vector<double> v(10);
-  EXPECT_GT(g_allocations.load() - before, 0);
+  EXPECT_GT(testing::allocation_count() - before, 0);
 }
 
 }  // namespace

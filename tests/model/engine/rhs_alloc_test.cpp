@@ -1,29 +1,12 @@
-// The right-hand side of the equations of motion allocates nothing (STYLE.md; Drake's LimitMalloc idea): this
-// executable replaces the global operator new with a counting one and evaluates Rhs() in steady use.
-#include <atomic>
-#include <cstdlib>
-#include <new>
+// The right-hand side of the equations of motion allocates nothing (STYLE.md; Drake's LimitMalloc idea); the
+// counting operator new comes from tests/support/alloc_counter.cpp.
 
 #include <gtest/gtest.h>
 
 #include "model/io/model_file.h"
 #include "model/engine/runup.h"
-#include "tests/model/test_support.h"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/alloc_counter.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {
@@ -45,25 +28,25 @@ TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
     auto ws = model->make_workspace();
     std::vector<double> y(model->n_states(), 1e-6), ydot(model->n_states());
     model->Rhs(0.5, y.data(), ydot.data(), *ws);  // warm-up
-    const long before = g_allocations.load();
+    const long before = testing::allocation_count();
     for (int i = 0; i < 100; ++i) model->Rhs(0.5 + 1e-4 * i, y.data(), ydot.data(), *ws);
-    EXPECT_EQ(g_allocations.load() - before, 0) << c.label;
+    EXPECT_EQ(testing::allocation_count() - before, 0) << c.label;
     // The Newton factorisation and solve of the BDF corrector, called at every step, allocate nothing either.
     model->Jacobian(0.5, y.data(), *ws);
     std::vector<double> x(model->n_states());
     model->FactorNewton(1e-5, *ws);
     model->SolveNewton(1e-5, ydot.data(), x.data(), *ws);  // warm-up
-    const long before_newton = g_allocations.load();
+    const long before_newton = testing::allocation_count();
     for (int i = 0; i < 10; ++i) {
       model->FactorNewton(1e-5 * (1 + i), *ws);
       model->SolveNewton(1e-5 * (1 + i), ydot.data(), x.data(), *ws);
     }
-    EXPECT_EQ(g_allocations.load() - before_newton, 0) << "Newton solve, " << c.label;
+    EXPECT_EQ(testing::allocation_count() - before_newton, 0) << "Newton solve, " << c.label;
   }
   // The counter works: a vector allocates.
-  const long before = g_allocations.load();
+  const long before = testing::allocation_count();
   std::vector<double> v(10);
-  EXPECT_GT(g_allocations.load() - before, 0);
+  EXPECT_GT(testing::allocation_count() - before, 0);
 }
 
 }  // namespace

@@ -12,83 +12,19 @@
 #include "model/elements/ball/ball_damper_element.h"
 #include "model/io/model_file.h"
 #include "model/engine/runup.h"
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {
 
-RunupResult run(const std::string& example, const std::vector<Override>& o) {
-  const MachineSpec spec = load_model(testing::source_dir() + "/examples/" + example, o);
-  const auto model = make_runup_model(spec);
-  return simulate_runup(*model, runup_options(spec));
-}
-
-const std::vector<double>& channel(const RunupResult& r, const std::string& name) {
-  for (std::size_t c = 0; c < r.channels.size(); ++c)
-    if (r.channels[c].name == name) return r.columns[c];
-  throw std::runtime_error("no channel " + name);
-}
-
-// Mean of a channel over the last `fraction` of the samples.
-double late_mean(const RunupResult& r, const std::string& name, double fraction) {
-  const std::vector<double>& x = channel(r, name);
-  const std::size_t a = static_cast<std::size_t>((1.0 - fraction) * x.size());
-  double s = 0;
-  for (std::size_t i = a; i < x.size(); ++i) s += x[i];
-  return s / double(x.size() - a);
-}
-
-double peak(const RunupResult& r, const std::string& name) {
-  double m = 0;
-  for (double x : channel(r, name)) m = std::max(m, std::abs(x));
-  return m;
-}
-
 // The paper's acceleration (150,000 rpm in 4 s) up to 6,000 rpm.
 const std::vector<Override> kShortRamp = {{"speed.end", "6000 rpm"}, {"speed.duration", "0.16"}};
 
-TEST(BallRunup, CageFollowsTheKinematicsAndTheEnergyBalanceCloses) {
-  const RunupResult r = run("reference_ball.toml", kShortRamp);
-  ASSERT_TRUE(r.complete) << r.message;
-  // Cage speed of an angular-contact bearing with a rotating inner ring and a fixed outer ring, pure rolling:
-  // w_c / W = (1 - D cos(a) / d_m) / 2 (Harris & Kotzalas 2007, §8.2), at the loaded contact angle of the run.
-  constexpr double kKinematicTolerance = 0.02;  // issue 5: within 2 % of the kinematic formula
-  const double D = 4.5e-3, dm = 17.5e-3;
-  for (const char* b : {"compressor", "turbine"}) {
-    const std::string p = std::string("bearing.") + b + ".";
-    const double alpha = 0.5 * (late_mean(r, p + "inner_contact_angle", 0.1) + late_mean(r, p + "outer_contact_angle", 0.1));
-    const double kinematic = 0.5 * (1.0 - D * std::cos(alpha) / dm);
-    EXPECT_NEAR(late_mean(r, p + "cage_speed_ratio", 0.1) / kinematic, 1.0, kKinematicTolerance) << b;
-  }
-  // Contact damping and friction enter the balance through the element's DissipatedPower.
-  const double error = r.energy_final - r.energy_initial - r.work_in + r.dissipated;
-  EXPECT_LT(std::abs(error), 1e-2 * std::max(r.work_in, r.dissipated)) << r.work_in << " " << r.dissipated;
-}
+}  // namespace
+}  // namespace turbodyn
 
-TEST(BallRunup, ARunStartingMidRampStartsBallsAndCageAtTheirKinematicSpeeds) {
-  // A study's speed window starts the run in the middle of the ramp: the balls and cage must start rolling at
-  // their no-slip speeds (cage (1 - D cos(a) / d_m) / 2 of the rotor speed), not at rest on a spinning shaft,
-  // which would put a spin-up transient of the whole bearing into the window. 30,000 rpm, the paper's ramp.
-  constexpr double kKinematicTolerance = 0.02;
-  const std::vector<Override> o = {{"speed.start", "30000 rpm"}, {"speed.end", "30600 rpm"}, {"speed.duration", "0.016"}};
-  const RunupResult r = run("reference_ball.toml", o);
-  ASSERT_TRUE(r.complete) << r.message;
-  const double D = 4.5e-3, dm = 17.5e-3;
-  const std::vector<double>& ratio = channel(r, "bearing.compressor.cage_speed_ratio");
-  const double alpha = 0.5 * (channel(r, "bearing.compressor.inner_contact_angle").front() +
-                              channel(r, "bearing.compressor.outer_contact_angle").front());
-  const double kinematic = 0.5 * (1.0 - D * std::cos(alpha) / dm);
-  for (std::size_t i = 0; i < ratio.size(); ++i)
-    ASSERT_NEAR(ratio[i] / kinematic, 1.0, kKinematicTolerance) << "sample " << i;
-}
-
-TEST(BallRunup, BallBearingsInDampersRunAndBalanceTheirEnergy) {
-  const RunupResult r = run("reference_ball_sfd.toml", kShortRamp);
-  ASSERT_TRUE(r.complete) << r.message;
-  EXPECT_LT(peak(r, "bearing.compressor.damper_eccentricity"), 1.0);
-  const double error = r.energy_final - r.energy_initial - r.work_in + r.dissipated;
-  EXPECT_LT(std::abs(error), 1e-2 * std::max(r.work_in, r.dissipated)) << r.work_in << " " << r.dissipated;
-}
+namespace turbodyn {
+namespace {
 
 }  // namespace
 }  // namespace turbodyn
@@ -129,12 +65,6 @@ TEST(BallNewton, BallBlocksAreIndependentAndTheBlockSolveMatchesTheFullSystem) {
           << example << ", gamma " << gamma;
   }
 }
-
-}  // namespace
-}  // namespace turbodyn
-
-namespace turbodyn {
-namespace {
 
 // The ball bearing's own finite differences (all balls' state i perturbed at once, told apart by their shares of the
 // sums) against plain forward differences, one input at a time, with the same steps: the same Jacobian to

@@ -13,7 +13,7 @@
 #include "model/io/model_file.h"
 #include "model/rotor/response.h"
 #include "post/signal.h"
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {

@@ -38,6 +38,11 @@ double ring_torque(const FloatingRingElement& e, ElementWorkspace& ws, double W,
   return zdot[FloatingRingElement::kSpin];  // proportional to the torque (divided by the ring's polar inertia)
 }
 
+// Shaft forces and ring derivatives at one state (`ring` = the 10 ring states).
+struct Eval {
+  double f[4] = {0, 0, 0, 0};
+  double zdot[FloatingRingElement::kStates] = {};
+};
 TEST(FloatingRing, CentredRingSpeedFollowsThePetroffBalance) {
   // validation-references.md §4: with both films centred, T = -eta pi B D^3 dW / (4 C) per film, so
   // w_r / W = 1 / (1 + (eta_o/eta_i)(B_o/B_i)(D_o/D_i)^3 (C_i/C_o)) = 0.3131 for the reference ring.
@@ -64,105 +69,6 @@ TEST(FloatingRing, CentredRingSpeedFollowsThePetroffBalance) {
   hi = W;
   for (int i = 0; i < 60; ++i) (ring_torque(eh, *wh, W, 0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
   EXPECT_LT(0.5 * (lo + hi) / W, ratio);
-}
-
-TEST(FloatingRing, FilmForcesActOnShaftAndRingInOpposition) {
-  // Journal displaced in +x inside a centred ring: the inner film pushes the journal back (-x) and the ring the
-  // other way (Newton's third law through the film).
-  const FloatingRingSpec f = reference_ring();
-  OilSpec oil;
-  const FloatingRingElement e("test", f, oil, 0, 0.0);
-  auto ws = e.make_workspace();
-  const double q[4] = {5e-6, 0, 0, 0}, v[4] = {0, 0, 0, 0};
-  double z[FloatingRingElement::kStates] = {};
-  z[FloatingRingElement::kSpin] = 1000.0;
-  double fs[4] = {0, 0, 0, 0}, zdot[FloatingRingElement::kStates];
-  e.CalcAndAddForces(SpinState{0.0, 3141.0, 0.0, 0.0}, q, v, z, *ws, fs, zdot);
-  EXPECT_LT(fs[0], 0.0);
-  EXPECT_GT(zdot[2], 0.0);  // the ring (centred in its own film, which carries no force there) is pushed to +x
-}
-
-// Shaft forces and ring derivatives at one state (`ring` = the 10 ring states).
-struct Eval {
-  double f[4] = {0, 0, 0, 0};
-  double zdot[FloatingRingElement::kStates] = {};
-};
-Eval evaluate(const FloatingRingElement& e, ElementWorkspace& ws, double W, const double* q, const double* v,
-              const double* ring) {
-  Eval r;
-  e.CalcAndAddForces(SpinState{0.0, W, 0.0, 0.0}, q, v, ring, ws, r.f, r.zdot);
-  return r;
-}
-
-// A general state: journal off-centre, moving and tilted in the ring; the ring off-centre, moving, tilted, spinning.
-void general_state(double* q, double* v, double* z) {
-  using E = FloatingRingElement;
-  const double qq[4] = {4e-6, -3e-6, 2e-4, -1.5e-4}, vv[4] = {2e-3, 1e-3, 0.05, -0.08};
-  for (int k = 0; k < 4; ++k) q[k] = qq[k], v[k] = vv[k];
-  for (int k = 0; k < E::kStates; ++k) z[k] = 0.0;
-  z[E::kX] = 1e-5;
-  z[E::kY] = -6e-6;
-  z[E::kVx] = -1e-3;
-  z[E::kVy] = 3e-3;
-  z[E::kAx] = 1e-4;
-  z[E::kAy] = 5e-5;
-  z[E::kWx] = 0.02;
-  z[E::kWy] = -0.03;
-  z[E::kSpin] = 900.0;
-}
-
-TEST(FloatingRing, InnerFilmInTheRingFrameGivesTheSameForcesAtAnyRingAngle) {
-  // Without drill holes nothing is fixed in the ring frame, so the forces must not depend on the ring angle: checks
-  // the rotation of positions, tilts and their rates (with the frame-rotation terms) into the ring frame and back.
-  FloatingRingSpec f = reference_ring();
-  f.n_circ = 72;
-  OilSpec oil;
-  const FloatingRingElement e("test", f, oil, 0, 0.0);
-  auto ws = e.make_workspace();
-  double q[4], v[4], z[FloatingRingElement::kStates];
-  general_state(q, v, z);
-  const double W = 3000.0;
-  const Eval a = evaluate(e, *ws, W, q, v, z);
-  for (double phi : {0.3, 2.0, 17.0}) {  // not multiples of the grid pitch: the film is re-gridded in the ring frame
-    z[FloatingRingElement::kAngle] = phi;
-    const Eval b = evaluate(e, *ws, W, q, v, z);
-    const double fscale = std::hypot(a.f[0], a.f[1]), mscale = std::hypot(a.f[2], a.f[3]);
-    // Discretisation: the film's pressure field is sampled at other points of the journal when rotated.
-    EXPECT_NEAR(b.f[0], a.f[0], 0.01 * fscale) << phi;
-    EXPECT_NEAR(b.f[1], a.f[1], 0.01 * fscale) << phi;
-    EXPECT_NEAR(b.f[2], a.f[2], 0.02 * mscale) << phi;
-    EXPECT_NEAR(b.f[3], a.f[3], 0.02 * mscale) << phi;
-    EXPECT_NEAR(b.zdot[FloatingRingElement::kSpin], a.zdot[FloatingRingElement::kSpin],
-                1e-3 * std::abs(a.zdot[FloatingRingElement::kSpin]));
-  }
-  // A quarter turn maps the 72-node grid onto itself: then the agreement is exact to the solver tolerance.
-  z[FloatingRingElement::kAngle] = M_PI / 2;
-  const Eval c = evaluate(e, *ws, W, q, v, z);
-  for (int k = 0; k < 4; ++k) EXPECT_NEAR(c.f[k], a.f[k], 1e-6 * std::hypot(a.f[0], a.f[1]) + 1e-9) << k;
-}
-
-TEST(FloatingRing, FourDrillHolesRepeatEveryQuarterTurnOfTheRing) {
-  FloatingRingSpec f = reference_ring();
-  f.drill_holes = 4;
-  f.drill_hole_diameter = 0.002;
-  OilSpec oil;
-  const FloatingRingElement e("test", f, oil, 0, 0.0);
-  auto ws = e.make_workspace();
-  double q[4], v[4], z[FloatingRingElement::kStates];
-  general_state(q, v, z);
-  z[FloatingRingElement::kAngle] = 0.4;
-  const Eval a = evaluate(e, *ws, 3000.0, q, v, z);
-  z[FloatingRingElement::kAngle] = 0.4 + M_PI / 2;
-  const Eval b = evaluate(e, *ws, 3000.0, q, v, z);
-  for (int k = 0; k < 4; ++k) EXPECT_NEAR(b.f[k], a.f[k], 1e-6 * std::abs(a.f[k]) + 1e-9) << k;
-  for (int k = 0; k < FloatingRingElement::kStates; ++k)
-    EXPECT_NEAR(b.zdot[k], a.zdot[k], 1e-6 * std::abs(a.zdot[k]) + 1e-9) << k;
-  // The holes feed the inner film: its load capacity differs from the unfed film's.
-  FloatingRingSpec closed = reference_ring();
-  const FloatingRingElement ec("closed", closed, oil, 0, 0.0);
-  auto wc = ec.make_workspace();
-  const Eval c = evaluate(ec, *wc, 3000.0, q, v, z);
-  EXPECT_GT(std::abs(c.f[0] - a.f[0]) + std::abs(c.f[1] - a.f[1]), 1e-3 * std::hypot(a.f[0], a.f[1]));
 }
 
 TEST(FloatingRing, DrillHolePressureIsTheSupplyLessTheCentrifugalHead) {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {

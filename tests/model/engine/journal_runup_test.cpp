@@ -7,7 +7,7 @@
 
 #include "model/engine/runup.h"
 #include "post/signal.h"
-#include "tests/model/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {
