@@ -16,8 +16,8 @@
 
 #include "post/plot.h"
 #include "model/engine/runup.h"
+#include "model/io/overrides.h"
 #include "post/signal.h"
-#include "optim/model_patch.h"
 #include "optim/optimizer.h"
 #include "optim/report.h"
 #include "studies/sweep.h"
@@ -233,7 +233,7 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
         header << "\n";
       }
     const std::vector<Override> o = optim::run_overrides(spec, best.evaluation.design, nullptr);
-    std::ofstream(dir / "best.toml") << optim::patched_model(spec.model, o, header.str());
+    write_patched_model(spec.model, o, header.str(), dir / "best.toml");
     written.push_back("best.toml");
   }
   if (options.plots && !r.history.empty()) {

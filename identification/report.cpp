@@ -5,8 +5,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include <toml++/toml.h>
-
 #include "post/plot.h"
 #include "post/signal.h"
 
@@ -44,50 +42,6 @@ Display display_of(Quantity q) {
   return {};
 }
 std::string si_unit(Quantity q) { return q == Quantity::Displacement ? "m" : q == Quantity::Acceleration ? "m/s^2" : "N"; }
-
-// Sets `path` (--set syntax: dotted keys, name[i]) in `root` to the TOML value `value` (a plain string if it is not
-// TOML). The model loader has the same rule for --set; this copy only writes a file, the loader then checks it.
-void set_path(toml::table& root, const Override& o) {
-  toml::table parsed;
-  try {
-    parsed = toml::parse("v = " + o.value);
-  } catch (const toml::parse_error&) {
-    parsed.insert_or_assign("v", o.value);
-  }
-  const toml::node& value = *parsed.get("v");
-  toml::table* table = &root;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t dot = o.path.find('.', pos);
-    std::string key = o.path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
-    long index = -1;
-    if (const std::size_t b = key.find('['); b != std::string::npos && key.back() == ']') {
-      index = std::stol(key.substr(b + 1, key.size() - b - 2));
-      key = key.substr(0, b);
-    }
-    const bool last = dot == std::string::npos;
-    toml::node* n = table->get(key);
-    if (index >= 0) {
-      if (!n || !n->is_array() || static_cast<std::size_t>(index) >= n->as_array()->size())
-        throw ModelError(o.path + ": no entry " + std::to_string(index) + " of '" + key + "' in the model file");
-      toml::array& arr = *n->as_array();
-      if (last) {
-        value.visit([&](auto&& v) { arr.replace(arr.cbegin() + index, v); });
-        return;
-      }
-      if (!arr[static_cast<std::size_t>(index)].is_table()) throw ModelError(o.path + ": '" + key + "[...]' is not a table");
-      table = arr[static_cast<std::size_t>(index)].as_table();
-    } else if (last) {
-      value.visit([&](auto&& v) { table->insert_or_assign(key, v); });
-      return;
-    } else {
-      if (!n) n = table->insert_or_assign(key, toml::table{}).first->second.as_table();
-      if (!n->is_table()) throw ModelError(o.path + ": '" + key + "' is a value, not a table");
-      table = n->as_table();
-    }
-    pos = dot + 1;
-  }
-}
 
 void try_render(const plot::LineChart& c, const std::filesystem::path& png, std::vector<std::string>& files,
                 std::vector<std::string>& warnings) {
@@ -221,25 +175,6 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
           {"warnings", r.warnings}};
 }
 
-void write_model_with_overrides(const std::filesystem::path& base, const std::vector<Override>& overrides,
-                                const std::filesystem::path& file, const std::string& header_comment) {
-  toml::table root;
-  try {
-    root = toml::parse_file(base.string());
-  } catch (const toml::parse_error& e) {
-    throw ModelError(base.string() + ": " + std::string(e.description()));
-  }
-  for (const Override& o : overrides) set_path(root, o);
-  {
-    std::ofstream out(file);
-    if (!out) throw ModelError(file.string() + ": cannot write");
-    std::istringstream lines(header_comment);
-    for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
-    out << "\n" << root << "\n";
-  }
-  (void)load_model(file);  // it must be a valid model file
-}
-
 std::vector<std::string> write_identify_results(const IdentifyStudy& study, const IdentifyResult& r,
                                                 const std::filesystem::path& dir, bool plots,
                                                 std::vector<std::string>& warnings) {
@@ -260,7 +195,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
     o.insert(o.end(), r.added_fixed.begin(), r.added_fixed.end());
     std::ostringstream header;
     header << "Fitted by `turbodyn identify " << study.source.string() << "` from " << study.model.string() << "\n"
-           << "(comments of the base model are not kept). Estimates:\n";
+           << "Estimates:\n";
     for (std::size_t i = 0; i < study.parameters.size(); ++i) {
       const ParameterSpec& p = study.parameters[i];
       header << "  " << p.name << " = " << format_value(r.estimate[i], p.unit);
@@ -269,7 +204,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       for (const std::string& path : p.paths) o.push_back({path, format_value(r.estimate[i], p.unit)});
     }
     header << "Sample run:\n  turbodyn run " << (dir / "fitted.toml").string() << " -o out/fitted";
-    write_model_with_overrides(study.model, o, dir / "fitted.toml", header.str());
+    write_patched_model(study.model, o, header.str(), dir / "fitted.toml");
     files.push_back("fitted.toml");
   }
   {
