@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "post/plot.h"
+#include "post/run_pictures.h"
 #include "post/signal.h"
 
 namespace turbodyn::identification {
@@ -22,17 +23,8 @@ std::string csv_number(double v) {
   return os.str();
 }
 
-std::string file_safe(std::string s) {
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
-  return s;
-}
-
 // Display scaling of a sensor's quantity.
-struct Display {
-  double factor = 1.0;
-  std::string unit;
-};
+using post::Display;
 Display display_of(Quantity q) {
   switch (q) {
     case Quantity::Displacement: return {1e6, "µm"};
@@ -43,7 +35,8 @@ Display display_of(Quantity q) {
 }
 std::string si_unit(Quantity q) { return q == Quantity::Displacement ? "m" : q == Quantity::Acceleration ? "m/s^2" : "N"; }
 
-void try_render(const plot::LineChart& c, const std::filesystem::path& png, std::vector<std::string>& files,
+template <class Picture>
+void try_render(const Picture& c, const std::filesystem::path& png, std::vector<std::string>& files,
                 std::vector<std::string>& warnings) {
   try {
     plot::render_png(c, png);
@@ -60,24 +53,22 @@ void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSp
     warnings.push_back(png.filename().string() + " not drawn: the record is shorter than one STFT segment");
     return;
   }
-  const SpectraSet s = spectra_from_record(r, p);
-  plot::Heatmap hm;
+  signal::StftOptions so;
+  so.segment_length = p.segment;
+  so.overlap = p.overlap;
+  so.window = p.window;
+  const signal::Spectrogram sg = signal::stft(r.channels[sensor], r.sample_rate, so);
+  plot::Heatmap hm = post::spectrogram_heatmap(sg, signal::values_at_segment_centres(sg, r.speed_hz, r.sample_rate),
+                                               fmax, disp.factor, kHzToRpm);
+  if (hm.x.size() < 2 || hm.y.size() < 2) {
+    warnings.push_back(png.filename().string() + " not drawn: too few spectra");
+    return;
+  }
   hm.title = title;
   hm.xlabel = "rotor speed [rpm]";
   hm.ylabel = "frequency [Hz]";
   hm.zlabel = "amplitude [" + disp.unit + "]";
   hm.logz = true;
-  const std::vector<double>& f = s.frequency_hz.front();
-  std::size_t nb = 0;
-  while (nb < f.size() && f[nb] <= fmax) ++nb;
-  hm.y.assign(f.begin(), f.begin() + nb);
-  std::vector<std::size_t> keep;
-  for (std::size_t k = 0; k < s.speed_hz.size(); ++k)
-    if (keep.empty() || s.speed_hz[k] > s.speed_hz[keep.back()] + 1e-9) keep.push_back(k);
-  for (std::size_t k : keep) hm.x.push_back(s.speed_hz[k] * kHzToRpm);
-  hm.z.resize(nb * keep.size());
-  for (std::size_t j = 0; j < nb; ++j)
-    for (std::size_t i = 0; i < keep.size(); ++i) hm.z[j * keep.size() + i] = s.amplitude[sensor][keep[i]][j] * disp.factor;
   plot::Series one;
   one.label = "1x";
   one.x = {hm.x.front(), hm.x.back()};
@@ -90,16 +81,7 @@ void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSp
   half.color = "white";
   half.style = plot::Series::Style::Dashed;
   hm.overlays = {one, half};
-  if (keep.size() < 2 || nb < 2) {
-    warnings.push_back(png.filename().string() + " not drawn: too few spectra");
-    return;
-  }
-  try {
-    plot::render_png(hm, png);
-    files.push_back(png.filename().string());
-  } catch (const plot::PlotError& e) {
-    warnings.push_back(std::string("picture ") + png.filename().string() + " not drawn: " + e.what());
-  }
+  try_render(hm, png, files, warnings);
 }
 
 }  // namespace
@@ -270,7 +252,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       c.series.push_back(series("fitted model", fi.speed_hz, fi.*member, factor, plot::Series::Style::Lines, "#d62728"));
       try_render(c, dir / file, files, warnings);
     };
-    const std::string stem = "feature_" + file_safe(fs.name);
+    const std::string stem = "feature_" + post::file_safe(fs.name);
     if (fs.kind == FeatureKind::Order1x) {
       chart("1x amplitude", &FeatureTrack::amplitude, disp.factor, disp.unit, stem + "_amplitude.png");
       if (fs.phase) chart("1x phase", &FeatureTrack::phase, 180.0 / M_PI, "deg", stem + "_phase.png");
@@ -299,9 +281,9 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       const SensorSpec& sensor = study.measurement.sensors[s];
       const Display disp = display_of(sensor.quantity);
       spectrogram_picture(r.measured.record, s, study.processing, "Measured: " + sensor.name, disp, fmax,
-                          dir / ("spectrogram_measured_" + file_safe(sensor.name) + ".png"), files, warnings);
+                          dir / ("spectrogram_measured_" + post::file_safe(sensor.name) + ".png"), files, warnings);
       spectrogram_picture(r.fitted_record, s, study.processing, "Fitted model: " + sensor.name + " (" + sensor.probe + ")",
-                          disp, fmax, dir / ("spectrogram_fitted_" + file_safe(sensor.name) + ".png"), files, warnings);
+                          disp, fmax, dir / ("spectrogram_fitted_" + post::file_safe(sensor.name) + ".png"), files, warnings);
     }
   }
   return files;
