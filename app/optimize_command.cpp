@@ -16,8 +16,8 @@
 
 #include "post/plot.h"
 #include "model/engine/runup.h"
-#include "post/signal.h"
-#include "optim/model_patch.h"
+#include "model/io/overrides.h"
+#include "post/run_pictures.h"
 #include "optim/optimizer.h"
 #include "optim/report.h"
 #include "studies/sweep.h"
@@ -42,12 +42,6 @@ std::string short_number(double v) {
   std::ostringstream os;
   os << std::setprecision(5) << v;
   return os.str();
-}
-
-std::string file_safe(std::string s) {
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
-  return s;
 }
 
 // The design for people: 6 significant digits (best.toml holds the exact values that were evaluated).
@@ -75,46 +69,16 @@ RunupResult final_run(const optim::OptimizationSpec& spec, const std::vector<dou
   return simulate_runup(*model, ro);
 }
 
-// Spectrogram of one channel against rotor speed (as `turbodyn run` draws it), without its colour range.
+// Spectrogram of one channel against rotor speed (as `turbodyn run` draws it), without its colour range; none
+// unless it has at least two columns and rows.
 std::optional<plot::Heatmap> spectrogram(const MachineSpec& machine, const RunupResult& r, const std::string& probe) {
-  int speed_col = -1, col = -1;
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
-    if (r.channels[c].kind == ProbeChannel::Kind::Speed) speed_col = static_cast<int>(c);
-    if (r.channels[c].name == probe) col = static_cast<int>(c);
+    if (r.channels[c].name != probe) continue;
+    std::optional<plot::Heatmap> hm = post::run_spectrogram(machine.output, r, c);
+    if (hm && (hm->x.size() < 2 || hm->y.size() < 2)) hm.reset();
+    return hm;
   }
-  const OutputSpec& out = machine.output;
-  signal::StftOptions so;
-  so.segment_length = static_cast<std::size_t>(out.spectrogram_segment);
-  so.overlap = out.spectrogram_overlap;
-  so.window = signal::window_from_string(out.spectrogram_window);
-  if (col < 0 || speed_col < 0 || r.time.size() < so.segment_length) return std::nullopt;
-  const std::vector<double>& speed_hz = r.columns[speed_col];
-  const double top = *std::max_element(speed_hz.begin(), speed_hz.end());
-  const double fs = out.sample_rate;
-  const double fmax = out.frequency_max > 0 ? out.frequency_max : std::min(fs / 2.0, 1.1 * std::max(top, 1.0));
-  const signal::Spectrogram sg = signal::stft(r.columns[col], fs, so);
-  const bool metres = r.channels[col].unit == "m";
-  plot::Heatmap hm;
-  hm.zlabel = "amplitude [" + (metres ? std::string("µm") : r.channels[col].unit) + "]";
-  hm.ylabel = "frequency f [Hz]";
-  hm.xlabel = "rotor speed f_d [Hz]";
-  std::size_t nb = 0;
-  while (nb < sg.n_bins() && sg.frequencies[nb] <= fmax) ++nb;
-  hm.y.assign(sg.frequencies.begin(), sg.frequencies.begin() + nb);
-  const std::vector<double> xs = signal::values_at_segment_centres(sg, speed_hz, fs);
-  std::vector<std::size_t> keep;
-  for (std::size_t s = 0; s < xs.size(); ++s)
-    if (keep.empty() || xs[s] > xs[keep.back()] + 1e-9) keep.push_back(s);
-  if (keep.size() < 2 || nb < 2) return std::nullopt;
-  for (std::size_t s : keep) hm.x.push_back(xs[s]);
-  hm.z.resize(nb * keep.size());
-  for (std::size_t j = 0; j < nb; ++j)
-    for (std::size_t i = 0; i < keep.size(); ++i) hm.z[j * keep.size() + i] = sg.at(keep[i], j) * (metres ? 1e6 : 1.0);
-  hm.logz = true;
-  const double x0 = hm.x.front(), x1 = hm.x.back();
-  hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Dashed, "white", 1.0});
-  hm.overlays.push_back({"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, "#bbbbbb", 1.0});
-  return hm;
+  return std::nullopt;
 }
 
 // Two PNGs side by side in one (gnuplot reads them back as RGB images).
@@ -162,7 +126,7 @@ void draw_spectrograms(const optim::OptimizationSpec& spec, const std::vector<do
     a->zrange = b->zrange = std::make_pair(zmax * 1e-3, zmax);
     a->title = "Initial design: " + probe;
     b->title = "Optimised design: " + probe;
-    const std::string stem = "spectrogram_" + file_safe(probe);
+    const std::string stem = "spectrogram_" + post::file_safe(probe);
     plot::render_png(*a, dir / (stem + "_initial.png"), kPanelSize);
     plot::render_png(*b, dir / (stem + "_best.png"), kPanelSize);
     written.push_back(stem + "_initial.png");
@@ -233,7 +197,7 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
         header << "\n";
       }
     const std::vector<Override> o = optim::run_overrides(spec, best.evaluation.design, nullptr);
-    std::ofstream(dir / "best.toml") << optim::patched_model(spec.model, o, header.str());
+    write_patched_model(spec.model, o, header.str(), dir / "best.toml");
     written.push_back("best.toml");
   }
   if (options.plots && !r.history.empty()) {

@@ -5,9 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
-#include <toml++/toml.h>
-
 #include "post/plot.h"
+#include "post/run_pictures.h"
 #include "post/signal.h"
 
 namespace turbodyn::identification {
@@ -24,17 +23,8 @@ std::string csv_number(double v) {
   return os.str();
 }
 
-std::string file_safe(std::string s) {
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
-  return s;
-}
-
 // Display scaling of a sensor's quantity.
-struct Display {
-  double factor = 1.0;
-  std::string unit;
-};
+using post::Display;
 Display display_of(Quantity q) {
   switch (q) {
     case Quantity::Displacement: return {1e6, "µm"};
@@ -45,51 +35,8 @@ Display display_of(Quantity q) {
 }
 std::string si_unit(Quantity q) { return q == Quantity::Displacement ? "m" : q == Quantity::Acceleration ? "m/s^2" : "N"; }
 
-// Sets `path` (--set syntax: dotted keys, name[i]) in `root` to the TOML value `value` (a plain string if it is not
-// TOML). The model loader has the same rule for --set; this copy only writes a file, the loader then checks it.
-void set_path(toml::table& root, const Override& o) {
-  toml::table parsed;
-  try {
-    parsed = toml::parse("v = " + o.value);
-  } catch (const toml::parse_error&) {
-    parsed.insert_or_assign("v", o.value);
-  }
-  const toml::node& value = *parsed.get("v");
-  toml::table* table = &root;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t dot = o.path.find('.', pos);
-    std::string key = o.path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
-    long index = -1;
-    if (const std::size_t b = key.find('['); b != std::string::npos && key.back() == ']') {
-      index = std::stol(key.substr(b + 1, key.size() - b - 2));
-      key = key.substr(0, b);
-    }
-    const bool last = dot == std::string::npos;
-    toml::node* n = table->get(key);
-    if (index >= 0) {
-      if (!n || !n->is_array() || static_cast<std::size_t>(index) >= n->as_array()->size())
-        throw ModelError(o.path + ": no entry " + std::to_string(index) + " of '" + key + "' in the model file");
-      toml::array& arr = *n->as_array();
-      if (last) {
-        value.visit([&](auto&& v) { arr.replace(arr.cbegin() + index, v); });
-        return;
-      }
-      if (!arr[static_cast<std::size_t>(index)].is_table()) throw ModelError(o.path + ": '" + key + "[...]' is not a table");
-      table = arr[static_cast<std::size_t>(index)].as_table();
-    } else if (last) {
-      value.visit([&](auto&& v) { table->insert_or_assign(key, v); });
-      return;
-    } else {
-      if (!n) n = table->insert_or_assign(key, toml::table{}).first->second.as_table();
-      if (!n->is_table()) throw ModelError(o.path + ": '" + key + "' is a value, not a table");
-      table = n->as_table();
-    }
-    pos = dot + 1;
-  }
-}
-
-void try_render(const plot::LineChart& c, const std::filesystem::path& png, std::vector<std::string>& files,
+template <class Picture>
+void try_render(const Picture& c, const std::filesystem::path& png, std::vector<std::string>& files,
                 std::vector<std::string>& warnings) {
   try {
     plot::render_png(c, png);
@@ -106,24 +53,22 @@ void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSp
     warnings.push_back(png.filename().string() + " not drawn: the record is shorter than one STFT segment");
     return;
   }
-  const SpectraSet s = spectra_from_record(r, p);
-  plot::Heatmap hm;
+  signal::StftOptions so;
+  so.segment_length = p.segment;
+  so.overlap = p.overlap;
+  so.window = p.window;
+  const signal::Spectrogram sg = signal::stft(r.channels[sensor], r.sample_rate, so);
+  plot::Heatmap hm = post::spectrogram_heatmap(sg, signal::values_at_segment_centres(sg, r.speed_hz, r.sample_rate),
+                                               fmax, disp.factor, kHzToRpm);
+  if (hm.x.size() < 2 || hm.y.size() < 2) {
+    warnings.push_back(png.filename().string() + " not drawn: too few spectra");
+    return;
+  }
   hm.title = title;
   hm.xlabel = "rotor speed [rpm]";
   hm.ylabel = "frequency [Hz]";
   hm.zlabel = "amplitude [" + disp.unit + "]";
   hm.logz = true;
-  const std::vector<double>& f = s.frequency_hz.front();
-  std::size_t nb = 0;
-  while (nb < f.size() && f[nb] <= fmax) ++nb;
-  hm.y.assign(f.begin(), f.begin() + nb);
-  std::vector<std::size_t> keep;
-  for (std::size_t k = 0; k < s.speed_hz.size(); ++k)
-    if (keep.empty() || s.speed_hz[k] > s.speed_hz[keep.back()] + 1e-9) keep.push_back(k);
-  for (std::size_t k : keep) hm.x.push_back(s.speed_hz[k] * kHzToRpm);
-  hm.z.resize(nb * keep.size());
-  for (std::size_t j = 0; j < nb; ++j)
-    for (std::size_t i = 0; i < keep.size(); ++i) hm.z[j * keep.size() + i] = s.amplitude[sensor][keep[i]][j] * disp.factor;
   plot::Series one;
   one.label = "1x";
   one.x = {hm.x.front(), hm.x.back()};
@@ -136,16 +81,7 @@ void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSp
   half.color = "white";
   half.style = plot::Series::Style::Dashed;
   hm.overlays = {one, half};
-  if (keep.size() < 2 || nb < 2) {
-    warnings.push_back(png.filename().string() + " not drawn: too few spectra");
-    return;
-  }
-  try {
-    plot::render_png(hm, png);
-    files.push_back(png.filename().string());
-  } catch (const plot::PlotError& e) {
-    warnings.push_back(std::string("picture ") + png.filename().string() + " not drawn: " + e.what());
-  }
+  try_render(hm, png, files, warnings);
 }
 
 }  // namespace
@@ -221,25 +157,6 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
           {"warnings", r.warnings}};
 }
 
-void write_model_with_overrides(const std::filesystem::path& base, const std::vector<Override>& overrides,
-                                const std::filesystem::path& file, const std::string& header_comment) {
-  toml::table root;
-  try {
-    root = toml::parse_file(base.string());
-  } catch (const toml::parse_error& e) {
-    throw ModelError(base.string() + ": " + std::string(e.description()));
-  }
-  for (const Override& o : overrides) set_path(root, o);
-  {
-    std::ofstream out(file);
-    if (!out) throw ModelError(file.string() + ": cannot write");
-    std::istringstream lines(header_comment);
-    for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
-    out << "\n" << root << "\n";
-  }
-  (void)load_model(file);  // it must be a valid model file
-}
-
 std::vector<std::string> write_identify_results(const IdentifyStudy& study, const IdentifyResult& r,
                                                 const std::filesystem::path& dir, bool plots,
                                                 std::vector<std::string>& warnings) {
@@ -260,7 +177,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
     o.insert(o.end(), r.added_fixed.begin(), r.added_fixed.end());
     std::ostringstream header;
     header << "Fitted by `turbodyn identify " << study.source.string() << "` from " << study.model.string() << "\n"
-           << "(comments of the base model are not kept). Estimates:\n";
+           << "Estimates:\n";
     for (std::size_t i = 0; i < study.parameters.size(); ++i) {
       const ParameterSpec& p = study.parameters[i];
       header << "  " << p.name << " = " << format_value(r.estimate[i], p.unit);
@@ -269,7 +186,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       for (const std::string& path : p.paths) o.push_back({path, format_value(r.estimate[i], p.unit)});
     }
     header << "Sample run:\n  turbodyn run " << (dir / "fitted.toml").string() << " -o out/fitted";
-    write_model_with_overrides(study.model, o, dir / "fitted.toml", header.str());
+    write_patched_model(study.model, o, header.str(), dir / "fitted.toml");
     files.push_back("fitted.toml");
   }
   {
@@ -335,7 +252,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       c.series.push_back(series("fitted model", fi.speed_hz, fi.*member, factor, plot::Series::Style::Lines, "#d62728"));
       try_render(c, dir / file, files, warnings);
     };
-    const std::string stem = "feature_" + file_safe(fs.name);
+    const std::string stem = "feature_" + post::file_safe(fs.name);
     if (fs.kind == FeatureKind::Order1x) {
       chart("1x amplitude", &FeatureTrack::amplitude, disp.factor, disp.unit, stem + "_amplitude.png");
       if (fs.phase) chart("1x phase", &FeatureTrack::phase, 180.0 / M_PI, "deg", stem + "_phase.png");
@@ -364,9 +281,9 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       const SensorSpec& sensor = study.measurement.sensors[s];
       const Display disp = display_of(sensor.quantity);
       spectrogram_picture(r.measured.record, s, study.processing, "Measured: " + sensor.name, disp, fmax,
-                          dir / ("spectrogram_measured_" + file_safe(sensor.name) + ".png"), files, warnings);
+                          dir / ("spectrogram_measured_" + post::file_safe(sensor.name) + ".png"), files, warnings);
       spectrogram_picture(r.fitted_record, s, study.processing, "Fitted model: " + sensor.name + " (" + sensor.probe + ")",
-                          disp, fmax, dir / ("spectrogram_fitted_" + file_safe(sensor.name) + ".png"), files, warnings);
+                          disp, fmax, dir / ("spectrogram_fitted_" + post::file_safe(sensor.name) + ".png"), files, warnings);
     }
   }
   return files;

@@ -1,5 +1,6 @@
 // The results of an identification on disk (docs/identification.md, "Results"): estimates.json, ceres_summary.txt,
-// fitted.toml (the base model with the fixed overrides and the estimates applied: a ready-to-run model file),
+// fitted.toml (the base model with the fixed overrides and the estimates applied: a ready-to-run model file that keeps
+// the comments of the base model where the values can be patched in place, see write_patched_model),
 // features.csv and the pictures.
 #pragma once
 
@@ -10,17 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "identification/identify.h"
-#include "model/io/model_file.h"
+#include "model/io/overrides.h"
 
 namespace turbodyn::identification {
 
 /// estimates.json as a JSON value.
 nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& result);
-
-/// Writes the base model file with `overrides` applied to `file` (TOML; comments of the base file are not kept) and
-/// checks that it loads. Paths use the --set syntax (dotted keys, name[i]); missing tables are created.
-void write_model_with_overrides(const std::filesystem::path& base, const std::vector<Override>& overrides,
-                                const std::filesystem::path& file, const std::string& header_comment);
 
 /// Writes every result file into dir (created if needed); returns the names of the files written. Pictures that
 /// cannot be drawn (no gnuplot) are skipped with a warning added to `warnings`.

@@ -8,6 +8,7 @@
 
 #include <toml++/toml.h>
 
+#include "model/io/overrides_toml.h"
 #include "model/io/toml_reader.h"
 #include "model/spec/units.h"
 
@@ -15,102 +16,6 @@ namespace turbodyn {
 namespace {
 
 using namespace input;
-
-// ----------------------------------------------------------------------------------------------- overrides
-
-struct PathSegment {
-  std::string key;
-  long index = -1;  // >= 0 for key[index]
-};
-
-std::vector<PathSegment> split_path(const std::string& path) {
-  std::vector<PathSegment> segments;
-  std::size_t pos = 0;
-  while (pos <= path.size()) {
-    const std::size_t dot = path.find('.', pos);
-    std::string part = path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
-    PathSegment seg;
-    const std::size_t bracket = part.find('[');
-    if (bracket != std::string::npos) {
-      if (part.back() != ']') throw ModelError("--set " + path + ": malformed index in '" + part + "'");
-      const std::string idx = part.substr(bracket + 1, part.size() - bracket - 2);
-      if (idx.empty() || idx.find_first_not_of("0123456789") != std::string::npos)
-        throw ModelError("--set " + path + ": index '" + idx + "' is not a whole number");
-      seg.index = std::stol(idx);
-      part = part.substr(0, bracket);
-    }
-    if (part.empty()) throw ModelError("--set " + path + ": empty key in the path");
-    seg.key = part;
-    segments.push_back(seg);
-    if (dot == std::string::npos) break;
-    pos = dot + 1;
-  }
-  return segments;
-}
-
-// Parses VALUE as TOML, falling back to a plain string; the node's source names the override.
-toml::table parse_override_value(const Override& o) {
-  const std::string source = std::string(kOverridePrefix) + o.path + "=" + o.value;
-  try {
-    return toml::parse("v = " + o.value, std::string_view(source));
-  } catch (const toml::parse_error&) {
-    std::string escaped;
-    for (char ch : o.value) {
-      if (ch == '"' || ch == '\\') escaped += '\\';
-      escaped += ch;
-    }
-    try {
-      return toml::parse("v = \"" + escaped + "\"", std::string_view(source));
-    } catch (const toml::parse_error& e) {
-      throw ModelError(source + ": cannot read the value: " + std::string(e.description()));
-    }
-  }
-}
-
-void apply_override(toml::table& root, const Override& o, Sources& sources) {
-  const std::vector<PathSegment> segments = split_path(o.path);
-  toml::table parsed = parse_override_value(o);
-  const toml::node& value = *parsed.get("v");
-  const std::string context = std::string(kOverridePrefix) + o.path + "=" + o.value;
-
-  toml::table* table = &root;
-  std::string walked;
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    const PathSegment& seg = segments[i];
-    const bool last = i + 1 == segments.size();
-    walked += (walked.empty() ? "" : ".") + seg.key;
-    toml::node* n = table->get(seg.key);
-    if (seg.index >= 0) {
-      if (!n || !n->is_array())
-        throw ModelError(context + ": '" + walked + "' is not an array in the model file");
-      toml::array& arr = *n->as_array();
-      if (static_cast<std::size_t>(seg.index) >= arr.size())
-        throw ModelError(context + ": index " + std::to_string(seg.index) + " is out of range ('" + walked +
-                         "' has " + std::to_string(arr.size()) + " entries, counted from 0)");
-      toml::node& elem = arr[static_cast<std::size_t>(seg.index)];
-      if (last) {
-        value.visit([&](auto&& v) { arr.replace(arr.cbegin() + seg.index, v); });
-        sources.overrides[arr.get(static_cast<std::size_t>(seg.index))] = context;
-        return;
-      }
-      if (!elem.is_table()) throw ModelError(context + ": '" + walked + "[...]' is not a table");
-      table = elem.as_table();
-    } else if (last) {
-      value.visit([&](auto&& v) { table->insert_or_assign(seg.key, v); });
-      sources.overrides[table->get(seg.key)] = context;
-      return;
-    } else {
-      if (!n) {
-        n = table->insert_or_assign(seg.key, toml::table{}).first->second.as_table();
-        sources.overrides[n] = context;
-      }
-      if (!n->is_table())
-        throw ModelError(context + ": '" + walked + "' is a value, not a table, so it has no key '" +
-                         segments[i + 1].key + "'");
-      table = n->as_table();
-    }
-  }
-}
 
 // ----------------------------------------------------------------------------------------------- sections
 
@@ -573,27 +478,11 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
 
 MachineSpec load_parsed(toml::table root, const std::string& source_name, const std::vector<Override>& overrides) {
   Sources sources{source_name, {}};
-  for (const Override& o : overrides) apply_override(root, o, sources);
+  for (const Override& o : overrides) apply_override(root, o, &sources);
   return read_machine(root, sources);
 }
 
 }  // namespace
-
-Override parse_override(const std::string& assignment) {
-  const std::size_t eq = assignment.find('=');
-  if (eq == std::string::npos)
-    throw ModelError("--set " + assignment + ": expected PATH=VALUE, e.g. --set bearings.compressor.kxx=2e7");
-  Override o{assignment.substr(0, eq), assignment.substr(eq + 1)};
-  auto trim = [](std::string& s) {
-    s.erase(0, s.find_first_not_of(" \t"));
-    s.erase(s.find_last_not_of(" \t") + 1);
-  };
-  trim(o.path);
-  trim(o.value);
-  if (o.path.empty()) throw ModelError("--set " + assignment + ": the path before '=' is empty");
-  if (o.value.empty()) throw ModelError("--set " + assignment + ": the value after '=' is empty");
-  return o;
-}
 
 MachineSpec load_model(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   std::ifstream in(file, std::ios::binary);

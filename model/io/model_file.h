@@ -9,22 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "model/io/overrides.h"
 #include "model/spec/errors.h"
 #include "model/spec/model_spec.h"
 
 namespace turbodyn {
-
-/// One `--set PATH=VALUE` override. PATH uses the model-file key syntax: dotted table keys, and `name[i]` (0-based)
-/// for the i-th entry of an array of tables, e.g. `bearings.compressor.kxx`, `shaft[2].outer_diameter`.
-/// VALUE is read as a TOML value (number, boolean, quoted string, array); anything that is not valid TOML is taken
-/// as a plain string, so `--set disks.turbine.unbalance=580 mg*mm` needs no quotes.
-struct Override {
-  std::string path;
-  std::string value;
-};
-
-/// Splits "PATH=VALUE"; throws ModelError when there is no '=' or the path is empty.
-Override parse_override(const std::string& assignment);
 
 /// Reads and validates a model file, applying the overrides first (so they are validated like file values).
 MachineSpec load_model(const std::filesystem::path& file, const std::vector<Override>& overrides = {});

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "model/io/model_file.h"
+#include "model/io/overrides.h"
 #include "optim/evaluation_log.h"
-#include "optim/model_patch.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn::optim {

@@ -1,0 +1,233 @@
+#include "post/run_pictures.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace turbodyn::post {
+namespace {
+
+std::string pretty_name(const ProbeChannel& c) { return c.description.empty() ? c.name : c.description; }
+
+// Name shared by an x/y channel pair: "disk.compressor.x" -> "disk.compressor", "bearing.turbine.fx" ->
+// "bearing.turbine.force".
+std::string pair_stem(const std::string& name) {
+  std::string stem = name.substr(0, name.size() - 1);
+  if (!stem.empty() && stem.back() == '.') return stem.substr(0, stem.size() - 1);
+  if (stem.size() > 2 && stem.compare(stem.size() - 2, 2, ".f") == 0) return stem + "orce";
+  return stem;
+}
+
+// Index of the sample where the speed first reaches `speed_hz` (or the last sample).
+std::size_t sample_at_speed(const std::vector<double>& speed_hz, double target) {
+  for (std::size_t i = 0; i < speed_hz.size(); ++i)
+    if (speed_hz[i] >= target) return i;
+  return speed_hz.empty() ? 0 : speed_hz.size() - 1;
+}
+
+int column_of(const RunupResult& r, ProbeChannel::Kind kind) {
+  for (std::size_t c = 0; c < r.channels.size(); ++c)
+    if (r.channels[c].kind == kind) return static_cast<int>(c);
+  return -1;
+}
+
+}  // namespace
+
+Display display_of(const std::string& si_unit) {
+  if (si_unit == "m") return {1e6, "µm"};
+  return {1.0, si_unit};
+}
+
+std::string file_safe(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
+  return s;
+}
+
+signal::StftOptions stft_options(const OutputSpec& out) {
+  signal::StftOptions so;
+  so.segment_length = static_cast<std::size_t>(out.spectrogram_segment);
+  so.overlap = out.spectrogram_overlap;
+  so.window = signal::window_from_string(out.spectrogram_window);
+  return so;
+}
+
+double spectrogram_frequency_max(const OutputSpec& out, double top_speed_hz) {
+  return out.frequency_max > 0 ? out.frequency_max
+                               : std::min(out.sample_rate / 2.0, 1.1 * std::max(top_speed_hz, 1.0));
+}
+
+plot::Heatmap spectrogram_heatmap(const signal::Spectrogram& sg, const std::vector<double>& x, double frequency_max,
+                                  double amplitude_factor, double x_factor) {
+  plot::Heatmap hm;
+  std::size_t nb = 0;
+  while (nb < sg.n_bins() && sg.frequencies[nb] <= frequency_max) ++nb;
+  hm.y.assign(sg.frequencies.begin(), sg.frequencies.begin() + static_cast<std::ptrdiff_t>(nb));
+  std::vector<std::size_t> keep;
+  for (std::size_t s = 0; s < x.size(); ++s)
+    if (keep.empty() || x[s] > x[keep.back()] + 1e-9) keep.push_back(s);
+  for (std::size_t s : keep) hm.x.push_back(x[s] * x_factor);
+  hm.z.resize(nb * keep.size());
+  for (std::size_t j = 0; j < nb; ++j)
+    for (std::size_t i = 0; i < keep.size(); ++i) hm.z[j * keep.size() + i] = sg.at(keep[i], j) * amplitude_factor;
+  return hm;
+}
+
+HeatmapPeak heatmap_peak(const plot::Heatmap& map) {
+  HeatmapPeak p;
+  const std::size_t nx = map.x.size();
+  for (std::size_t k = 0; k < map.z.size(); ++k)
+    if (map.z[k] > p.value) p = {map.z[k], k / nx, k % nx};
+  return p;
+}
+
+std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupResult& r, std::size_t channel,
+                                             bool against_time) {
+  const int speed_col = column_of(r, ProbeChannel::Kind::Speed);
+  const signal::StftOptions so = stft_options(out);
+  if (speed_col < 0 || r.time.size() < so.segment_length) return std::nullopt;
+  const std::vector<double>& speed_hz = r.columns[static_cast<std::size_t>(speed_col)];
+  const double top = *std::max_element(speed_hz.begin(), speed_hz.end());
+  const double fs = out.sample_rate;
+  const signal::Spectrogram sg = signal::stft(r.columns[channel], fs, so);
+  const Display disp = display_of(r.channels[channel].unit);
+  plot::Heatmap hm = spectrogram_heatmap(
+      sg, against_time ? sg.times : signal::values_at_segment_centres(sg, speed_hz, fs),
+      spectrogram_frequency_max(out, top), disp.factor);
+  hm.zlabel = "amplitude [" + disp.unit + "]";
+  hm.ylabel = "frequency f [Hz]";
+  hm.xlabel = against_time ? "time [s]" : "rotor speed f_d [Hz]";
+  hm.logz = true;
+  if (!against_time && !hm.x.empty()) {
+    const double x0 = hm.x.front(), x1 = hm.x.back();
+    hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Dashed, "white", 1.0});
+    hm.overlays.push_back({"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, "#bbbbbb", 1.0});
+  }
+  return hm;
+}
+
+void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
+                       std::vector<std::string>& written, std::vector<std::string>& warnings,
+                       nlohmann::json& spectral, const std::vector<plot::Series>& campbell) {
+  const OutputSpec& out = spec.output;
+  const double fs = out.sample_rate;
+  const int speed_col = column_of(r, ProbeChannel::Kind::Speed), angle_col = column_of(r, ProbeChannel::Kind::Angle);
+  const std::vector<double>& speed_hz = r.columns[speed_col];
+  const std::vector<double>& angle = r.columns[angle_col];
+  const double top_speed = *std::max_element(speed_hz.begin(), speed_hz.end());
+  bool ascending = true;
+  for (std::size_t i = 1; i < speed_hz.size(); ++i) ascending = ascending && speed_hz[i] >= speed_hz[i - 1];
+  const double fmax = spectrogram_frequency_max(out, top_speed);
+
+  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+    const ProbeChannel& ch = r.channels[c];
+    if (ch.kind == ProbeChannel::Kind::Speed || ch.kind == ProbeChannel::Kind::Angle) continue;
+    // Spectrogram against rotor speed (paper Figs. 4-6), with the 1x and 0.5x order lines.
+    std::optional<plot::Heatmap> hm = run_spectrogram(out, r, c, !ascending);
+    if (!hm) {
+      warnings.push_back("no spectrogram of " + ch.name + ": the run has fewer samples than one STFT segment");
+      continue;
+    }
+    hm->title = "Spectrogram: " + pretty_name(ch);
+    const HeatmapPeak peak = heatmap_peak(*hm);
+    if (peak.value > 0.0)
+      spectral[ch.name] = {{"amplitude", peak.value / display_of(ch.unit).factor},
+                           {"unit", ch.unit},
+                           {"frequency_hz", hm->y[peak.row]},
+                           {ascending ? "speed_hz" : "time_s", hm->x[peak.column]}};
+    if (hm->x.size() < 2 || peak.value <= 0.0) {
+      warnings.push_back("no spectrogram of " + ch.name + ": nothing to show");
+      continue;
+    }
+    hm->zrange = std::make_pair(peak.value * 1e-3, peak.value);
+    if (ascending) {
+      const double x0 = hm->x.front(), x1 = hm->x.back();
+      for (const plot::Series& m : campbell) {
+        plot::Series s = m;
+        s.x.clear();
+        s.y.clear();
+        for (std::size_t i = 0; i < m.x.size(); ++i)
+          if (m.x[i] >= x0 && m.x[i] <= x1 && m.y[i] <= fmax) s.x.push_back(m.x[i]), s.y.push_back(m.y[i]);
+        if (!s.x.empty()) hm->overlays.push_back(s);
+      }
+    }
+    const std::string file = "spectrogram_" + ch.name + ".png";
+    plot::render_png(*hm, dir / file);
+    written.push_back(file);
+  }
+
+  // Order tracking of 1x: amplitude against speed, x and y of each probe pair in one picture.
+  signal::OrderTrackOptions oo;
+  oo.order = 1.0;
+  oo.points = 300;
+  oo.min_speed = std::max(1.0, 0.01 * top_speed);
+  for (std::size_t c = 0; c + 1 < r.channels.size(); ++c) {
+    const ProbeChannel& a = r.channels[c];
+    const ProbeChannel& b = r.channels[c + 1];
+    const bool pair = a.name.size() == b.name.size() && a.name.substr(0, a.name.size() - 1) ==
+                                                            b.name.substr(0, b.name.size() - 1);
+    if (!pair || a.kind == ProbeChannel::Kind::Speed || a.kind == ProbeChannel::Kind::Angle) continue;
+    const Display disp = display_of(a.unit);
+    plot::LineChart chart;
+    const std::string stem = pair_stem(a.name);
+    chart.title = "1x order tracking: " + stem;
+    chart.xlabel = "rotor speed f_d [Hz]";
+    chart.ylabel = "1x amplitude [" + disp.unit + "]";
+    try {
+      for (const ProbeChannel* ch : {&a, &b}) {
+        const std::size_t col = ch == &a ? c : c + 1;
+        const signal::OrderTrack t = signal::track_order(r.columns[col], angle, speed_hz, fs, oo);
+        std::vector<double> amp = t.amplitude;
+        for (double& v : amp) v *= disp.factor;
+        chart.series.push_back({ch->name, t.speeds, amp, plot::Series::Style::Lines, "", 1.5});
+      }
+      const std::string file = "order1x_" + stem + ".png";
+      plot::render_png(chart, dir / file);
+      written.push_back(file);
+    } catch (const std::invalid_argument& e) {
+      warnings.push_back("no order tracking of " + stem + ": " + e.what());
+    }
+    ++c;  // skip the partner
+  }
+
+  // Orbits of each disk at chosen speeds: 5 revolutions around the sample where the speed is reached.
+  std::vector<double> orbit_hz;
+  for (double w : out.orbit_speeds) orbit_hz.push_back(w / (2 * M_PI));
+  if (orbit_hz.empty())
+    for (int k = 1; k <= 4; ++k) orbit_hz.push_back(top_speed * k / 4.0);
+  for (std::size_t c = 0; c + 1 < r.channels.size(); ++c) {
+    const ProbeChannel& a = r.channels[c];
+    if (a.kind != ProbeChannel::Kind::RotorDof || a.name.back() != 'x') continue;
+    const std::string stem = pair_stem(a.name);
+    plot::LineChart chart;
+    chart.title = "Orbits: " + stem;
+    chart.xlabel = "x [µm]";
+    chart.ylabel = "y [µm]";
+    chart.equal_axes = true;
+    chart.legend_position = "outside right top";
+    for (double f : orbit_hz) {
+      if (f <= 0) continue;
+      const std::size_t mid = sample_at_speed(speed_hz, f);
+      const std::size_t half = static_cast<std::size_t>(2.5 * fs / f);
+      const std::size_t i0 = mid > half ? mid - half : 0, i1 = std::min(r.time.size(), mid + half);
+      if (i1 <= i0 + 2) continue;
+      plot::Series s;
+      std::ostringstream label;
+      label << std::llround(speed_hz[mid] * 60) << " rpm";
+      s.label = label.str();
+      for (std::size_t i = i0; i < i1; ++i) {
+        s.x.push_back(r.columns[c][i] * 1e6);
+        s.y.push_back(r.columns[c + 1][i] * 1e6);
+      }
+      chart.series.push_back(s);
+    }
+    if (chart.series.empty()) continue;
+    const std::string file = "orbits_" + stem + ".png";
+    plot::render_png(chart, dir / file, plot::Size{900, 800});
+    written.push_back(file);
+  }
+}
+
+}  // namespace turbodyn::post

@@ -1,0 +1,132 @@
+// The pictures of a run: spectrogram heat maps (columns, rows, scaling, the peak), the spectrogram of a run's
+// channel against speed or time, and the files draw_run_pictures writes for a synthetic run-up.
+#include "post/run_pictures.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace turbodyn::post {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::ElementsAre;
+
+// A run-up from 0 to 100 Hz in 2 s sampled at 2 kHz, with a disk whirling forward at 1x with radius 1 µm.
+RunupResult synthetic_runup() {
+  constexpr double kFs = 2000.0, kDuration = 2.0, kTop = 100.0;  // Hz, s, Hz
+  constexpr double kRadius = 1e-6;                               // m
+  RunupResult r;
+  r.complete = true;
+  r.channels = {{"speed", "Hz", "rotor speed", ProbeChannel::Kind::Speed, 0, 0},
+                {"angle", "rad", "rotor angle", ProbeChannel::Kind::Angle, 0, 0},
+                {"disk.a.x", "m", "", ProbeChannel::Kind::RotorDof, 0, 0},
+                {"disk.a.y", "m", "", ProbeChannel::Kind::RotorDof, 1, 0}};
+  r.columns.resize(4);
+  const auto n = static_cast<std::size_t>(kDuration * kFs) + 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / kFs;
+    const double speed = kTop * t / kDuration, angle = M_PI * kTop * t * t / kDuration;
+    r.time.push_back(t);
+    r.columns[0].push_back(speed);
+    r.columns[1].push_back(angle);
+    r.columns[2].push_back(kRadius * std::cos(angle));
+    r.columns[3].push_back(kRadius * std::sin(angle));
+  }
+  return r;
+}
+
+OutputSpec output() {
+  OutputSpec o;
+  o.sample_rate = 2000.0;
+  o.spectrogram_segment = 256;
+  return o;
+}
+
+TEST(RunPictures, HeatmapDropsRepeatedColumnsCutsRowsAndScales) {
+  signal::Spectrogram sg;
+  sg.frequencies = {0.0, 10.0, 20.0, 30.0};
+  sg.times = {0.1, 0.2, 0.3};
+  sg.amplitude = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};  // 3 segments x 4 bins
+  const plot::Heatmap hm = spectrogram_heatmap(sg, {5.0, 5.0, 6.0}, 20.0, 2.0, 60.0);
+  EXPECT_THAT(hm.x, ElementsAre(300.0, 360.0));  // the second segment repeats the first's speed
+  EXPECT_THAT(hm.y, ElementsAre(0.0, 10.0, 20.0));
+  EXPECT_THAT(hm.z, ElementsAre(2, 18, 4, 20, 6, 22));  // z[bin * 2 + column], x 2
+
+  const HeatmapPeak p = heatmap_peak(hm);
+  EXPECT_EQ(p.value, 22.0);
+  EXPECT_EQ(p.row, 2u);
+  EXPECT_EQ(p.column, 1u);
+  EXPECT_EQ(heatmap_peak(plot::Heatmap{}).value, 0.0);
+}
+
+TEST(RunPictures, DisplayAndFileNames) {
+  EXPECT_EQ(display_of("m").factor, 1e6);
+  EXPECT_EQ(display_of("m").unit, "µm");
+  EXPECT_EQ(display_of("N").factor, 1.0);
+  EXPECT_EQ(display_of("N").unit, "N");
+  EXPECT_EQ(file_safe("disk a/x:1.5-b_c"), "disk_a_x_1.5-b_c");
+}
+
+TEST(RunPictures, RunSpectrogramFollowsTheRotorSpeed) {
+  const RunupResult r = synthetic_runup();
+  const OutputSpec out = output();
+  EXPECT_DOUBLE_EQ(spectrogram_frequency_max(out, 100.0), 110.0);
+  const std::optional<plot::Heatmap> hm = run_spectrogram(out, r, 2);
+  ASSERT_TRUE(hm);
+  EXPECT_EQ(hm->xlabel, "rotor speed f_d [Hz]");
+  EXPECT_EQ(hm->zlabel, "amplitude [µm]");
+  EXPECT_TRUE(hm->logz);
+  ASSERT_EQ(hm->overlays.size(), 2u);
+  EXPECT_EQ(hm->overlays[0].label, "1x");
+  EXPECT_EQ(hm->overlays[1].label, "0.5x");
+  EXPECT_LE(hm->y.back(), 110.0);
+  // In every column the largest bin lies at the rotor speed, within a bin and the speed change over a segment.
+  const std::size_t nx = hm->x.size();
+  ASSERT_GT(nx, 10u);
+  for (std::size_t i = nx / 4; i < nx; ++i) {
+    std::size_t best = 0;
+    for (std::size_t j = 0; j < hm->y.size(); ++j)
+      if (hm->z[j * nx + i] > hm->z[best * nx + i]) best = j;
+    EXPECT_NEAR(hm->y[best], hm->x[i], 2 * 2000.0 / 256) << "column " << i;
+  }
+  EXPECT_NEAR(heatmap_peak(*hm).value, 1.0, 0.2);  // µm; the Hann window's scalloping loss is below 16 %
+
+  const std::optional<plot::Heatmap> by_time = run_spectrogram(out, r, 2, true);
+  ASSERT_TRUE(by_time);
+  EXPECT_EQ(by_time->xlabel, "time [s]");
+  EXPECT_TRUE(by_time->overlays.empty());
+  EXPECT_LT(by_time->x.back(), 2.0);
+
+  RunupResult short_run = r;
+  for (auto& c : short_run.columns) c.resize(100);
+  short_run.time.resize(100);
+  EXPECT_FALSE(run_spectrogram(out, short_run, 2));
+}
+
+TEST(RunPictures, DrawsSpectrogramsOrderTracksAndOrbits) {
+  if (!plot::gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const fs::path dir = fs::temp_directory_path() / "turbodyn_run_pictures_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  MachineSpec spec;
+  spec.output = output();
+  std::vector<std::string> written, warnings;
+  nlohmann::json spectral = nlohmann::json::object();
+  draw_run_pictures(spec, synthetic_runup(), dir, written, warnings, spectral,
+                    {{"forward modes", {40.0, 60.0}, {50.0, 50.0}, plot::Series::Style::Points, "#ff5050", 1.2}});
+  EXPECT_THAT(written, ElementsAre("spectrogram_disk.a.x.png", "spectrogram_disk.a.y.png", "order1x_disk.a.png",
+                                   "orbits_disk.a.png"));
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  for (const std::string& f : written) EXPECT_GT(fs::file_size(dir / f), 1000u) << f;
+  ASSERT_TRUE(spectral.contains("disk.a.x"));
+  EXPECT_EQ(spectral["disk.a.x"]["unit"], "m");
+  EXPECT_NEAR(spectral["disk.a.x"]["amplitude"].get<double>(), 1e-6, 0.2e-6);
+  EXPECT_NEAR(spectral["disk.a.x"]["frequency_hz"].get<double>(), spectral["disk.a.x"]["speed_hz"].get<double>(),
+              2 * 2000.0 / 256);
+}
+
+}  // namespace
+}  // namespace turbodyn::post
