@@ -18,7 +18,7 @@ Rotor load_rotor(const std::string& example, const std::vector<Override>& overri
   return build_rotor(load_model(source_dir() + "/examples/" + example, overrides));
 }
 
-// validation-references.md §6: Friswell et al. (2010) Example 5.9.1 with anisotropic bearings, damped natural
+// docs/references.md §6: Friswell et al. (2010) Example 5.9.1 with anisotropic bearings, damped natural
 // frequencies in rad/s from the ROSS test suite. The reference lists them per mode; compared in ascending order.
 // The reference model has 6 DOF per node: its speed-independent 650.408 rad/s mode is the first free-free
 // torsional mode (the disks twisting against each other), so torsion is included here.
@@ -100,7 +100,7 @@ TEST(Modal, CriticalSpeedOfNonGyroscopicRotorEqualsNaturalFrequency) {
 }
 
 TEST(Modal, ReferenceRotorSanityFiguresNonRotating) {
-  // reference-turbocharger.md: non-rotating Euler-Bernoulli model, wheels as given, springs of k at both bearing
+  // docs/reference-machine.md: non-rotating Euler-Bernoulli model, wheels as given, springs of k at both bearing
   // points: k = 3e7 N/m "about 480, 650, 2600 Hz"; rigid supports "about 540, 820, 3300 Hz". The figures are
   // quoted to two digits ("about"), so the tolerance is 5 %.
   constexpr double kAbout = 0.05;
