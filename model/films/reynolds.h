@@ -113,7 +113,7 @@ struct SolverOptions {
 /// Short-bearing (Ocvirk) and long-bearing (Sommerfeld) closed forms, half-Sommerfeld (Gumbel) cavitation, steady,
 /// journal speed omega, stationary bush: magnitudes of the force components of the film on the journal,
 /// F = -radial e_r + tangential e_t with e_r along the eccentricity and e_t = e_z x e_r (radial >= 0; tangential has
-/// the sign of omega). validation-references.md section 2.
+/// the sign of omega). docs/references.md §2.
 struct Closed {
   double radial, tangential;  ///< N
 };

@@ -1,6 +1,7 @@
 #include "model/io/model_file.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -524,6 +525,87 @@ std::string closest_match(const std::string& word, const std::vector<std::string
   // A plausible typo: at most a third of the word changed (at least one edit allowed).
   const std::size_t allowed = std::max<std::size_t>(1, word.size() / 3);
   return best_d <= allowed ? best : std::string();
+}
+
+// ----------------------------------------------------------------------------------------------- accepted keys
+
+namespace {
+
+// Tables the examples leave out: [damping] and a speed table.
+constexpr const char* kKeyCoverageModel = R"(
+name = "key coverage"
+[materials.steel]
+E = 2.1e11
+rho = 7850
+nu = 0.3
+[[shaft]]
+length = 0.1
+outer_diameter = 0.01
+[disks.wheel]
+z = 0.05
+mass = 0.1
+[bearings.left]
+type = "linear"
+z = 0.0
+k = 1e7
+[bearings.right]
+type = "linear"
+z = 0.1
+k = 1e7
+[damping]
+alpha = 1.0
+[speed]
+profile = "table"
+times = [0.0, 1.0]
+speeds = [0.0, 100.0]
+)";
+
+// "shaft[2].length" -> "shaft[].length"; "bearings.compressor.preload" -> "bearings.NAME[type=ball].preload".
+std::string generic_key(const std::string& path, const toml::table& root) {
+  std::string s;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    s += path[i];
+    if (path[i] != '[') continue;
+    std::size_t j = i + 1;
+    while (j < path.size() && std::isdigit(static_cast<unsigned char>(path[j]))) ++j;
+    if (j > i + 1 && j < path.size() && path[j] == ']') i = j - 1;
+  }
+  for (const std::string table : {"materials", "disks", "bearings"}) {
+    if (s.rfind(table + ".", 0) != 0) continue;
+    const std::size_t dot = s.find('.', table.size() + 1);
+    if (dot == std::string::npos) break;
+    const std::string name = s.substr(table.size() + 1, dot - table.size() - 1);
+    const std::string rest = s.substr(dot);
+    if (table != "bearings" || rest.rfind(".damper.", 0) == 0) return table + ".NAME" + rest;
+    const std::string type = root["bearings"][name]["type"].value_or(std::string("?"));
+    return table + ".NAME[type=" + type + "]" + rest;
+  }
+  return s;
+}
+
+void record_keys(const std::string& text, const std::string& source_name, std::set<std::string>& keys) {
+  const toml::table root = input::parse_toml(text, source_name);
+  if (!root.contains("shaft")) return;  // a study, optimisation or identification file
+  std::vector<std::string> paths;
+  {
+    input::KeyRecording recording(paths);
+    load_model_from_string(text, source_name);
+  }
+  for (const std::string& p : paths) keys.insert(generic_key(p, root));
+}
+
+}  // namespace
+
+std::vector<std::string> accepted_model_keys(const std::filesystem::path& examples_dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(examples_dir))
+    if (entry.path().extension() == ".toml") files.push_back(entry.path());
+  if (files.empty()) throw ModelError(examples_dir.string() + ": no model files (*.toml)");
+  std::sort(files.begin(), files.end());
+  std::set<std::string> keys;
+  for (const auto& f : files) record_keys(input::read_text_file(f, "model file"), f.string(), keys);
+  record_keys(kKeyCoverageModel, "accepted_model_keys (built-in)", keys);
+  return {keys.begin(), keys.end()};
 }
 
 }  // namespace turbodyn

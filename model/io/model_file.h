@@ -22,6 +22,14 @@ MachineSpec load_model(const std::filesystem::path& file, const std::vector<Over
 MachineSpec load_model_from_string(const std::string& toml_text, const std::string& source_name,
                                    const std::vector<Override>& overrides = {});
 
+/// Every key the loader accepts, in generic form: the key paths it asks for while loading every model file in
+/// `examples_dir` (a TOML file with a [[shaft]] array; study, optimisation and identification files are skipped) and
+/// a built-in model that visits the tables the examples leave out. Named entries read as NAME and array entries as
+/// [] (`materials.NAME.E`, `shaft[].length`, `disks.NAME.unbalance`, `bearings.NAME.damper.clearance`); a bearing's
+/// own keys carry its type (`bearings.NAME[type=ball].preload`). Sorted, without duplicates; for the test that
+/// docs/model-format.md documents them all. Throws ModelError if a model does not load.
+std::vector<std::string> accepted_model_keys(const std::filesystem::path& examples_dir);
+
 /// Levenshtein distance (for "did you mean" suggestions).
 std::size_t edit_distance(const std::string& a, const std::string& b);
 

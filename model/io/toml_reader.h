@@ -82,6 +82,22 @@ inline std::string describe_node(const toml::node& n) {
 
 enum class Bound { Any, Positive, NonNegative };
 
+// Optional record of the key path of every key a Reader asks for (present or not), for the test that the
+// documentation names every key the loader accepts (model_file.h: accepted_model_keys). Off unless a KeyRecording
+// is alive on this thread; it costs one pointer test per key read, and keys are read only while loading.
+inline thread_local std::vector<std::string>* key_record = nullptr;
+
+class KeyRecording {
+ public:
+  explicit KeyRecording(std::vector<std::string>& out) : previous_(key_record) { key_record = &out; }
+  ~KeyRecording() { key_record = previous_; }
+  KeyRecording(const KeyRecording&) = delete;
+  KeyRecording& operator=(const KeyRecording&) = delete;
+
+ private:
+  std::vector<std::string>* previous_;
+};
+
 // Reads the keys of one table, remembers which keys the program knows, and rejects all others in finish().
 class Reader {
  public:
@@ -101,6 +117,7 @@ class Reader {
 
   const toml::node* get(std::string_view key) {
     known_.emplace(key);
+    if (key_record) key_record->push_back(key_path(key));
     return table_.get(key);
   }
   bool has(std::string_view key) { return get(key) != nullptr; }

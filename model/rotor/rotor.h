@@ -1,7 +1,8 @@
 // The finite-element rotor: shaft elements, rigid disks and linear bearings assembled into global matrices.
 //
-// A Rotor is the immutable "model" half of the model/workspace split (see ../shared/STYLE.md): built once from a
-// MachineSpec, then shared read-only by every analysis and every thread.
+// A Rotor is the immutable "model" half of the model/workspace split (hot calls take the read-only model and a
+// workspace with the scratch memory of one analysis): built once from a MachineSpec, then shared read-only by every
+// analysis and every thread, each thread with its own workspace.
 #pragma once
 
 #include <string>

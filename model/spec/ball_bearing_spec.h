@@ -13,7 +13,7 @@ enum class OuterRingMode {
   kExternal,  ///< radial x, y given by a wrapping element (squeeze-film damper) through CalcBearing()
 };
 
-/// Data of one ball bearing, SI units. Defaults: reference-turbocharger.md, variant II.
+/// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
 struct BallBearingSpec {
   // Geometry.
   int n_balls = 8;                  ///< Z, number of balls (>= 3)

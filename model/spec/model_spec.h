@@ -62,7 +62,7 @@ struct LinearBearingSpec {
 };
 
 /// Lubricant: dynamic viscosity from the Vogel equation eta(T) = A exp(B / (T + C)), T in degC (Vogel 1921;
-/// constants of an SAE 30 fit in reference-turbocharger.md), or a fixed viscosity.
+/// constants of an SAE 30 fit, docs/references.md §7), or a fixed viscosity.
 struct OilSpec {
   double vogel_a = 9.722e-5;     ///< Pa s
   double vogel_b = 755.6;        ///< K (a temperature difference)

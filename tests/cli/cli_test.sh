@@ -132,7 +132,7 @@ EOF2
     [ $? -eq 2 ] || fail "--shard 3/3 accepted"
     ;;
   journal_raimondi_boyd)
-    # Raimondi & Boyd (1958), L/D = 1, eps = 0.6: S = 0.121, (R/c) f = 3.22 (validation-references.md §1), 3 %.
+    # Raimondi & Boyd (1958), L/D = 1, eps = 0.6: S = 0.121, (R/c) f = 3.22 (docs/references.md §1), 3 %.
     "$exe" journal --ld 1 --eccentricity 0.6 --viscosity "10 mPa*s" --speed "3000 rpm" > "$out/j.json" 2>&1 \
       || fail "exit $?: $(cat "$out/j.json")"
     get() { grep "\"$1\"" "$out/j.json" | head -1 | sed 's/.*: *//; s/,$//'; }

@@ -260,7 +260,7 @@ void BallBearingElement::steady_states(double speed, double* z) const {
     const double dr = b[1] - outer_dr_, dz = b[2] - (outer_z_ + z[outer_offset()]);
     const double L = std::sqrt(dr * dr + dz * dz);
     const double ur = dr / L, uz = dz / L;  // cos(a), side * sin(a)
-    // No slip at either contact, cage speed (W/2)(1 - (D/d_m) cos a) (validation-references §5); with no spin
+    // No slip at either contact, cage speed (W/2)(1 - (D/d_m) cos a) (docs/references.md §5); with no spin
     // at the outer contact the ball's absolute angular velocity is normal to the contact line,
     // w = w_c (d_m / D) (side sin a, 0, -cos a) in (e_r, e_psi, e_z).
     const double wc = 0.5 * speed * (1.0 - D / dm * ur);

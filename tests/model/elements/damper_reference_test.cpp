@@ -51,7 +51,7 @@ OrbitForce orbit_force(const DamperSpec& d, double eta, double eps, double w) {
 }
 
 TEST(Damper, CircularOrbitAgainstTheShortDamperClosedForms) {
-  // validation-references.md §3: open-ended short damper, centred circular orbit of radius e = eps c at whirl
+  // docs/references.md §3: open-ended short damper, centred circular orbit of radius e = eps c at whirl
   // speed w; pi-film (Swift-Stieber): C_tt = pi eta R L^3 / (2 c^3 (1-eps^2)^1.5), K_rr = 2 eta R L^3 w eps /
   // (c^3 (1-eps^2)^2); tangential force -C_tt eps c w, radial -K_rr eps c. The element transmits these (and the
   // centring spring, zero here) to the housing.

@@ -11,7 +11,7 @@ namespace turbodyn {
 namespace {
 
 FloatingRingSpec reference_ring() {
-  // reference-turbocharger.md, variant I.
+  // docs/reference-machine.md, variant I.
   FloatingRingSpec f;
   f.inner_diameter = 0.010;
   f.inner_length = 0.007;
@@ -44,7 +44,7 @@ struct Eval {
   double zdot[FloatingRingElement::kStates] = {};
 };
 TEST(FloatingRing, CentredRingSpeedFollowsThePetroffBalance) {
-  // validation-references.md §4: with both films centred, T = -eta pi B D^3 dW / (4 C) per film, so
+  // docs/references.md §4: with both films centred, T = -eta pi B D^3 dW / (4 C) per film, so
   // w_r / W = 1 / (1 + (eta_o/eta_i)(B_o/B_i)(D_o/D_i)^3 (C_i/C_o)) = 0.3131 for the reference ring.
   constexpr double kPetroffTolerance = 0.01;  // the film solver's Couette shear is exact for a centred film
   const FloatingRingSpec f = reference_ring();
@@ -141,7 +141,7 @@ TEST(FloatingRing, FreeSpinningRingNutatesForwardAtIpOverIdTimesItsSpeed) {
   EXPECT_NEAR(angle, expected, 1e-4);
   EXPECT_NEAR(std::hypot(z[FloatingRingElement::kWx], z[FloatingRingElement::kWy]), 1e-3, 1e-7);
   EXPECT_NEAR(e.diametral_inertia(), 3.1e-7, 1e-20);
-  // Without a given Id the thick-walled cylinder's is used: reference-turbocharger.md lists about 3.1e-7 kg m^2.
+  // Without a given Id the thick-walled cylinder's is used: docs/reference-machine.md lists about 3.1e-7 kg m^2.
   const FloatingRingElement d("default", reference_ring(), OilSpec{}, 0, 0.0);
   EXPECT_NEAR(d.diametral_inertia(), 3.1e-7, 0.1e-7);
 }

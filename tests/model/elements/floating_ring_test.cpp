@@ -11,7 +11,7 @@ namespace turbodyn {
 namespace {
 
 FloatingRingSpec reference_ring() {
-  // reference-turbocharger.md, variant I.
+  // docs/reference-machine.md, variant I.
   FloatingRingSpec f;
   f.inner_diameter = 0.010;
   f.inner_length = 0.007;

@@ -19,7 +19,7 @@ JournalBearingSpec short_bearing_spec() {
 }
 
 TEST(JournalBearing, EccentricJournalAgainstTheShortBearingForces) {
-  // Ocvirk short-bearing forces (validation-references.md §2) with the element's mapping of the shaft DOFs: a
+  // Ocvirk short-bearing forces (docs/references.md §2) with the element's mapping of the shaft DOFs: a
   // journal displaced in +x and spinning about +z is pushed back (-x) and sideways in the direction of rotation
   // (+y), the cross-coupled force that drives oil whirl.
   OilSpec oil;
@@ -44,7 +44,7 @@ TEST(JournalBearing, EccentricJournalAgainstTheShortBearingForces) {
 }
 
 TEST(JournalBearing, OilViscosityFromTheVogelEquation) {
-  // reference-turbocharger.md / validation-references.md §7: SAE 30 Vogel fit, 90.3 mPa s at 40 degC,
+  // docs/reference-machine.md / docs/references.md §7: SAE 30 Vogel fit, 90.3 mPa s at 40 degC,
   // 10.75 mPa s at 90 degC, 8.16 mPa s at 100 degC (printed to 3-4 digits).
   const OilSpec oil;
   EXPECT_NEAR(oil.viscosity_at(273.15 + 40.0) / 90.3e-3, 1.0, 2e-3);

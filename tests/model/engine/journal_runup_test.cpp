@@ -1,5 +1,5 @@
 // A rigid symmetric rotor in plain journal bearings: stable below the classical oil-whirl threshold, unstable
-// above it with a whirl at about half the rotor speed (validation-references.md §2).
+// above it with a whirl at about half the rotor speed (docs/references.md §2).
 #include <algorithm>
 #include <cmath>
 
@@ -46,7 +46,7 @@ MachineSpec rotor_in_journal_bearings(double speed) {
   return s;
 }
 
-// Classical threshold from the linearised short-bearing coefficients (validation-references.md §2, Friswell et
+// Classical threshold from the linearised short-bearing coefficients (docs/references.md §2, Friswell et
 // al. 2010 §5.5) and the stability condition of a rigid rotor on two identical bearings (Lund 1966; e.g. Friswell
 // §5.8): unstable when m c w^2 / W > kappa / nu^2, kappa the equivalent stiffness and nu the whirl-frequency ratio.
 struct Threshold {

@@ -1,4 +1,4 @@
-// Linearised film coefficients against the short-bearing closed forms (validation-references.md §2, Friswell et
+// Linearised film coefficients against the short-bearing closed forms (docs/references.md §2, Friswell et
 // al. 2010 §5.5), the check behind `turbodyn journal`.
 #include "model/films/film_linearisation.h"
 
@@ -44,8 +44,8 @@ TEST(FilmLinearisation, ShortBearingCoefficients) {
     s.omega_inner = omega;
     const Linearisation l = linearise(film, s);
     const double W = std::hypot(l.at.fx, l.at.fy);
-    // validation-references.md §2 says "u along the load, v perpendicular", but with these formulas u is the
-    // direction perpendicular to the load: as eps -> 0 the load turns perpendicular to the eccentricity and
+    // Axes as in docs/references.md §2 (an earlier note had them the other way round): with these formulas u is
+    // the direction perpendicular to the load: as eps -> 0 the load turns perpendicular to the eccentricity and
     // a_uu -> 8/pi is the stiffness along the eccentricity (2 A eps / c over W = pi/4 A eps, A = eta w R L^3/c^2),
     // while along the load it is 4/pi = a_vv(0). So: v along the load (-F), u perpendicular to it.
     const Eigen::Vector2d v = Eigen::Vector2d(-l.at.fx, -l.at.fy) / W, u(v.y(), -v.x());

@@ -22,7 +22,7 @@ using namespace turbodyn::reynolds::testing;
 
 TEST(RaimondiBoyd, SommerfeldNumberAndFrictionVariable) {
   // Raimondi & Boyd (1958), ASLE Trans. 1, full 360-degree bearing with Swift-Stieber (Reynolds) conditions, as
-  // printed in Shigley's Mechanical Engineering Design (validation-references.md section 1).
+  // printed in Shigley's Mechanical Engineering Design (docs/references.md §1).
   // S = (R/c)^2 eta N / P with P = W / (2 R L); f = (|torque on the journal| / R) / W. The table is reproduced with
   // the Couette shear taken over the whole circumference (the cavitated zone sheared as a full film) plus the
   // Poiseuille shear on the journal surface: the convention of the model's Gumbel friction (docs/reynolds.md).
@@ -49,7 +49,7 @@ TEST(RaimondiBoyd, SommerfeldNumberAndFrictionVariable) {
 }
 
 TEST(ShortBearing, GumbelApproachesOcvirkAsTheWidthShrinks) {
-  // Ocvirk short-bearing forces with half-Sommerfeld conditions (validation-references.md section 2). For L/D -> 0
+  // Ocvirk short-bearing forces with half-Sommerfeld conditions (docs/references.md §2). For L/D -> 0
   // the complementarity solution decouples into independent axial lines and equals the clamped one, so the
   // finite-width error must shrink like (L/D)^2. Tolerance at L/D = 1/8: 3 % (finite-width error, 1.5-2.6 % here).
   constexpr double kTolEighth = 0.03;
@@ -72,7 +72,7 @@ TEST(ShortBearing, GumbelApproachesOcvirkAsTheWidthShrinks) {
 }
 
 TEST(LongBearing, MidPlaneMatchesSommerfeld) {
-  // Long-bearing (Sommerfeld) solution, validation-references.md section 2. The half-Sommerfeld (Guembel) closed
+  // Long-bearing (Sommerfeld) solution, docs/references.md §2. The half-Sommerfeld (Guembel) closed
   // form is the full-Sommerfeld pressure with its negative half set to zero. At L/D = 8 the mid-plane of the
   // full-film (None) solution is the infinite bearing: force per unit length within 0.5 % (grid error); the full
   // Sommerfeld force (no clamp) is purely tangential and twice the half-Sommerfeld one.
@@ -164,7 +164,7 @@ TEST(LongBearing, SwiftStieberWithoutSupplyTendsToShiftedFullSommerfeld) {
 
 TEST(SqueezeFilmDamper, CircularCentredOrbitMatchesShortFilmTheory) {
   // Short open-ended damper, non-rotating journal on a circular centred orbit of radius eps c at whirl speed w
-  // (validation-references.md section 3; San Andres, Vance): pi-film (cavitated, here the complementarity model):
+  // (docs/references.md §3; San Andres, Vance): pi-film (cavitated, here the complementarity model):
   // C_tt = pi eta R L^3 / (2 c^3 (1 - eps^2)^1.5), K_rr = 2 eta R L^3 w eps / (c^3 (1 - eps^2)^2); 2 pi-film (None):
   // twice the damping, no radial force. F_t = -C_tt eps c w, F_r = -K_rr eps c. Tolerance 3 % at L/D = 1/8
   // (finite-length error, up to 2.9 % at eps = 0.6).
@@ -195,7 +195,7 @@ TEST(SqueezeFilmDamper, CircularCentredOrbitMatchesShortFilmTheory) {
 }
 
 TEST(ClosedForms, AttitudeAngleAndInputChecks) {
-  // Ocvirk: tan(phi) = pi sqrt(1 - eps^2) / (4 eps) (validation-references.md section 2).
+  // Ocvirk: tan(phi) = pi sqrt(1 - eps^2) / (4 eps) (docs/references.md §2).
   for (const double eps : {0.2, 0.5, 0.9}) {
     const Closed f = short_bearing(kEta, kOmega, kR, 0.01, kC, eps);
     EXPECT_NEAR(f.tangential / f.radial, kPi * std::sqrt(1 - eps * eps) / (4 * eps), 1e-12);

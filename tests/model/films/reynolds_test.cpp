@@ -163,7 +163,7 @@ TEST(Moments, VanishWithoutTiltAndResistTilt) {
   // Full film: p = a z (L^2/4 - z^2) / 6 and M_y = -pi eta R L^5 dsx / (60 c^3). Swift-Stieber along each line: the
   // obstacle problem has its free boundary at z = -L/4 (p = p' = 0 there: 1 - 3u^2 + 2u^3 = 0, u = -1/2), giving
   // M_y = -(27 pi / 2560) eta R L^5 dsx / c^3, 1.27 times the clamped (pi-film) value (our derivation; the
-  // translational pi-film forms of validation-references.md section 3 assume a velocity uniform along z, where the
+  // translational pi-film forms of docs/references.md §3 assume a velocity uniform along z, where the
   // clamp and the complementarity solution coincide). Tolerance 3 % at L/D = 1/8 (finite length).
   const FilmGeometry g = plain(0.125, 120, 24);
   const double L = g.length, base = kEta * kR * std::pow(L, 5) * s.dsx / (kC * kC * kC);

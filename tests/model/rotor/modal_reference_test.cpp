@@ -18,7 +18,7 @@ Rotor load_rotor(const std::string& example, const std::vector<Override>& overri
   return build_rotor(load_model(source_dir() + "/examples/" + example, overrides));
 }
 
-// validation-references.md §6: Friswell et al. (2010) Example 5.9.1 with anisotropic bearings, damped natural
+// docs/references.md §6: Friswell et al. (2010) Example 5.9.1 with anisotropic bearings, damped natural
 // frequencies in rad/s from the ROSS test suite. The reference lists them per mode; compared in ascending order.
 // The reference model has 6 DOF per node: its speed-independent 650.408 rad/s mode is the first free-free
 // torsional mode (the disks twisting against each other), so torsion is included here.

@@ -58,7 +58,7 @@ TEST(Modal, RotatingFrameRejectsAnisotropicBearings) {
 }
 
 TEST(Modal, ReferenceRotorSanityFiguresNonRotating) {
-  // reference-turbocharger.md: non-rotating Euler-Bernoulli model, wheels as given, springs of k at both bearing
+  // docs/reference-machine.md: non-rotating Euler-Bernoulli model, wheels as given, springs of k at both bearing
   // points: k = 3e7 N/m "about 480, 650, 2600 Hz"; rigid supports "about 540, 820, 3300 Hz". The figures are
   // quoted to two digits ("about"), so the tolerance is 5 %.
   constexpr double kAbout = 0.05;

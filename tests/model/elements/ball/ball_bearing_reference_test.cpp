@@ -22,7 +22,7 @@ namespace {
 
 constexpr double kRpm = 2.0 * M_PI / 60.0;
 
-// The reference bearing of reference-turbocharger.md, variant II (the spec defaults).
+// The reference bearing of docs/reference-machine.md, variant II (the spec defaults).
 BallBearingSpec reference_bearing() { return BallBearingSpec{}; }
 
 // ---------------------------------------------------------------------------------------------- helpers
@@ -270,7 +270,7 @@ KinematicRun run_at_speed(double speed_rpm, double revolutions) {
 }
 
 TEST(BallBearing, HertzConstantsMatchTheDeepGrooveReference) {
-  // validation-references.md §5: Z = 7, D = 11.5 mm, d_m = 43.5 mm, f = 0.52 / 0.53, alpha = 0, E = 210 GPa,
+  // docs/references.md §5: Z = 7, D = 11.5 mm, d_m = 43.5 mm, f = 0.52 / 0.53, alpha = 0, E = 210 GPa,
   // nu = 0.3, zero clearance, a ball at 0 deg, 1000 N radial -> 15.110 um; inner 0.24310 1/mm, k = 9.802,
   // K = 9.720e5 N/mm^1.5; outer 0.14739 1/mm, 5.549, 9.165e5; combined 3.336e5 N/mm^1.5.
   constexpr double kReferenceTolerance = 0.005;  // the brief's 0.5 %; the reference is given to 4-5 digits
@@ -387,7 +387,7 @@ TEST(BallBearing, StaticStiffnessMatchesAnIndependentRigidRingCalculation) {
 }
 
 TEST(BallBearing, CageSpeedAndBallPassFrequenciesFollowTheKinematicFormulas) {
-  // validation-references.md §5 (no slip, fixed outer race): FTF = (1/2)(1 - (D/d_m) cos a) f_s,
+  // docs/references.md §5 (no slip, fixed outer race): FTF = (1/2)(1 - (D/d_m) cos a) f_s,
   // BPFO = Z FTF, BPFI = Z (f_s - FTF). With centrifugal force the loaded inner and outer contact angles differ
   // (at 100,000 rpm and 40 N by some 25 deg); the same no-slip argument with the ball's spin axis normal to the
   // outer contact line (outer-race control, Jones 1960; Harris & Kotzalas 2007, ball kinematics) gives

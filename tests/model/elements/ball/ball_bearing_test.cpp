@@ -22,7 +22,7 @@ namespace {
 
 constexpr double kRpm = 2.0 * M_PI / 60.0;
 
-// The reference bearing of reference-turbocharger.md, variant II (the spec defaults).
+// The reference bearing of docs/reference-machine.md, variant II (the spec defaults).
 BallBearingSpec reference_bearing() { return BallBearingSpec{}; }
 
 // ---------------------------------------------------------------------------------------------- helpers
