@@ -1,4 +1,4 @@
-// Helpers shared by the model tests: small machines built in code, and reductions of the FE matrices.
+// Helpers shared by the model tests: small machines and bearings built in code, and reductions of the FE matrices.
 #pragma once
 
 #include <algorithm>
@@ -12,10 +12,56 @@
 #include "model/spec/model_spec.h"
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
+#include "model/rotor/timoshenko.h"
 
 namespace turbodyn::testing {
 
 inline std::string source_dir() { return TURBODYN_SOURCE_DIR; }
+
+/// The floating-ring bearing of docs/reference-machine.md, variant I.
+inline FloatingRingSpec reference_ring() {
+  FloatingRingSpec f;
+  f.inner_diameter = 0.010;
+  f.inner_length = 0.007;
+  f.inner_clearance = 15e-6;
+  f.outer_diameter = 0.016;
+  f.outer_length = 0.010;
+  f.outer_clearance = 40e-6;
+  f.ring_mass = 0.0102;
+  f.ring_polar_inertia = 4.5e-7;
+  f.supply_pressure = 4.5e5;
+  f.feed_hole_diameter = 0.003;
+  f.n_circ = 60;
+  f.n_axial = 12;
+  return f;
+}
+
+/// A plain journal bearing of L/D = 1/4, close to the short-bearing limit.
+inline JournalBearingSpec short_bearing_spec() {
+  JournalBearingSpec j;
+  j.diameter = 0.010;
+  j.length = 0.0025;  // L/D = 1/4: close to the short-bearing limit
+  j.clearance = 15e-6;
+  j.n_circ = 90;
+  j.n_axial = 16;
+  return j;
+}
+
+/// Steel of the beam tests: E in Pa, nu, G = E / (2 (1 + nu)) in Pa, rho in kg/m^3.
+inline constexpr double kE = 210e9, kNu = 0.3, kG = kE / (2 * (1 + kNu)), kRho = 7850.0;
+
+/// A solid steel beam element of length L and diameter d (m) with shear factor kappa.
+inline BeamProperties solid(double L, double d, double kappa, bool shear = true) {
+  BeamProperties p;
+  p.length = L;
+  p.outer_diameter = d;
+  p.youngs_modulus = kE;
+  p.shear_modulus = kG;
+  p.density = kRho;
+  p.shear_factor = kappa;
+  p.shear_deformation = shear;
+  return p;
+}
 
 /// A uniform solid steel-like beam of length L and diameter d, no disks or bearings.
 inline MachineSpec uniform_beam(double L, double d, int elements, bool shear, bool rotary) {

@@ -1,5 +1,5 @@
 // Squeeze-film damper around a linear bearing: film forces on a centred circular orbit against the short-damper
-// closed forms, and a run-up in which the damper cuts the force transmitted at the first critical speeds.
+// closed forms, and sealed ends against the long damper.
 #include "model/elements/damper_element.h"
 
 #include <cmath>

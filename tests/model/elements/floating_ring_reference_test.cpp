@@ -1,4 +1,5 @@
-// Full-floating-ring bearing element: ring speed from the torque balance of the two films.
+// Full-floating-ring bearing element against closed forms: the Petroff ring speed, the drill holes' centrifugal
+// head, and the nutation of a free-spinning ring.
 #include "model/elements/floating_ring_element.h"
 
 #include <algorithm>
@@ -7,26 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/test_support.h"
+
 namespace turbodyn {
 namespace {
 
-FloatingRingSpec reference_ring() {
-  // docs/reference-machine.md, variant I.
-  FloatingRingSpec f;
-  f.inner_diameter = 0.010;
-  f.inner_length = 0.007;
-  f.inner_clearance = 15e-6;
-  f.outer_diameter = 0.016;
-  f.outer_length = 0.010;
-  f.outer_clearance = 40e-6;
-  f.ring_mass = 0.0102;
-  f.ring_polar_inertia = 4.5e-7;
-  f.supply_pressure = 4.5e5;
-  f.feed_hole_diameter = 0.003;
-  f.n_circ = 60;
-  f.n_axial = 12;
-  return f;
-}
+using testing::reference_ring;
 
 // Torque on the ring with journal and ring centred, ring spinning at w_r, rotor at W.
 double ring_torque(const FloatingRingElement& e, ElementWorkspace& ws, double W, double wr) {

@@ -1,22 +1,16 @@
-// The journal-bearing force element: the shaft's DOFs mapped into the film and the film's force and moment back.
+// The journal-bearing force element: restoring tilt moments, and a closing film as an error rather than a crash.
 #include "model/elements/journal_bearing_element.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "tests/support/test_support.h"
+
 namespace turbodyn {
 namespace {
 
-JournalBearingSpec short_bearing_spec() {
-  JournalBearingSpec j;
-  j.diameter = 0.010;
-  j.length = 0.0025;  // L/D = 1/4: close to the short-bearing limit
-  j.clearance = 15e-6;
-  j.n_circ = 90;
-  j.n_axial = 16;
-  return j;
-}
+using testing::short_bearing_spec;
 
 TEST(JournalBearing, TiltedJournalFeelsARestoringMoment) {
   // theta_y > 0 tilts the journal axis towards +x at +z (dx/dz = theta_y): the film pushes that end back, a

@@ -1,5 +1,5 @@
-// The reference rotor in multibody ball bearings (variant II) and in ball bearings in squeeze-film dampers
-// (variant III): short run-ups through the engine, checked against the bearing kinematics and the energy balance.
+// The Newton solve of the run-up engine with ball bearings: the balls' blocks are independent, the block solve
+// matches the full system, and the bearing's own Jacobian matches plain finite differences.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,21 +13,6 @@
 #include "model/io/model_file.h"
 #include "model/engine/runup.h"
 #include "tests/support/test_support.h"
-
-namespace turbodyn {
-namespace {
-
-// The paper's acceleration (150,000 rpm in 4 s) up to 6,000 rpm.
-const std::vector<Override> kShortRamp = {{"speed.end", "6000 rpm"}, {"speed.duration", "0.16"}};
-
-}  // namespace
-}  // namespace turbodyn
-
-namespace turbodyn {
-namespace {
-
-}  // namespace
-}  // namespace turbodyn
 
 namespace turbodyn {
 namespace {

@@ -47,18 +47,6 @@ double peak(const RunupResult& r, const std::string& name) {
 // The paper's acceleration (150,000 rpm in 4 s) up to 6,000 rpm.
 const std::vector<Override> kShortRamp = {{"speed.end", "6000 rpm"}, {"speed.duration", "0.16"}};
 
-}  // namespace
-}  // namespace turbodyn
-
-namespace turbodyn {
-namespace {
-
-}  // namespace
-}  // namespace turbodyn
-
-namespace turbodyn {
-namespace {
-
 TEST(BallRunup, CageFollowsTheKinematicsAndTheEnergyBalanceCloses) {
   const RunupResult r = run("reference_ball.toml", kShortRamp);
   ASSERT_TRUE(r.complete) << r.message;

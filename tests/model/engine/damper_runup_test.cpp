@@ -1,5 +1,5 @@
-// Squeeze-film damper around a linear bearing: film forces on a centred circular orbit against the short-damper
-// closed forms, and a run-up in which the damper cuts the force transmitted at the first critical speeds.
+// Squeeze-film dampers around linear bearings in a run-up: the damper cuts the force transmitted at the first
+// critical speeds, and the energy balance closes.
 #include "model/elements/damper_element.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
-// Linear rotordynamics against published numbers and exact transformations.
+// Linear rotordynamics against published numbers and closed forms: Friswell et al. Example 5.9.1, the critical
+// speed of a non-gyroscopic rotor, the damping ratio of a rigid rotor on damped supports.
 #include "model/rotor/modal.h"
 
 #include <cmath>

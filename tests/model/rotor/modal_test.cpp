@@ -1,4 +1,5 @@
-// Linear rotordynamics against published numbers and exact transformations.
+// Linear rotordynamics: gyroscopic splitting, the rotating frame as an exact transformation of the inertial
+// solution, and the reference rotor's sanity figures.
 #include "model/rotor/modal.h"
 
 #include <cmath>

@@ -1,6 +1,5 @@
-// Ball bearing as a multibody element: Hertz constants against the deep-groove reference, static stiffness
-// against an independent rigid-ring (Jones/Harris) calculation, kinematic frequencies at constant speed, energy
-// conservation without friction and damping, bad input.
+// Ball bearing as a multibody element against references: Hertz constants of the deep-groove reference, the
+// static stiffness of an independent rigid-ring (Jones/Harris) calculation, the kinematic frequencies.
 #include "model/elements/ball/ball_bearing.h"
 
 #include <algorithm>
@@ -17,26 +16,16 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "tests/support/ball_bearing_fixtures.h"
+
 namespace turbodyn {
 namespace {
 
-constexpr double kRpm = 2.0 * M_PI / 60.0;
-
-// The reference bearing of docs/reference-machine.md, variant II (the spec defaults).
-BallBearingSpec reference_bearing() { return BallBearingSpec{}; }
+using testing::Evaluator;
+using testing::kRpm;
+using testing::reference_bearing;
 
 // ---------------------------------------------------------------------------------------------- helpers
-
-// Element state derivatives with the shaft held at (q, v) and spinning at `speed`.
-struct Evaluator {
-  const BallBearingElement& e;
-  std::unique_ptr<ElementWorkspace> ws;
-  explicit Evaluator(const BallBearingElement& el) : e(el), ws(el.make_workspace()) {}
-  void operator()(double speed, const double* q, const double* v, const double* z, double* f, double* zdot) {
-    for (int i = 0; i < 4; ++i) f[i] = 0.0;
-    e.CalcAndAddForces(SpinState{0.0, speed, 0.0, 0.0}, q, v, z, *ws, f, zdot);
-  }
-};
 
 // Static equilibrium of the element's own equations at zero speed (no gravity): Newton on the ball positions
 // rho, zeta and the outer ring's z_o with everything at rest; the ball angles stay where the cage holds them

@@ -1,6 +1,5 @@
-// Ball bearing as a multibody element: Hertz constants against the deep-groove reference, static stiffness
-// against an independent rigid-ring (Jones/Harris) calculation, kinematic frequencies at constant speed, energy
-// conservation without friction and damping, bad input.
+// Ball bearing as a multibody element: forces as the gradient of the contact potential, energy conservation
+// without friction and damping, the energy balance with them, evaluation caching, bad input.
 #include "model/elements/ball/ball_bearing.h"
 
 #include <algorithm>
@@ -17,79 +16,14 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "tests/support/ball_bearing_fixtures.h"
+
 namespace turbodyn {
 namespace {
 
-constexpr double kRpm = 2.0 * M_PI / 60.0;
-
-// The reference bearing of docs/reference-machine.md, variant II (the spec defaults).
-BallBearingSpec reference_bearing() { return BallBearingSpec{}; }
-
-// ---------------------------------------------------------------------------------------------- helpers
-
-// Element state derivatives with the shaft held at (q, v) and spinning at `speed`.
-struct Evaluator {
-  const BallBearingElement& e;
-  std::unique_ptr<ElementWorkspace> ws;
-  explicit Evaluator(const BallBearingElement& el) : e(el), ws(el.make_workspace()) {}
-  void operator()(double speed, const double* q, const double* v, const double* z, double* f, double* zdot) {
-    for (int i = 0; i < 4; ++i) f[i] = 0.0;
-    e.CalcAndAddForces(SpinState{0.0, speed, 0.0, 0.0}, q, v, z, *ws, f, zdot);
-  }
-};
-
-// Rigid-ring quasi-static bearing (Jones 1960; Harris & Kotzalas 2007, ch. 7), written independently of the
-// element: ball j at psi_j = 2 pi j / Z lies on the line between its inner and outer groove-curvature centres
-// (no speed: a two-force body), Q = K_n delta_n^1.5, delta_n = |G_i - G_o| - (f_i + f_o - 1) D. The inner ring
-// is displaced by (x, y) and tilted by (theta_x, theta_y); the outer ring floats axially on the preload spring.
-struct QuasiStatic {
-  BallBearingSpec s;
-  double Ki, Ko;
-  // Force on the shaft (x, y, Mx, My) and the outer ring's axial displacement.
-  Eigen::Vector4d force(const Eigen::Vector4d& q, double* zo_out = nullptr) const {
-    const double D = s.ball_diameter, Rp = 0.5 * s.pitch_diameter, a0 = s.contact_angle, sd = s.side;
-    const double ri = (s.inner_groove_ratio - 0.5) * D, ro = (s.outer_groove_ratio - 0.5) * D;
-    const double Kn = std::pow(std::pow(Ki, -2.0 / 3.0) + std::pow(Ko, -2.0 / 3.0), -1.5);
-    const Eigen::Vector3d theta(q[2], q[3], 0.0);
-    // Sum of ball forces on the outer ring along z, and the shaft loads, for a given z_o.
-    const auto loads = [&](double zo, Eigen::Vector4d* shaft) {
-      double fz = 0.0;
-      if (shaft) shaft->setZero();
-      for (int j = 0; j < s.n_balls; ++j) {
-        const double psi = 2 * M_PI * j / s.n_balls;
-        const Eigen::Vector3d er(std::cos(psi), std::sin(psi), 0.0), ez(0, 0, 1);
-        const Eigen::Vector3d gi0 = (Rp + ri * std::cos(a0)) * er + sd * ri * std::sin(a0) * ez;
-        const Eigen::Vector3d gi = Eigen::Vector3d(q[0], q[1], 0.0) + gi0 + theta.cross(gi0);
-        const Eigen::Vector3d go = (Rp - ro * std::cos(a0)) * er + (zo - sd * ro * std::sin(a0)) * ez;
-        const Eigen::Vector3d d = gi - go;
-        const double dn = d.norm() - (ri + ro);
-        if (dn <= 0.0) continue;
-        const double Q = Kn * std::pow(dn, 1.5);
-        const Eigen::Vector3d u = d / d.norm();  // outer groove centre -> inner, = outer contact normal
-        fz += Q * u.z();
-        if (shaft) {
-          const Eigen::Vector3d F = -Q * u;  // on the inner ring, line of action through G_i
-          const Eigen::Vector3d M = (gi - Eigen::Vector3d(q[0], q[1], 0.0)).cross(F);
-          *shaft += Eigen::Vector4d(F.x(), F.y(), M.x(), M.y());
-        }
-      }
-      return fz;
-    };
-    // Outer ring: fz - side F_p - k_p z_o = 0, monotone in z_o; bisection.
-    const auto h = [&](double zo) { return loads(zo, nullptr) - sd * s.preload - s.preload_stiffness * zo; };
-    double lo = -sd * 1e-3, hi = sd * 1e-3;  // h(lo) < 0 < h(hi) for side +1; swapped for -1
-    if (h(lo) > h(hi)) std::swap(lo, hi);
-    for (int i = 0; i < 200; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (h(mid) < 0.0 ? lo : hi) = mid;
-    }
-    const double zo = 0.5 * (lo + hi);
-    if (zo_out) *zo_out = zo;
-    Eigen::Vector4d f;
-    loads(zo, &f);
-    return f;
-  }
-};
+using testing::Evaluator;
+using testing::kRpm;
+using testing::reference_bearing;
 
 // CVODE (BDF, dense direct solver with CVODE's own difference-quotient Jacobian) on the element's states with
 // the shaft held at (q, v) and spinning at a constant speed.
@@ -170,14 +104,6 @@ class Integrator {
 };
 
 // ------------------------------------------------------------------------------------------------ tests
-
-// Mean cage speed ratio, ball-pass frequencies from the balls' orbital speed and the spectrum of the housing
-// force at constant rotor speed; shaft held off-centre so that the housing force has a ball-pass ripple.
-struct KinematicRun {
-  double cage_ratio, bpfo, bpfi, alpha_i, alpha_o;
-  double bpfo_line;     // strongest line of the housing force within +-30 % of the expected BPFO (Hz)
-  double bpfo_contrast; // its magnitude over the median magnitude of the spectrum
-};
 
 TEST(BallBearing, ShaftForcesAreTheGradientOfThePotentialWithoutFrictionAndDamping) {
   // Conservative contacts: generalised forces on the shaft = -dV/dq (central differences, tolerance sqrt(h)).
