@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "model/io/toml_reader.h"
+#include "studies/channels.h"
 #include "studies/study.h"
 
 namespace turbodyn::identification {
@@ -111,10 +112,7 @@ FeatureSpec read_feature(Reader& r, const MeasurementSpec& m, Method method) {
       found = true;
     }
   }
-  if (!found) {
-    const std::string hint = closest_match(sensor, names);
-    r.fail("sensor", "no sensor named '" + sensor + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
-  }
+  if (!found) r.fail("sensor", "no sensor named '" + sensor + "'" + studies::did_you_mean(sensor, names));
   f.name = r.text_or("name", kind + "_" + sensor);
   const Dimension d = dimension_of(m.sensors[f.sensor].quantity);
   f.weight = r.quantity_or("weight", dim::dimensionless, 1.0, Bound::Positive);

@@ -9,6 +9,7 @@
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
 #include "model/io/toml_reader.h"
+#include "studies/channels.h"
 #include "studies/metrics.h"
 
 namespace turbodyn::optim {
@@ -157,10 +158,9 @@ std::size_t metric_index(Reader& r, const std::string& key, const std::vector<Me
     if (metrics[i].spec.name == name) return i;
     names.push_back(metrics[i].spec.name);
   }
-  const std::string hint = closest_match(name, names);
   std::string known;
   for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-  r.fail(key, "unknown metric '" + name + "'" + (hint.empty() ? " (metrics: " + known + ")" : "; did you mean '" + hint + "'?"));
+  r.fail(key, "unknown metric '" + name + "'" + studies::did_you_mean(name, names, " (metrics: " + known + ")"));
 }
 
 // A constraint bound in the unit the metric's values have (metric_unit): lengths in m, forces in N, speeds in rpm.
@@ -184,19 +184,13 @@ double bound_value(Reader& r, const std::string& key, const std::string& unit) {
 }
 
 // x/y (or fx/fy) channels of a pair stem, as the run-up metrics read them.
-bool has_pair(const std::vector<std::string>& names, const std::string& stem) {
-  auto has = [&](const std::string& n) { return std::find(names.begin(), names.end(), n) != names.end(); };
-  return (has(stem + ".x") && has(stem + ".y")) || (has(stem + ".fx") && has(stem + ".fy"));
-}
-
 // Checks the metrics against the base model (probes exist, response metrics have a linear model) and sets their
 // units.
 void resolve_metrics(OptimizationSpec& s) {
   const MachineSpec machine = load_model(s.model, run_overrides(s, start_design(s), &s.cases.front()));
   const std::unique_ptr<RunupModel> model = make_runup_model(machine);
   const std::vector<ProbeChannel>& channels = model->channels();
-  std::vector<std::string> names;
-  for (const ProbeChannel& c : channels) names.push_back(c.name);
+  const std::vector<std::string> names = studies::channel_names(channels);
   for (std::size_t i = 0; i < s.metrics.size(); ++i) {
     Metric& m = s.metrics[i];
     const std::string where = s.source.string() + ": metrics[" + std::to_string(i) + "].probe: ";
@@ -211,28 +205,16 @@ void resolve_metrics(OptimizationSpec& s) {
         for (const char* sfx : {"", ".x", ".y"}) stems.push_back("disk." + d.name + sfx);
       for (const BearingSpec& b : machine.bearings)
         for (const char* sfx : {"", ".fx", ".fy"}) stems.push_back("bearing." + b.name + sfx);
-      if (std::find(stems.begin(), stems.end(), m.spec.probe) == stems.end()) {
-        const std::string hint = closest_match(m.spec.probe, stems);
+      if (std::find(stems.begin(), stems.end(), m.spec.probe) == stems.end())
         throw ModelError(where + "the steady-state response has no probe '" + m.spec.probe + "'" +
-                         (hint.empty() ? " (use disk.NAME or bearing.NAME)" : "; did you mean '" + hint + "'?"));
-      }
+                         studies::did_you_mean(m.spec.probe, stems, " (use disk.NAME or bearing.NAME)"));
       m.unit = m.spec.kind == "response_peak_speed" ? "rpm" : m.spec.probe.rfind("disk.", 0) == 0 ? "m" : "N";
       continue;
     }
     if (m.spec.kind != "summary") {
-      const bool ok = m.spec.kind == "max_radius" ? has_pair(names, m.spec.probe)
-                                                  : std::find(names.begin(), names.end(), m.spec.probe) != names.end();
-      if (!ok) {
-        std::string msg = where + "the model has no probe '" + m.spec.probe + "'";
-        const std::string hint = closest_match(m.spec.probe, names);
-        if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
-        else {
-          msg += " (probes:";
-          for (const std::string& n : names) msg += " " + n;
-          msg += ")";
-        }
-        throw ModelError(msg);
-      }
+      const bool ok = m.spec.kind == "max_radius" ? studies::pair_channels(channels, m.spec.probe).first >= 0
+                                                  : studies::find_channel(channels, m.spec.probe) >= 0;
+      if (!ok) throw ModelError(where + studies::unknown_probe(m.spec.probe, names));
     }
     m.unit = studies::metric_unit(m.spec, channels);
   }
@@ -249,11 +231,9 @@ void resolve_metrics(OptimizationSpec& s) {
     }
   }
   for (const std::string& p : s.spectrogram_probes)
-    if (std::find(names.begin(), names.end(), p) == names.end()) {
-      const std::string hint = closest_match(p, names);
+    if (studies::find_channel(channels, p) < 0)
       throw ModelError(s.source.string() + ": optimize.spectrograms: the model has no probe '" + p + "'" +
-                       (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
-    }
+                       studies::did_you_mean(p, names));
 }
 
 }  // namespace
