@@ -1,6 +1,5 @@
 #include "identification/evaluation.h"
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -10,6 +9,7 @@
 #include "model/engine/runup.h"
 #include "studies/channels.h"
 #include "studies/sweep.h"
+#include "studies/table.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -66,13 +66,7 @@ std::vector<double> second_difference(const std::vector<double>& x, double fs) {
 
 }  // namespace
 
-std::string format_value(double value, const std::string& unit) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, value);
-  std::string v(buf, res.ptr);
-  if (!unit.empty()) v += " " + unit;
-  return v;
-}
+std::string format_value(double value, const std::string& unit) { return studies::value_text(value, unit); }
 
 Evaluator::Evaluator(const IdentifyStudy& study) : study_(study) {
   with_phase_ = false;

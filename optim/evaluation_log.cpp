@@ -2,20 +2,13 @@
 
 #include <cmath>
 
+#include "studies/table.h"
+
 namespace turbodyn::optim {
 namespace {
 
-nlohmann::json numbers(const std::vector<double>& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (double x : v) a.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr));
-  return a;
-}
-
-std::vector<double> from_numbers(const nlohmann::json& a) {
-  std::vector<double> v;
-  for (const auto& x : a) v.push_back(x.is_null() ? NAN : x.get<double>());
-  return v;
-}
+using studies::from_json_numbers;
+using studies::json_numbers;
 
 nlohmann::json overrides_json(const std::vector<Override>& o) {
   nlohmann::json a = nlohmann::json::array();
@@ -45,18 +38,18 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
 nlohmann::json to_json(const Evaluation& e) {
   nlohmann::json cases = nlohmann::json::array();
   for (const CaseResult& c : e.cases)
-    cases.push_back({{"metrics", numbers(c.metrics)}, {"status", c.status}, {"error", c.error},
+    cases.push_back({{"metrics", json_numbers(c.metrics)}, {"status", c.status}, {"error", c.error},
                      {"wall_time_s", c.wall_time}});
-  return {{"id", e.id}, {"design", numbers(e.design)}, {"cases", cases}, {"wall_time_s", e.wall_time}};
+  return {{"id", e.id}, {"design", json_numbers(e.design)}, {"cases", cases}, {"wall_time_s", e.wall_time}};
 }
 
 Evaluation evaluation_from_json(const nlohmann::json& j) {
   Evaluation e;
   e.id = j.at("id").get<std::size_t>();
-  e.design = from_numbers(j.at("design"));
+  e.design = from_json_numbers(j.at("design"));
   for (const auto& c : j.at("cases")) {
     CaseResult r;
-    r.metrics = from_numbers(c.at("metrics"));
+    r.metrics = from_json_numbers(c.at("metrics"));
     r.status = c.at("status").get<std::string>();
     r.error = c.value("error", "");
     r.wall_time = c.value("wall_time_s", 0.0);

@@ -1,7 +1,6 @@
 #include "optim/optimization.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -11,6 +10,7 @@
 #include "model/io/toml_reader.h"
 #include "studies/channels.h"
 #include "studies/metrics.h"
+#include "studies/table.h"
 
 namespace turbodyn::optim {
 namespace {
@@ -49,13 +49,7 @@ studies::UnitValue node_value(const toml::node& n, const std::string& context) {
   throw ModelError(context + ": expected a number or a string such as \"51 um\"");
 }
 
-std::string number_text(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
-std::string shown(double v, const std::string& unit) { return number_text(v) + (unit.empty() ? "" : " " + unit); }
+std::string shown(double v, const std::string& unit) { return studies::value_text(v, unit); }
 
 Variable read_variable(Reader& r) {
   Variable v;

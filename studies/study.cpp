@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "model/io/toml_reader.h"
+#include "studies/table.h"
 
 namespace turbodyn::studies {
 namespace {
@@ -225,13 +226,8 @@ StudySpec load_study(const std::filesystem::path& file) {
 
 std::vector<Override> run_overrides(const StudySpec& study, const Design& design, std::size_t i) {
   std::vector<Override> o = study.base_overrides;
-  for (std::size_t p = 0; p < design.paths.size(); ++p) {
-    char buf[64];
-    const auto res = std::to_chars(buf, buf + sizeof buf, design.values[i][p]);
-    std::string v(buf, res.ptr);
-    if (!study.parameter_units[p].empty()) v += " " + study.parameter_units[p];
-    o.push_back({design.paths[p], v});
-  }
+  for (std::size_t p = 0; p < design.paths.size(); ++p)
+    o.push_back({design.paths[p], value_text(design.values[i][p], study.parameter_units[p])});
   return o;
 }
 

@@ -18,6 +18,7 @@
 #include "model/engine/runup.h"
 #include "model/engine/speed_profile.h"
 #include "studies/metrics.h"
+#include "studies/table.h"
 
 namespace turbodyn::studies {
 namespace {
@@ -33,44 +34,19 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
 }
 
 nlohmann::json to_json(const RunRecord& r) {
-  auto numbers = [](const std::vector<double>& v) {
-    nlohmann::json a = nlohmann::json::array();
-    for (double x : v) a.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr));
-    return a;
-  };
-  return {{"index", r.index}, {"parameters", numbers(r.parameters)}, {"metrics", numbers(r.metrics)},
+  return {{"index", r.index}, {"parameters", json_numbers(r.parameters)}, {"metrics", json_numbers(r.metrics)},
           {"status", r.status}, {"error", r.error}, {"wall_time_s", r.wall_time}};
 }
 
 RunRecord from_json(const nlohmann::json& j) {
   RunRecord r;
   r.index = j.at("index").get<std::size_t>();
-  for (const auto& v : j.at("parameters")) r.parameters.push_back(v.is_null() ? NAN : v.get<double>());
-  for (const auto& v : j.at("metrics")) r.metrics.push_back(v.is_null() ? NAN : v.get<double>());
+  r.parameters = from_json_numbers(j.at("parameters"));
+  r.metrics = from_json_numbers(j.at("metrics"));
   r.status = j.at("status").get<std::string>();
   r.error = j.value("error", "");
   r.wall_time = j.value("wall_time_s", 0.0);
   return r;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-std::string number(double v) {
-  if (!std::isfinite(v)) return "";
-  std::ostringstream os;
-  os << std::setprecision(12) << v;
-  return os.str();
-}
-
-std::string file_safe(std::string s) {
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
-  return s;
 }
 
 }  // namespace
@@ -241,16 +217,14 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
     return study.metrics[m].name + (metric_units[m].empty() ? "" : " [" + metric_units[m] + "]");
   };
   {
-    std::ofstream csv(dir / "results.csv");
-    csv << "run";
-    for (std::size_t p = 0; p < design.paths.size(); ++p) csv << "," << csv_field(param_label(p));
-    for (std::size_t m = 0; m < study.metrics.size(); ++m) csv << "," << csv_field(metric_label(m));
-    csv << ",status,error,wall_time_s\n";
+    CsvWriter csv(dir / "results.csv");
+    csv.text("run");
+    for (std::size_t p = 0; p < design.paths.size(); ++p) csv.text(param_label(p));
+    for (std::size_t m = 0; m < study.metrics.size(); ++m) csv.text(metric_label(m));
+    csv.texts({"status", "error", "wall_time_s"}).end_row();
     for (const RunRecord& r : runs) {
-      csv << r.index;
-      for (double v : r.parameters) csv << "," << number(v);
-      for (double v : r.metrics) csv << "," << number(v);
-      csv << "," << r.status << "," << csv_field(r.error) << "," << number(r.wall_time) << "\n";
+      csv.integer(r.index).numbers(r.parameters).numbers(r.metrics);
+      csv.text(r.status).text(r.error).number(r.wall_time).end_row();
     }
     files.push_back("results.csv");
   }
@@ -281,8 +255,8 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   std::vector<std::vector<double>> x;
   for (const RunRecord& r : runs) x.push_back(r.parameters);
   {
-    std::ofstream csv(dir / "sensitivity.csv");
-    csv << "metric,parameter,src,r_squared\n";
+    CsvWriter csv(dir / "sensitivity.csv");
+    csv.texts({"metric", "parameter", "src", "r_squared"}).end_row();
     for (std::size_t m = 0; m < study.metrics.size(); ++m) {
       std::vector<double> y;
       for (const RunRecord& r : runs) y.push_back(r.metrics[m]);
@@ -291,12 +265,11 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
         nlohmann::json e = {{"r_squared", s.r_squared}, {"src", s.src}};
         sens[study.metrics[m].name] = e;
         for (std::size_t p = 0; p < s.src.size(); ++p)
-          csv << csv_field(study.metrics[m].name) << "," << csv_field(design.paths[p]) << "," << number(s.src[p])
-              << "," << number(s.r_squared) << "\n";
+          csv.text(study.metrics[m].name).text(design.paths[p]).number(s.src[p]).number(s.r_squared).end_row();
         if (plots) {
           plot::LineChart chart;
           chart.title = "Sensitivity of " + study.metrics[m].name + " (standardised regression, R^2 = " +
-                        number(std::round(s.r_squared * 1000) / 1000) + ")";
+                        table_number(std::round(s.r_squared * 1000) / 1000) + ")";
           chart.xlabel = "parameter";
           chart.ylabel = "standardised regression coefficient [-]";
           for (std::size_t p = 0; p < s.src.size(); ++p) {
