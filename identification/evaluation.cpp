@@ -8,7 +8,7 @@
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
 #include "studies/channels.h"
-#include "studies/sweep.h"
+#include "studies/run_evaluation.h"
 #include "studies/table.h"
 
 namespace turbodyn::identification {
@@ -119,10 +119,9 @@ Evaluation Evaluator::evaluate(const std::vector<double>& values, bool keep_reco
   const auto t0 = std::chrono::steady_clock::now();
   Evaluation ev;
   try {
-    const MachineSpec spec = load_model(study_.model, overrides(values));
     const std::vector<SensorSpec>& sensors = study_.measurement.sensors;
     if (study_.method == Method::Response) {
-      const Rotor rotor = build_rotor(spec);
+      const Rotor rotor = build_rotor(load_model(study_.model, overrides(values)));
       std::vector<ResponseProbe> probes;
       for (const SensorSpec& s : sensors) probes.push_back(response_probe(rotor, s.probe));
       auto response = [&](double speed_hz) {
@@ -138,19 +137,15 @@ Evaluation Evaluator::evaluate(const std::vector<double>& values, bool keep_reco
       };
       ev.features = features_from_response(study_.features, response, with_phase_);
     } else {
-      const auto model = make_runup_model(spec);
-      RunupOptions ro = runup_options(spec);
-      ro.cancel = cancel;
-      if (study_.speed_window_min > 0.0) ro.t_start = studies::time_at_speed(spec.speed, study_.speed_window_min);
-      if (study_.speed_window_max > 0.0) ro.t_end = studies::time_at_speed(spec.speed, study_.speed_window_max);
-      RunupResult r = simulate_runup(*model, ro);
+      studies::RunupRun run = studies::run_runup(study_, overrides(values), cancel);
+      RunupResult& r = run.result;
       if (!r.complete) {
         ev.error = r.message.empty() ? "the run-up stopped early" : r.message;
         ev.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return ev;
       }
       Record rec;
-      rec.sample_rate = ro.sample_rate;
+      rec.sample_rate = run.options.sample_rate;
       rec.time = std::move(r.time);
       rec.speed_hz = r.columns[studies::kind_channel(r.channels, ProbeChannel::Kind::Speed)];
       rec.angle = r.columns[studies::kind_channel(r.channels, ProbeChannel::Kind::Angle)];

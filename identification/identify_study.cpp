@@ -218,19 +218,12 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
   const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   IdentifyStudy s;
-  s.source = file;
   Reader top(root, "", src);
   const toml::table* id = top.table("identify");
   if (!id) top.fail("identify", "missing: an [identify] table with at least model = \"...\"");
   {
     Reader r(*id, "identify", src);
-    const studies::StudyCommon c = studies::read_study_common(r, file);
-    s.name = c.name;
-    s.model = c.model;
-    s.threads = c.threads;
-    s.speed_window_min = c.speed_window_min;
-    s.speed_window_max = c.speed_window_max;
-    s.fixed = c.fixed;
+    static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
     s.method = r.choice("method", {"runup", "response"}, "runup") == "response" ? Method::Response : Method::Runup;
     s.speed_from_measurement = r.choice("speed", {"model", "measured"}, "model") == "measured";
     if (s.speed_from_measurement && s.method != Method::Runup)

@@ -8,20 +8,20 @@
 
 #include "model/rotor/rotor.h"
 #include "optim/response_metric.h"
-#include "studies/sweep.h"
+#include "studies/run_evaluation.h"
 
 namespace turbodyn::optim {
 namespace {
 
 // One case of one design: the run-up metrics through the studies layer, the response metrics from the linear rotor.
-CaseResult evaluate_case(const OptimizationSpec& spec, const studies::StudySpec& runup_study,
+CaseResult evaluate_case(const OptimizationSpec& spec, const std::vector<studies::MetricSpec>& runup_specs,
                          const std::vector<std::size_t>& runup_metrics, const std::vector<Override>& overrides,
                          const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
   CaseResult c;
   c.metrics.assign(spec.metrics.size(), NAN);
   if (!runup_metrics.empty()) {
-    const studies::RunRecord r = studies::evaluate_run(runup_study, overrides, cancel);
+    const studies::RunRecord r = studies::evaluate_run(spec, runup_specs, overrides, cancel);
     for (std::size_t k = 0; k < runup_metrics.size(); ++k) c.metrics[runup_metrics[k]] = r.metrics[k];
     c.status = r.status;
     c.error = r.error;
@@ -49,17 +49,11 @@ bool Evaluation::ok() const {
 }
 
 Evaluator model_evaluator(const OptimizationSpec& spec) {
-  studies::StudySpec runup;
-  runup.source = spec.source;
-  runup.name = spec.name;
-  runup.model = spec.model;
-  runup.base_overrides = spec.base_overrides;
-  runup.speed_window_min = spec.speed_window_min;
-  runup.speed_window_max = spec.speed_window_max;
+  std::vector<studies::MetricSpec> runup;
   std::vector<std::size_t> runup_metrics;
   for (std::size_t m = 0; m < spec.metrics.size(); ++m)
     if (!spec.metrics[m].response()) {
-      runup.metrics.push_back(spec.metrics[m].spec);
+      runup.push_back(spec.metrics[m].spec);
       runup_metrics.push_back(m);
     }
   return [spec, runup, runup_metrics](const std::vector<double>& design, const std::atomic<bool>* cancel) {

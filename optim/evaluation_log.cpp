@@ -30,7 +30,7 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     metrics.push_back({{"name", m.spec.name}, {"kind", m.spec.kind}, {"probe", m.spec.probe},
                        {"window", {m.spec.speed_min, m.spec.speed_max}}, {"threshold", m.spec.threshold},
                        {"points", m.points}});
-  return {{"model", s.model.filename().string()}, {"fixed", overrides_json(s.base_overrides)},
+  return {{"model", s.model.filename().string()}, {"fixed", overrides_json(s.fixed)},
           {"speed_window", {s.speed_window_min, s.speed_window_max}}, {"variables", vars}, {"cases", cases},
           {"metrics", metrics}};
 }

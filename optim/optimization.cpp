@@ -286,7 +286,7 @@ std::string value_text(const Variable& v, double value) { return shown(value, v.
 
 std::vector<Override> run_overrides(const OptimizationSpec& spec, const std::vector<double>& design,
                                     const OperatingCase* operating_case) {
-  std::vector<Override> o = spec.base_overrides;
+  std::vector<Override> o = spec.fixed;
   for (std::size_t i = 0; i < spec.variables.size(); ++i)
     for (const std::string& p : spec.variables[i].paths) o.push_back({p, value_text(spec.variables[i], design[i])});
   if (operating_case) o.insert(o.end(), operating_case->overrides.begin(), operating_case->overrides.end());
@@ -297,19 +297,12 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
   const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   OptimizationSpec s;
-  s.source = file;
   Reader top(root, "", src);
   const toml::table* opt = top.table("optimize");
   if (!opt) top.fail("optimize", "missing: an [optimize] table with at least model = \"...\"");
   {
     Reader r(*opt, "optimize", src);
-    const studies::StudyCommon c = studies::read_study_common(r, file);
-    s.name = c.name;
-    s.model = c.model;
-    s.threads = c.threads;
-    s.speed_window_min = c.speed_window_min;
-    s.speed_window_max = c.speed_window_max;
-    s.base_overrides = c.fixed;
+    static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
     if (const toml::array* probes = r.array("spectrograms"))
       for (const toml::node& n : *probes) {
         if (!n.is_string()) r.fail("spectrograms", "expected probe names such as \"disk.turbine.x\"");

@@ -126,6 +126,7 @@ UnitValue split_value(const std::string& text, const std::string& context) {
 
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file) {
   StudyCommon s;
+  s.source = file;
   s.name = r.text_or("name", file.stem().string());
   const std::string model = r.text_or("model", "");
   if (model.empty()) r.fail_missing("model", "the base model file");
@@ -150,19 +151,12 @@ StudySpec load_study(const std::filesystem::path& file) {
   const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   StudySpec s;
-  s.source = file;
   Reader top(root, "", src);
   const toml::table* study = top.table("study");
   if (!study) top.fail("study", "missing: a [study] table with at least model = \"...\"");
   {
     Reader r(*study, "study", src);
-    const StudyCommon c = read_study_common(r, file);
-    s.name = c.name;
-    s.model = c.model;
-    s.threads = c.threads;
-    s.speed_window_min = c.speed_window_min;
-    s.speed_window_max = c.speed_window_max;
-    s.base_overrides = c.fixed;
+    static_cast<StudyCommon&>(s) = read_study_common(r, file);
     r.finish();
   }
   const toml::table* design = top.table("design");
@@ -225,7 +219,7 @@ StudySpec load_study(const std::filesystem::path& file) {
 }
 
 std::vector<Override> run_overrides(const StudySpec& study, const Design& design, std::size_t i) {
-  std::vector<Override> o = study.base_overrides;
+  std::vector<Override> o = study.fixed;
   for (std::size_t p = 0; p < design.paths.size(); ++p)
     o.push_back({design.paths[p], value_text(design.values[i][p], study.parameter_units[p])});
   return o;

@@ -14,9 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "post/plot.h"
-#include "model/io/run_summary.h"
 #include "model/engine/runup.h"
-#include "model/engine/speed_profile.h"
 #include "studies/metrics.h"
 #include "studies/table.h"
 
@@ -51,56 +49,17 @@ RunRecord from_json(const nlohmann::json& j) {
 
 }  // namespace
 
-RunRecord evaluate_run(const StudySpec& study, const std::vector<Override>& overrides,
-                       const std::atomic<bool>* cancel) {
-  const auto t0 = std::chrono::steady_clock::now();
-  RunRecord rec;
-  rec.metrics.assign(study.metrics.size(), NAN);
-  try {
-    const MachineSpec spec = load_model(study.model, overrides);
-    const auto model = make_runup_model(spec);
-    RunupOptions ro = runup_options(spec);
-    ro.cancel = cancel;
-    if (study.speed_window_min > 0.0) ro.t_start = time_at_speed(spec.speed, study.speed_window_min);
-    if (study.speed_window_max > 0.0) ro.t_end = time_at_speed(spec.speed, study.speed_window_max);
-    const RunupResult r = simulate_runup(*model, ro);
-    const nlohmann::json summary = run_summary(spec, *model, ro, r, overrides);
-    for (std::size_t m = 0; m < study.metrics.size(); ++m)
-      rec.metrics[m] = evaluate_metric(study.metrics[m], r, summary, ro.sample_rate);
-    rec.status = r.complete ? "ok" : (cancel && cancel->load()) ? "cancelled" : "incomplete";
-    rec.error = r.message;
-  } catch (const std::exception& e) {
-    rec.status = "failed";
-    rec.error = e.what();
-  }
-  rec.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return rec;
-}
-
 namespace {
 
 // One run of the design: the run's overrides, evaluate_run.
 RunRecord execute(const StudySpec& study, const Design& design, std::size_t i, const std::atomic<bool>* cancel) {
-  RunRecord rec = evaluate_run(study, run_overrides(study, design, i), cancel);
+  RunRecord rec = evaluate_run(study, study.metrics, run_overrides(study, design, i), cancel);
   rec.index = i;
   rec.parameters = design.values[i];
   return rec;
 }
 
 }  // namespace
-
-double time_at_speed(const SpeedProfile& profile, double speed) {
-  const SpeedFunction f(profile);
-  const double T = f.duration();
-  if (f.speed(0.0) >= speed) return 0.0;
-  double lo = 0.0, hi = T;
-  if (f.speed(hi) < speed) return T;
-  for (int it = 0; it < 200 && hi - lo > 1e-12 * std::max(1.0, T); ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (f.speed(mid) >= speed ? hi : lo) = mid;
-  }
-  return hi;
-}
 
 std::vector<RunRecord> read_runs(const StudySpec& study, const std::filesystem::path& dir) {
   const Design design = make_design(study.design);
@@ -206,7 +165,7 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   std::vector<std::string> metric_units;
   {
     // Units of the metrics need the channel list: build the base model once.
-    const MachineSpec spec = load_model(study.model, study.base_overrides);
+    const MachineSpec spec = load_model(study.model, study.fixed);
     const auto model = make_runup_model(spec);
     for (const MetricSpec& m : study.metrics) metric_units.push_back(metric_unit(m, model->channels()));
   }
