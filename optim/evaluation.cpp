@@ -4,10 +4,9 @@
 #include <chrono>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
-
 #include "model/rotor/rotor.h"
 #include "optim/response_metric.h"
+#include "studies/parallel.h"
 #include "studies/run_evaluation.h"
 
 namespace turbodyn::optim {
@@ -58,7 +57,7 @@ Evaluator model_evaluator(const OptimizationSpec& spec) {
     }
   return [spec, runup, runup_metrics](const std::vector<double>& design, const std::atomic<bool>* cancel) {
     std::vector<CaseResult> out(spec.cases.size());
-    tbb::parallel_for(std::size_t(0), spec.cases.size(), [&](std::size_t c) {
+    studies::parallel_runs(spec.cases.size(), 0, [&](std::size_t c) {
       out[c] = evaluate_case(spec, runup, runup_metrics, run_overrides(spec, design, &spec.cases[c]), cancel);
     });
     return out;

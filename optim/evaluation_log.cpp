@@ -61,47 +61,21 @@ Evaluation evaluation_from_json(const nlohmann::json& j) {
 
 EvaluationLog::EvaluationLog(const nlohmann::json& fp, const std::filesystem::path& file) : file_(file) {
   if (file_.empty()) return;
-  bool fresh = true;
-  if (std::ifstream in(file_); in) {
-    std::string line;
-    bool header = true;
-    while (std::getline(in, line)) {
-      if (line.empty()) continue;
-      nlohmann::json j;
-      try {
-        j = nlohmann::json::parse(line);
-      } catch (const nlohmann::json::parse_error&) {
-        continue;  // cut short by a kill: that design is evaluated again
-      }
-      if (header) {
-        if (j.value("fingerprint", nlohmann::json()) != fp)
-          throw ModelError(file_.string() + ": holds the evaluations of a different problem (model, fixed overrides, "
-                                            "speed window, variables, cases or metrics differ); choose another "
-                                            "output directory or delete the file");
-        header = false;
-        fresh = false;
-        continue;
-      }
-      try {
-        Evaluation e = evaluation_from_json(j);
-        next_id_ = std::max(next_id_, e.id + 1);
-        std::vector<double> key = e.design;
-        cache_[key] = std::make_unique<Evaluation>(std::move(e));
-      } catch (const nlohmann::json::exception&) {
-        continue;
-      }
+  log_ = std::make_unique<studies::RunLog>(
+      file_, nlohmann::json{{"fingerprint", fp}},
+      "holds the evaluations of a different problem (model, fixed overrides, speed window, variables, cases or "
+      "metrics differ); choose another output directory or delete the file");
+  for (const nlohmann::json& j : log_->records()) {
+    try {
+      Evaluation e = evaluation_from_json(j);
+      next_id_ = std::max(next_id_, e.id + 1);
+      std::vector<double> key = e.design;
+      cache_[key] = std::make_unique<Evaluation>(std::move(e));
+    } catch (const nlohmann::json::exception&) {
+      continue;
     }
   }
   loaded_ = cache_.size();
-  std::filesystem::create_directories(file_.parent_path().empty() ? "." : file_.parent_path());
-  out_.open(file_, std::ios::app);
-  if (!out_) throw ModelError(file_.string() + ": cannot write");
-  if (fresh) {
-    // A file without a valid first line (empty, or killed while writing it) starts over.
-    out_.close();
-    out_.open(file_, std::ios::trunc);
-    out_ << nlohmann::json{{"fingerprint", fp}}.dump() << "\n" << std::flush;
-  }
 }
 
 const Evaluation* EvaluationLog::find(const std::vector<double>& design) const {
@@ -113,10 +87,10 @@ const Evaluation* EvaluationLog::find(const std::vector<double>& design) const {
 const Evaluation* EvaluationLog::record(Evaluation e, const nlohmann::json& info) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (const auto it = cache_.find(e.design); it != cache_.end()) return it->second.get();
-  if (out_.is_open()) {
+  if (log_) {
     nlohmann::json line = to_json(e);
     if (info.is_object()) line.update(info);
-    out_ << line.dump() << "\n" << std::flush;  // on disk before anything else can fail
+    log_->append(line);
   }
   std::vector<double> key = e.design;
   auto& slot = cache_[key];

@@ -10,18 +10,20 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "post/plot.h"
 #include "model/engine/runup.h"
 #include "studies/metrics.h"
+#include "studies/parallel.h"
+#include "studies/run_log.h"
 #include "studies/table.h"
 
 namespace turbodyn::studies {
 namespace {
 
 constexpr const char* kRunsFile = "runs.jsonl";
+constexpr const char* kOtherStudy =
+    "holds the runs of a different study (parameters, design or metrics differ); choose another output directory";
 
 // Identifies the study a runs.jsonl belongs to: same parameters, design and metrics.
 nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
@@ -47,9 +49,18 @@ RunRecord from_json(const nlohmann::json& j) {
   return r;
 }
 
-}  // namespace
-
-namespace {
+// The run records among a log's lines; a line that is not one (written by a newer version, say) is passed over.
+std::vector<RunRecord> records(const std::vector<nlohmann::json>& lines) {
+  std::vector<RunRecord> runs;
+  for (const nlohmann::json& j : lines) {
+    try {
+      runs.push_back(from_json(j));
+    } catch (const nlohmann::json::exception&) {
+      continue;
+    }
+  }
+  return runs;
+}
 
 // One run of the design: the run's overrides, evaluate_run.
 RunRecord execute(const StudySpec& study, const Design& design, std::size_t i, const std::atomic<bool>* cancel) {
@@ -62,34 +73,7 @@ RunRecord execute(const StudySpec& study, const Design& design, std::size_t i, c
 }  // namespace
 
 std::vector<RunRecord> read_runs(const StudySpec& study, const std::filesystem::path& dir) {
-  const Design design = make_design(study.design);
-  std::vector<RunRecord> runs;
-  std::ifstream in(dir / kRunsFile);
-  if (!in) return runs;
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(line);
-    } catch (const nlohmann::json::parse_error&) {
-      continue;  // a line cut short by a kill: that run is redone
-    }
-    if (header) {
-      if (j != fingerprint(study, design))
-        throw ModelError((dir / kRunsFile).string() + ": holds the runs of a different study (parameters, design or "
-                                                     "metrics differ); choose another output directory");
-      header = false;
-      continue;
-    }
-    try {
-      runs.push_back(from_json(j));
-    } catch (const nlohmann::json::exception&) {
-      continue;
-    }
-  }
-  return runs;
+  return records(read_run_log(dir / kRunsFile, fingerprint(study, make_design(study.design)), kOtherStudy).records);
 }
 
 SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
@@ -108,25 +92,15 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
   }
 
   std::filesystem::create_directories(options.output_dir);
-  std::vector<RunRecord> previous = read_runs(study, options.output_dir);
+  RunLog log(options.output_dir / kRunsFile, fingerprint(study, design), kOtherStudy);
   std::map<std::size_t, RunRecord> finished;
-  for (RunRecord& r : previous) finished[r.index] = std::move(r);
-  const bool fresh = !std::filesystem::exists(options.output_dir / kRunsFile) ||
-                     std::filesystem::file_size(options.output_dir / kRunsFile) == 0;
-  std::ofstream log(options.output_dir / kRunsFile, std::ios::app);
-  if (!log) throw ModelError((options.output_dir / kRunsFile).string() + ": cannot write");
-  if (fresh) log << fingerprint(study, design).dump() << "\n" << std::flush;
+  for (RunRecord& r : records(log.records())) finished[r.index] = std::move(r);
 
   std::vector<std::size_t> pending;
   for (std::size_t i : shard)
     if (finished.count(i)) ++result.resumed;
     else pending.push_back(i);
 
-  const int threads = options.threads > 0 ? options.threads : study.threads;
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(threads));
   std::mutex mutex;
   SweepProgress progress;
   progress.total = shard.size();
@@ -134,22 +108,20 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
   progress.done = result.resumed;
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t done_here = 0;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 1), [&](const auto& range) {
-    for (std::size_t k = range.begin(); k != range.end(); ++k) {
-      if (options.cancel && options.cancel->load()) return;
-      RunRecord rec = execute(study, design, pending[k], options.cancel);
-      if (rec.status == "cancelled") return;  // not recorded: a resumed study runs it again
-      const std::lock_guard<std::mutex> lock(mutex);
-      log << to_json(rec).dump() << "\n" << std::flush;  // recorded before anything else can fail
-      ++progress.done;
-      ++done_here;
-      if (rec.status == "failed") ++progress.failed;
-      progress.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const std::size_t left = progress.total - progress.done;
-      progress.eta = progress.wall_time / static_cast<double>(done_here) * static_cast<double>(left);
-      finished[rec.index] = std::move(rec);
-      if (options.progress) options.progress(progress);
-    }
+  parallel_runs(pending.size(), run_threads(options.threads, study.threads), [&](std::size_t k) {
+    if (options.cancel && options.cancel->load()) return;
+    RunRecord rec = execute(study, design, pending[k], options.cancel);
+    if (rec.status == "cancelled") return;  // not recorded: a resumed study runs it again
+    const std::lock_guard<std::mutex> lock(mutex);
+    log.append(to_json(rec));
+    ++progress.done;
+    ++done_here;
+    if (rec.status == "failed") ++progress.failed;
+    progress.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::size_t left = progress.total - progress.done;
+    progress.eta = progress.wall_time / static_cast<double>(done_here) * static_cast<double>(left);
+    finished[rec.index] = std::move(rec);
+    if (options.progress) options.progress(progress);
   });
   for (std::size_t i : shard)
     if (finished.count(i)) result.runs.push_back(finished[i]);
