@@ -7,6 +7,7 @@
 #include "model/io/toml_reader.h"
 #include "studies/channels.h"
 #include "studies/study.h"
+#include "studies/study_keys.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -19,12 +20,7 @@ constexpr double kTwoPi = 2.0 * M_PI;
 
 // A number or "<number> <unit>"; the unit is checked by the model loader when the value is applied.
 studies::UnitValue node_value(Reader& r, const std::string& key) {
-  const toml::node* n = r.get(key);
-  const std::string context = r.location(key) + ": " + r.key_path(key);
-  if (n->is_integer()) return {static_cast<double>(*n->value<int64_t>()), ""};
-  if (n->is_floating_point()) return {*n->value<double>(), ""};
-  if (n->is_string()) return studies::split_value(*n->value<std::string>(), context);
-  throw ModelError(context + ": expected a number or a string such as \"15 um\"");
+  return studies::node_value(*r.get(key), studies::key_location(r, key), "15 um");
 }
 
 // A quantity in the unit dimension of a sensor, or absent (0).

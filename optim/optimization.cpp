@@ -10,6 +10,7 @@
 #include "model/io/toml_reader.h"
 #include "studies/channels.h"
 #include "studies/metrics.h"
+#include "studies/study_keys.h"
 #include "studies/table.h"
 
 namespace turbodyn::optim {
@@ -39,15 +40,12 @@ const AlgorithmInfo* info(const std::string& name) {
   return nullptr;
 }
 
-std::string location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
-
 // A number or "<number> <unit>" (unit checked later by the model loader, as in the sweep's study file).
 studies::UnitValue node_value(const toml::node& n, const std::string& context) {
-  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
-  if (n.is_floating_point()) return {*n.value<double>(), ""};
-  if (n.is_string()) return studies::split_value(*n.value<std::string>(), context);
-  throw ModelError(context + ": expected a number or a string such as \"51 um\"");
+  return studies::node_value(n, context, "51 um");
 }
+
+std::string location(const Reader& r, const std::string& key) { return studies::key_location(r, key); }
 
 std::string shown(double v, const std::string& unit) { return studies::value_text(v, unit); }
 
@@ -109,30 +107,7 @@ Metric read_metric(Reader& r, double window_min, double window_max) {
   s.probe = r.text_or("probe", "");
   if (s.probe.empty()) r.fail_missing("probe", "a probe name such as \"disk.compressor.x\" or \"bearing.turbine\"");
   s.name = r.text_or("name", s.kind + "(" + s.probe + ")");
-  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
-  if (!window.empty()) {
-    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
-    s.speed_min = window[0];
-    s.speed_max = window[1];
-  }
-  if (const toml::node* n = r.get("threshold")) {
-    const studies::UnitValue v = node_value(*n, location(r, "threshold"));
-    s.threshold = v.value;
-    if (!v.unit.empty()) {
-      const std::string text = n->value<std::string>().value_or("");
-      try {
-        s.threshold = parse_quantity(text, dim::length);
-      } catch (const UnitError&) {
-        try {
-          s.threshold = parse_quantity(text, dim::force);
-        } catch (const UnitError& e) {
-          r.fail("threshold", std::string("expected a length or a force: ") + e.what());
-        }
-      }
-    }
-  }
-  if (s.kind == "subsync_onset_speed" && !(s.threshold > 0.0))
-    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+  studies::read_metric_window(r, s, "51 um");
   m.points = static_cast<int>(r.integer_or("points", 200, 3));
   if (m.response() && s.speed_max <= 0.0) {
     if (window_max <= 0.0)

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "model/io/toml_reader.h"
+#include "studies/study_keys.h"
 #include "studies/table.h"
 
 namespace turbodyn::studies {
@@ -20,15 +21,6 @@ std::string trim(std::string s) {
   return s;
 }
 
-// A number or "<number> <unit>" from a TOML node; the unit is checked later by the model loader.
-UnitValue node_value(const toml::node& n, const std::string& context) {
-  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
-  if (n.is_floating_point()) return {*n.value<double>(), ""};
-  if (n.is_string()) return split_value(*n.value<std::string>(), context);
-  throw ModelError(context + ": expected a number or a string such as \"580 mg*mm\"");
-}
-
-std::string location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
 
 // Reads one [[parameters]] entry into a Parameter and the unit it is written in.
 Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
@@ -39,7 +31,7 @@ Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
   unit.clear();
   bool unit_set = false;
   auto take = [&](const toml::node& n, const std::string& key) {
-    const UnitValue v = node_value(n, location(r, key));
+    const UnitValue v = node_value(n, key_location(r, key), "580 mg*mm");
     if (unit_set && v.unit != unit)
       r.fail(key, "is written in '" + v.unit + "' but the parameter's other values in '" + unit +
                       "'; write all values of a parameter in one unit");
@@ -83,6 +75,33 @@ MetricSpec read_metric(Reader& r) {
   m.probe = r.text_or("probe", "");
   if (m.probe.empty()) r.fail("probe", "missing required key (a probe name such as \"disk.compressor.x\")");
   m.name = r.text_or("name", m.kind + "(" + m.probe + ")");
+  read_metric_window(r, m, "580 mg*mm");
+  r.finish();
+  return m;
+}
+
+}  // namespace
+
+UnitValue split_value(const std::string& text, const std::string& context) {
+  const std::string s = trim(text);
+  double v = 0.0;
+  const char* begin = s.data() + (s.size() > 0 && s[0] == '+' ? 1 : 0);
+  const auto res = std::from_chars(begin, s.data() + s.size(), v);
+  if (res.ec != std::errc() || !std::isfinite(v))
+    throw ModelError(context + ": '" + text + "' does not start with a number");
+  return {v, trim(std::string(res.ptr, s.data() + s.size()))};
+}
+
+UnitValue node_value(const toml::node& n, const std::string& context, const std::string& example) {
+  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
+  if (n.is_floating_point()) return {*n.value<double>(), ""};
+  if (n.is_string()) return split_value(*n.value<std::string>(), context);
+  throw ModelError(context + ": expected a number or a string such as \"" + example + "\"");
+}
+
+std::string key_location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
+
+void read_metric_window(Reader& r, MetricSpec& m, const std::string& example) {
   const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
   if (!window.empty()) {
     if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
@@ -91,7 +110,7 @@ MetricSpec read_metric(Reader& r) {
   }
   if (const toml::node* n = r.get("threshold")) {
     // The unit follows the probe (m or N): read either.
-    const UnitValue v = node_value(*n, location(r, "threshold"));
+    const UnitValue v = node_value(*n, key_location(r, "threshold"), example);
     m.threshold = v.value;
     if (!v.unit.empty()) {
       const std::string text = n->value<std::string>().value_or("");
@@ -108,20 +127,6 @@ MetricSpec read_metric(Reader& r) {
   }
   if (m.kind == "subsync_onset_speed" && !(m.threshold > 0.0))
     r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
-  r.finish();
-  return m;
-}
-
-}  // namespace
-
-UnitValue split_value(const std::string& text, const std::string& context) {
-  const std::string s = trim(text);
-  double v = 0.0;
-  const char* begin = s.data() + (s.size() > 0 && s[0] == '+' ? 1 : 0);
-  const auto res = std::from_chars(begin, s.data() + s.size(), v);
-  if (res.ec != std::errc() || !std::isfinite(v))
-    throw ModelError(context + ": '" + text + "' does not start with a number");
-  return {v, trim(std::string(res.ptr, s.data() + s.size()))};
 }
 
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file) {
@@ -179,7 +184,7 @@ StudySpec load_study(const std::filesystem::path& file) {
       for (const toml::node& row : *table) {
         if (!row.is_array()) r.fail("table", "expected rows [[v1, v2, ...], ...]");
         std::vector<double> values;
-        for (const toml::node& v : *row.as_array()) values.push_back(node_value(v, location(r, "table")).value);
+        for (const toml::node& v : *row.as_array()) values.push_back(node_value(v, key_location(r, "table"), "580 mg*mm").value);
         s.design.table.push_back(values);
       }
     }
