@@ -6,6 +6,7 @@
 
 #include <toml++/toml.h>
 
+#include "model/io/model_file.h"  // before toml_reader.h, which uses its closest_match without including it
 #include "model/io/toml_reader.h"
 #include "studies/study.h"
 
