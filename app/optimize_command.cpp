@@ -189,7 +189,7 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
            << "objective " << short_number(best.assessment.objective)
            << (r.best_feasible ? ", all constraints satisfied" : ", CONSTRAINTS VIOLATED (no feasible design found)") << "\n"
            << "design: " << design_text(spec, best.evaluation.design) << "\n";
-    if (!spec.base_overrides.empty()) header << "with the study's fixed overrides applied\n";
+    if (!spec.fixed.empty()) header << "with the study's fixed overrides applied\n";
     for (const optim::OperatingCase& c : spec.cases)
       if (!c.overrides.empty()) {
         header << "not applied: the overrides of operating case '" << c.name << "':";

@@ -1,6 +1,5 @@
 #include "identification/evaluation.h"
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -8,24 +7,14 @@
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
-#include "studies/sweep.h"
+#include "studies/channels.h"
+#include "studies/run_evaluation.h"
+#include "studies/table.h"
 
 namespace turbodyn::identification {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
-
-int find_channel(const std::vector<ProbeChannel>& channels, const std::string& name) {
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    if (channels[c].name == name) return static_cast<int>(c);
-  return -1;
-}
-
-int kind_channel(const std::vector<ProbeChannel>& channels, ProbeChannel::Kind k) {
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    if (channels[c].kind == k) return static_cast<int>(c);
-  return -1;
-}
 
 // Steady-state response method: where a probe sits in the rotor's DOFs or bearing forces.
 struct ResponseProbe {
@@ -60,17 +49,8 @@ std::vector<std::string> response_probe_names(const Rotor& rotor) {
 
 void check_probe(const IdentifyStudy& s, std::size_t i, bool found, const std::vector<std::string>& names) {
   if (found) return;
-  const SensorSpec& sensor = s.measurement.sensors[i];
-  std::string msg = s.source.string() + ": measurement.sensors[" + std::to_string(i) + "].probe: the model has no probe '" +
-                    sensor.probe + "'";
-  const std::string hint = closest_match(sensor.probe, names);
-  if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
-  else {
-    msg += " (probes:";
-    for (const std::string& n : names) msg += " " + n;
-    msg += ")";
-  }
-  throw ModelError(msg);
+  throw ModelError(s.source.string() + ": measurement.sensors[" + std::to_string(i) + "].probe: " +
+                   studies::unknown_probe(s.measurement.sensors[i].probe, names));
 }
 
 // Second derivative by central differences (one-sided at the ends): acceleration from displacement.
@@ -86,13 +66,7 @@ std::vector<double> second_difference(const std::vector<double>& x, double fs) {
 
 }  // namespace
 
-std::string format_value(double value, const std::string& unit) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, value);
-  std::string v(buf, res.ptr);
-  if (!unit.empty()) v += " " + unit;
-  return v;
-}
+std::string format_value(double value, const std::string& unit) { return studies::value_text(value, unit); }
 
 Evaluator::Evaluator(const IdentifyStudy& study) : study_(study) {
   with_phase_ = false;
@@ -126,10 +100,9 @@ Evaluator::Evaluator(const IdentifyStudy& study) : study_(study) {
     }
   } else {
     const auto model = make_runup_model(spec);
-    std::vector<std::string> names;
-    for (const ProbeChannel& c : model->channels()) names.push_back(c.name);
+    const std::vector<std::string> names = studies::channel_names(model->channels());
     for (std::size_t i = 0; i < study.measurement.sensors.size(); ++i)
-      check_probe(study, i, find_channel(model->channels(), study.measurement.sensors[i].probe) >= 0, names);
+      check_probe(study, i, studies::find_channel(model->channels(), study.measurement.sensors[i].probe) >= 0, names);
   }
 }
 
@@ -146,10 +119,9 @@ Evaluation Evaluator::evaluate(const std::vector<double>& values, bool keep_reco
   const auto t0 = std::chrono::steady_clock::now();
   Evaluation ev;
   try {
-    const MachineSpec spec = load_model(study_.model, overrides(values));
     const std::vector<SensorSpec>& sensors = study_.measurement.sensors;
     if (study_.method == Method::Response) {
-      const Rotor rotor = build_rotor(spec);
+      const Rotor rotor = build_rotor(load_model(study_.model, overrides(values)));
       std::vector<ResponseProbe> probes;
       for (const SensorSpec& s : sensors) probes.push_back(response_probe(rotor, s.probe));
       auto response = [&](double speed_hz) {
@@ -165,24 +137,20 @@ Evaluation Evaluator::evaluate(const std::vector<double>& values, bool keep_reco
       };
       ev.features = features_from_response(study_.features, response, with_phase_);
     } else {
-      const auto model = make_runup_model(spec);
-      RunupOptions ro = runup_options(spec);
-      ro.cancel = cancel;
-      if (study_.speed_window_min > 0.0) ro.t_start = studies::time_at_speed(spec.speed, study_.speed_window_min);
-      if (study_.speed_window_max > 0.0) ro.t_end = studies::time_at_speed(spec.speed, study_.speed_window_max);
-      RunupResult r = simulate_runup(*model, ro);
+      studies::RunupRun run = studies::run_runup(study_, overrides(values), cancel);
+      RunupResult& r = run.result;
       if (!r.complete) {
         ev.error = r.message.empty() ? "the run-up stopped early" : r.message;
         ev.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return ev;
       }
       Record rec;
-      rec.sample_rate = ro.sample_rate;
+      rec.sample_rate = run.options.sample_rate;
       rec.time = std::move(r.time);
-      rec.speed_hz = r.columns[kind_channel(r.channels, ProbeChannel::Kind::Speed)];
-      rec.angle = r.columns[kind_channel(r.channels, ProbeChannel::Kind::Angle)];
+      rec.speed_hz = r.columns[studies::kind_channel(r.channels, ProbeChannel::Kind::Speed)];
+      rec.angle = r.columns[studies::kind_channel(r.channels, ProbeChannel::Kind::Angle)];
       for (const SensorSpec& s : sensors) {
-        std::vector<double> x = r.columns[find_channel(r.channels, s.probe)];
+        std::vector<double> x = r.columns[studies::find_channel(r.channels, s.probe)];
         if (s.quantity == Quantity::Acceleration) x = second_difference(x, rec.sample_rate);
         rec.channels.push_back(std::move(x));
       }

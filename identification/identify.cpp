@@ -11,8 +11,8 @@
 #include <thread>
 
 #include <ceres/ceres.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
+
+#include "studies/parallel.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -47,7 +47,7 @@ class Problem {
  public:
   Problem(const IdentifyStudy& s, const Evaluator& ev, const Residuals& res, const ParameterScaling& sc, int threads,
           const std::atomic<bool>* cancel)
-      : study_(s), evaluator_(ev), residuals_(res), scaling_(sc), arena_(threads), cancel_(cancel) {}
+      : study_(s), evaluator_(ev), residuals_(res), scaling_(sc), threads_(threads), cancel_(cancel) {}
 
   // Residuals at every point (nullopt where the model run failed); runs the points not cached yet in parallel.
   std::vector<std::optional<std::vector<double>>> residuals(const std::vector<std::vector<double>>& points) {
@@ -64,17 +64,15 @@ class Problem {
     }
     std::vector<std::optional<std::vector<double>>> fresh(todo.size());
     std::vector<std::string> errors(todo.size());
-    arena_.execute([&] {
-      tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t k) {
-        const Evaluation ev = evaluator_.evaluate(scaling_.values(points[todo[k]].data()), false, cancel_);
-        if (!ev.ok) {
-          errors[k] = ev.error;
-          return;
-        }
-        std::vector<double> r(residuals_.size());
-        if (residuals_.evaluate(ev.features, r.data())) fresh[k] = std::move(r);
-        else errors[k] = "a model feature is undefined (NaN) at one of the compared speeds";
-      });
+    studies::parallel_runs(todo.size(), threads_, [&](std::size_t k) {
+      const Evaluation ev = evaluator_.evaluate(scaling_.values(points[todo[k]].data()), false, cancel_);
+      if (!ev.ok) {
+        errors[k] = ev.error;
+        return;
+      }
+      std::vector<double> r(residuals_.size());
+      if (residuals_.evaluate(ev.features, r.data())) fresh[k] = std::move(r);
+      else errors[k] = "a model feature is undefined (NaN) at one of the compared speeds";
     });
     std::lock_guard<std::mutex> lock(mutex_);
     for (std::size_t k = 0; k < todo.size(); ++k) {
@@ -89,14 +87,14 @@ class Problem {
 
   std::size_t runs() const { return runs_; }
   const std::string& last_error() const { return last_error_; }
-  int threads() const { return arena_.max_concurrency(); }
+  int threads() const { return threads_; }
 
  private:
   const IdentifyStudy& study_;
   const Evaluator& evaluator_;
   const Residuals& residuals_;
   const ParameterScaling& scaling_;
-  tbb::task_arena arena_;
+  int threads_;
   const std::atomic<bool>* cancel_;
   std::mutex mutex_;
   std::map<std::vector<double>, std::optional<std::vector<double>>> cache_;
@@ -263,8 +261,7 @@ IdentifyResult identify(const IdentifyStudy& study, const IdentifyOptions& optio
   }
   const Evaluator evaluator(run_study);
   const ParameterScaling scaling(study);
-  int threads = options.threads > 0 ? options.threads : study.threads;
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = studies::run_threads(options.threads, study.threads);
   out.threads = threads;
   Problem problem(study, evaluator, residuals, scaling, threads, options.cancel);
 
@@ -360,11 +357,9 @@ IdentifyResult identify(const IdentifyStudy& study, const IdentifyOptions& optio
 
   // Initial and fitted model, once more with their signals kept (for the pictures); in parallel.
   Evaluation initial, fitted;
-  tbb::task_arena(std::min(threads, 2)).execute([&] {
-    tbb::parallel_for(0, 2, [&](int k) {
-      if (k == 0) initial = evaluator.evaluate(out.start, true);
-      else fitted = evaluator.evaluate(out.estimate, true);
-    });
+  studies::parallel_runs(2, std::min(threads, 2), [&](std::size_t k) {
+    if (k == 0) initial = evaluator.evaluate(out.start, true);
+    else fitted = evaluator.evaluate(out.estimate, true);
   });
   if (!fitted.ok) throw ModelError("the model fails at the estimate: " + fitted.error);
   out.initial_features = initial.ok ? initial.features : std::vector<FeatureTrack>{};

@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "model/io/toml_reader.h"
+#include "studies/channels.h"
 #include "studies/study.h"
+#include "studies/study_keys.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -18,12 +20,7 @@ constexpr double kTwoPi = 2.0 * M_PI;
 
 // A number or "<number> <unit>"; the unit is checked by the model loader when the value is applied.
 studies::UnitValue node_value(Reader& r, const std::string& key) {
-  const toml::node* n = r.get(key);
-  const std::string context = r.location(key) + ": " + r.key_path(key);
-  if (n->is_integer()) return {static_cast<double>(*n->value<int64_t>()), ""};
-  if (n->is_floating_point()) return {*n->value<double>(), ""};
-  if (n->is_string()) return studies::split_value(*n->value<std::string>(), context);
-  throw ModelError(context + ": expected a number or a string such as \"15 um\"");
+  return studies::node_value(*r.get(key), studies::key_location(r, key), "15 um");
 }
 
 // A quantity in the unit dimension of a sensor, or absent (0).
@@ -111,10 +108,7 @@ FeatureSpec read_feature(Reader& r, const MeasurementSpec& m, Method method) {
       found = true;
     }
   }
-  if (!found) {
-    const std::string hint = closest_match(sensor, names);
-    r.fail("sensor", "no sensor named '" + sensor + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
-  }
+  if (!found) r.fail("sensor", "no sensor named '" + sensor + "'" + studies::did_you_mean(sensor, names));
   f.name = r.text_or("name", kind + "_" + sensor);
   const Dimension d = dimension_of(m.sensors[f.sensor].quantity);
   f.weight = r.quantity_or("weight", dim::dimensionless, 1.0, Bound::Positive);
@@ -220,19 +214,12 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
   const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   IdentifyStudy s;
-  s.source = file;
   Reader top(root, "", src);
   const toml::table* id = top.table("identify");
   if (!id) top.fail("identify", "missing: an [identify] table with at least model = \"...\"");
   {
     Reader r(*id, "identify", src);
-    const studies::StudyCommon c = studies::read_study_common(r, file);
-    s.name = c.name;
-    s.model = c.model;
-    s.threads = c.threads;
-    s.speed_window_min = c.speed_window_min;
-    s.speed_window_max = c.speed_window_max;
-    s.fixed = c.fixed;
+    static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
     s.method = r.choice("method", {"runup", "response"}, "runup") == "response" ? Method::Response : Method::Runup;
     s.speed_from_measurement = r.choice("speed", {"model", "measured"}, "model") == "measured";
     if (s.speed_from_measurement && s.method != Method::Runup)

@@ -11,6 +11,7 @@
 #include "identification/features.h"
 #include "identification/measurement.h"
 #include "model/io/model_file.h"
+#include "studies/study.h"
 
 namespace turbodyn::identification {
 
@@ -49,16 +50,10 @@ struct SolverSpec {
   double gradient_tolerance = 1e-10;
 };
 
-struct IdentifyStudy {
-  std::filesystem::path source;      ///< the study file
-  std::string name;
-  std::filesystem::path model;       ///< base model file (relative to the study file)
+/// The fixed overrides come before the parameters'.
+struct IdentifyStudy : studies::StudyCommon {
   Method method = Method::Runup;
-  std::vector<Override> fixed;       ///< overrides applied to every model run before the parameters
   bool speed_from_measurement = false;  ///< run-ups follow the measured speed (a table), not the model's [speed]
-  double speed_window_min = 0.0;     ///< rad/s: run-ups start where the ramp reaches this speed (0 = start)
-  double speed_window_max = 0.0;     ///< rad/s: and stop here (0 = end)
-  int threads = 0;                   ///< parallel model runs, 0 = all cores
   MeasurementSpec measurement;
   ProcessingSpec processing;
   std::vector<FeatureSpec> features;

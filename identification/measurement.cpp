@@ -9,6 +9,7 @@
 
 #include "model/io/model_file.h"
 #include "model/io/timeseries_file.h"
+#include "studies/channels.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -42,9 +43,7 @@ struct Table {
     if (c >= 0) return static_cast<std::size_t>(c);
     std::string msg = file + ": no column '" + name + "' (" + role + "); the file has:";
     for (const std::string& n : names) msg += " '" + n + "'";
-    const std::string hint = closest_match(name, names);
-    if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
-    throw ModelError(msg);
+    throw ModelError(msg + studies::did_you_mean(name, names));
   }
 };
 

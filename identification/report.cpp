@@ -8,20 +8,14 @@
 #include "post/plot.h"
 #include "post/run_pictures.h"
 #include "post/signal.h"
+#include "studies/table.h"
 
 namespace turbodyn::identification {
 namespace {
 
+using studies::json_number;
+
 constexpr double kHzToRpm = 60.0;
-
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string csv_number(double v) {
-  if (!std::isfinite(v)) return "";
-  std::ostringstream os;
-  os << std::setprecision(10) << v;
-  return os.str();
-}
 
 // Display scaling of a sensor's quantity.
 using post::Display;
@@ -97,13 +91,13 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
                      {"lower", p.lower},
                      {"upper", p.upper},
                      {"estimate", r.estimate[i]},
-                     {"std_dev", number(r.std_dev[i])},
-                     {"relative_std_dev", number(r.std_dev[i] / std::abs(r.estimate[i]))},
+                     {"std_dev", json_number(r.std_dev[i])},
+                     {"relative_std_dev", json_number(r.std_dev[i] / std::abs(r.estimate[i]))},
                      {"at_bound", r.estimate[i] <= p.lower || r.estimate[i] >= p.upper}};
     if (std::isfinite(p.truth)) {
       j["true"] = p.truth;
       j["error"] = r.estimate[i] - p.truth;
-      j["error_in_std_devs"] = number((r.estimate[i] - p.truth) / r.std_dev[i]);
+      j["error_in_std_devs"] = json_number((r.estimate[i] - p.truth) / r.std_dev[i]);
     }
     params.push_back(j);
   }
@@ -111,7 +105,7 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
     nlohmann::json a = nlohmann::json::array();
     for (Eigen::Index i = 0; i < m.rows(); ++i) {
       nlohmann::json row = nlohmann::json::array();
-      for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(number(m(i, j)));
+      for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(json_number(m(i, j)));
       a.push_back(row);
     }
     return a;
@@ -135,7 +129,7 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
           {"covariance_message", r.covariance_message},
           {"covariance", matrix(r.covariance)},
           {"correlation", matrix(r.correlation)},
-          {"residuals", {{"count", r.n_residuals}, {"variance", number(r.residual_variance)}, {"rms", number(rms)}}},
+          {"residuals", {{"count", r.n_residuals}, {"variance", json_number(r.residual_variance)}, {"rms", json_number(rms)}}},
           {"cost", {{"initial", r.initial_cost}, {"final", r.final_cost}}},
           {"iterations", r.iterations},
           {"converged", r.converged},
@@ -190,8 +184,8 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
     files.push_back("fitted.toml");
   }
   {
-    std::ofstream out(dir / "features.csv");
-    out << "feature,kind,sensor,quantity,speed_rpm,measured,initial,fitted,unit\n";
+    studies::CsvWriter out(dir / "features.csv");
+    out.texts({"feature", "kind", "sensor", "quantity", "speed_rpm", "measured", "initial", "fitted", "unit"}).end_row();
     for (std::size_t f = 0; f < study.features.size(); ++f) {
       const FeatureSpec& fs = study.features[f];
       const SensorSpec& sensor = study.measurement.sensors[fs.sensor];
@@ -199,8 +193,8 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       const FeatureTrack* i0 = r.initial_features.empty() ? nullptr : &r.initial_features[f];
       const FeatureTrack& fi = r.fitted_features[f];
       auto row = [&](const std::string& q, double speed_hz, double a, double b, double c, const std::string& unit) {
-        out << fs.name << ',' << to_string(fs.kind) << ',' << sensor.name << ',' << q << ',' << csv_number(speed_hz * kHzToRpm)
-            << ',' << csv_number(a) << ',' << csv_number(b) << ',' << csv_number(c) << ',' << unit << '\n';
+        out.text(fs.name).text(to_string(fs.kind)).text(sensor.name).text(q).number(speed_hz * kHzToRpm);
+        out.number(a).number(b).number(c).text(unit).end_row();
       };
       const double nan = NAN;
       if (fs.kind == FeatureKind::Resonance) {

@@ -4,24 +4,23 @@
 #include <chrono>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
-
 #include "model/rotor/rotor.h"
 #include "optim/response_metric.h"
-#include "studies/sweep.h"
+#include "studies/parallel.h"
+#include "studies/run_evaluation.h"
 
 namespace turbodyn::optim {
 namespace {
 
 // One case of one design: the run-up metrics through the studies layer, the response metrics from the linear rotor.
-CaseResult evaluate_case(const OptimizationSpec& spec, const studies::StudySpec& runup_study,
+CaseResult evaluate_case(const OptimizationSpec& spec, const std::vector<studies::MetricSpec>& runup_specs,
                          const std::vector<std::size_t>& runup_metrics, const std::vector<Override>& overrides,
                          const std::atomic<bool>* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
   CaseResult c;
   c.metrics.assign(spec.metrics.size(), NAN);
   if (!runup_metrics.empty()) {
-    const studies::RunRecord r = studies::evaluate_run(runup_study, overrides, cancel);
+    const studies::RunRecord r = studies::evaluate_run(spec, runup_specs, overrides, cancel);
     for (std::size_t k = 0; k < runup_metrics.size(); ++k) c.metrics[runup_metrics[k]] = r.metrics[k];
     c.status = r.status;
     c.error = r.error;
@@ -49,22 +48,16 @@ bool Evaluation::ok() const {
 }
 
 Evaluator model_evaluator(const OptimizationSpec& spec) {
-  studies::StudySpec runup;
-  runup.source = spec.source;
-  runup.name = spec.name;
-  runup.model = spec.model;
-  runup.base_overrides = spec.base_overrides;
-  runup.speed_window_min = spec.speed_window_min;
-  runup.speed_window_max = spec.speed_window_max;
+  std::vector<studies::MetricSpec> runup;
   std::vector<std::size_t> runup_metrics;
   for (std::size_t m = 0; m < spec.metrics.size(); ++m)
     if (!spec.metrics[m].response()) {
-      runup.metrics.push_back(spec.metrics[m].spec);
+      runup.push_back(spec.metrics[m].spec);
       runup_metrics.push_back(m);
     }
   return [spec, runup, runup_metrics](const std::vector<double>& design, const std::atomic<bool>* cancel) {
     std::vector<CaseResult> out(spec.cases.size());
-    tbb::parallel_for(std::size_t(0), spec.cases.size(), [&](std::size_t c) {
+    studies::parallel_runs(spec.cases.size(), 0, [&](std::size_t c) {
       out[c] = evaluate_case(spec, runup, runup_metrics, run_overrides(spec, design, &spec.cases[c]), cancel);
     });
     return out;

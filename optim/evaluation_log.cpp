@@ -2,20 +2,13 @@
 
 #include <cmath>
 
+#include "studies/table.h"
+
 namespace turbodyn::optim {
 namespace {
 
-nlohmann::json numbers(const std::vector<double>& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (double x : v) a.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr));
-  return a;
-}
-
-std::vector<double> from_numbers(const nlohmann::json& a) {
-  std::vector<double> v;
-  for (const auto& x : a) v.push_back(x.is_null() ? NAN : x.get<double>());
-  return v;
-}
+using studies::from_json_numbers;
+using studies::json_numbers;
 
 nlohmann::json overrides_json(const std::vector<Override>& o) {
   nlohmann::json a = nlohmann::json::array();
@@ -37,7 +30,7 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     metrics.push_back({{"name", m.spec.name}, {"kind", m.spec.kind}, {"probe", m.spec.probe},
                        {"window", {m.spec.speed_min, m.spec.speed_max}}, {"threshold", m.spec.threshold},
                        {"points", m.points}});
-  return {{"model", s.model.filename().string()}, {"fixed", overrides_json(s.base_overrides)},
+  return {{"model", s.model.filename().string()}, {"fixed", overrides_json(s.fixed)},
           {"speed_window", {s.speed_window_min, s.speed_window_max}}, {"variables", vars}, {"cases", cases},
           {"metrics", metrics}};
 }
@@ -45,18 +38,18 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
 nlohmann::json to_json(const Evaluation& e) {
   nlohmann::json cases = nlohmann::json::array();
   for (const CaseResult& c : e.cases)
-    cases.push_back({{"metrics", numbers(c.metrics)}, {"status", c.status}, {"error", c.error},
+    cases.push_back({{"metrics", json_numbers(c.metrics)}, {"status", c.status}, {"error", c.error},
                      {"wall_time_s", c.wall_time}});
-  return {{"id", e.id}, {"design", numbers(e.design)}, {"cases", cases}, {"wall_time_s", e.wall_time}};
+  return {{"id", e.id}, {"design", json_numbers(e.design)}, {"cases", cases}, {"wall_time_s", e.wall_time}};
 }
 
 Evaluation evaluation_from_json(const nlohmann::json& j) {
   Evaluation e;
   e.id = j.at("id").get<std::size_t>();
-  e.design = from_numbers(j.at("design"));
+  e.design = from_json_numbers(j.at("design"));
   for (const auto& c : j.at("cases")) {
     CaseResult r;
-    r.metrics = from_numbers(c.at("metrics"));
+    r.metrics = from_json_numbers(c.at("metrics"));
     r.status = c.at("status").get<std::string>();
     r.error = c.value("error", "");
     r.wall_time = c.value("wall_time_s", 0.0);
@@ -68,47 +61,21 @@ Evaluation evaluation_from_json(const nlohmann::json& j) {
 
 EvaluationLog::EvaluationLog(const nlohmann::json& fp, const std::filesystem::path& file) : file_(file) {
   if (file_.empty()) return;
-  bool fresh = true;
-  if (std::ifstream in(file_); in) {
-    std::string line;
-    bool header = true;
-    while (std::getline(in, line)) {
-      if (line.empty()) continue;
-      nlohmann::json j;
-      try {
-        j = nlohmann::json::parse(line);
-      } catch (const nlohmann::json::parse_error&) {
-        continue;  // cut short by a kill: that design is evaluated again
-      }
-      if (header) {
-        if (j.value("fingerprint", nlohmann::json()) != fp)
-          throw ModelError(file_.string() + ": holds the evaluations of a different problem (model, fixed overrides, "
-                                            "speed window, variables, cases or metrics differ); choose another "
-                                            "output directory or delete the file");
-        header = false;
-        fresh = false;
-        continue;
-      }
-      try {
-        Evaluation e = evaluation_from_json(j);
-        next_id_ = std::max(next_id_, e.id + 1);
-        std::vector<double> key = e.design;
-        cache_[key] = std::make_unique<Evaluation>(std::move(e));
-      } catch (const nlohmann::json::exception&) {
-        continue;
-      }
+  log_ = std::make_unique<studies::RunLog>(
+      file_, nlohmann::json{{"fingerprint", fp}},
+      "holds the evaluations of a different problem (model, fixed overrides, speed window, variables, cases or "
+      "metrics differ); choose another output directory or delete the file");
+  for (const nlohmann::json& j : log_->records()) {
+    try {
+      Evaluation e = evaluation_from_json(j);
+      next_id_ = std::max(next_id_, e.id + 1);
+      std::vector<double> key = e.design;
+      cache_[key] = std::make_unique<Evaluation>(std::move(e));
+    } catch (const nlohmann::json::exception&) {
+      continue;
     }
   }
   loaded_ = cache_.size();
-  std::filesystem::create_directories(file_.parent_path().empty() ? "." : file_.parent_path());
-  out_.open(file_, std::ios::app);
-  if (!out_) throw ModelError(file_.string() + ": cannot write");
-  if (fresh) {
-    // A file without a valid first line (empty, or killed while writing it) starts over.
-    out_.close();
-    out_.open(file_, std::ios::trunc);
-    out_ << nlohmann::json{{"fingerprint", fp}}.dump() << "\n" << std::flush;
-  }
 }
 
 const Evaluation* EvaluationLog::find(const std::vector<double>& design) const {
@@ -120,10 +87,10 @@ const Evaluation* EvaluationLog::find(const std::vector<double>& design) const {
 const Evaluation* EvaluationLog::record(Evaluation e, const nlohmann::json& info) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (const auto it = cache_.find(e.design); it != cache_.end()) return it->second.get();
-  if (out_.is_open()) {
+  if (log_) {
     nlohmann::json line = to_json(e);
     if (info.is_object()) line.update(info);
-    out_ << line.dump() << "\n" << std::flush;  // on disk before anything else can fail
+    log_->append(line);
   }
   std::vector<double> key = e.design;
   auto& slot = cache_[key];

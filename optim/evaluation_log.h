@@ -4,14 +4,15 @@
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "optim/evaluation.h"
+#include "studies/run_log.h"
 
 namespace turbodyn::optim {
 
@@ -47,7 +48,7 @@ class EvaluationLog {
   mutable std::mutex mutex_;
   std::map<std::vector<double>, std::unique_ptr<Evaluation>> cache_;
   std::filesystem::path file_;
-  std::ofstream out_;
+  std::unique_ptr<studies::RunLog> log_;
   std::size_t next_id_ = 0, loaded_ = 0;
 };
 

@@ -1,7 +1,6 @@
 #include "optim/optimization.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -9,7 +8,10 @@
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
 #include "model/io/toml_reader.h"
+#include "studies/channels.h"
 #include "studies/metrics.h"
+#include "studies/study_keys.h"
+#include "studies/table.h"
 
 namespace turbodyn::optim {
 namespace {
@@ -38,23 +40,14 @@ const AlgorithmInfo* info(const std::string& name) {
   return nullptr;
 }
 
-std::string location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
-
 // A number or "<number> <unit>" (unit checked later by the model loader, as in the sweep's study file).
 studies::UnitValue node_value(const toml::node& n, const std::string& context) {
-  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
-  if (n.is_floating_point()) return {*n.value<double>(), ""};
-  if (n.is_string()) return studies::split_value(*n.value<std::string>(), context);
-  throw ModelError(context + ": expected a number or a string such as \"51 um\"");
+  return studies::node_value(n, context, "51 um");
 }
 
-std::string number_text(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
+std::string location(const Reader& r, const std::string& key) { return studies::key_location(r, key); }
 
-std::string shown(double v, const std::string& unit) { return number_text(v) + (unit.empty() ? "" : " " + unit); }
+std::string shown(double v, const std::string& unit) { return studies::value_text(v, unit); }
 
 Variable read_variable(Reader& r) {
   Variable v;
@@ -114,30 +107,7 @@ Metric read_metric(Reader& r, double window_min, double window_max) {
   s.probe = r.text_or("probe", "");
   if (s.probe.empty()) r.fail_missing("probe", "a probe name such as \"disk.compressor.x\" or \"bearing.turbine\"");
   s.name = r.text_or("name", s.kind + "(" + s.probe + ")");
-  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
-  if (!window.empty()) {
-    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
-    s.speed_min = window[0];
-    s.speed_max = window[1];
-  }
-  if (const toml::node* n = r.get("threshold")) {
-    const studies::UnitValue v = node_value(*n, location(r, "threshold"));
-    s.threshold = v.value;
-    if (!v.unit.empty()) {
-      const std::string text = n->value<std::string>().value_or("");
-      try {
-        s.threshold = parse_quantity(text, dim::length);
-      } catch (const UnitError&) {
-        try {
-          s.threshold = parse_quantity(text, dim::force);
-        } catch (const UnitError& e) {
-          r.fail("threshold", std::string("expected a length or a force: ") + e.what());
-        }
-      }
-    }
-  }
-  if (s.kind == "subsync_onset_speed" && !(s.threshold > 0.0))
-    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+  studies::read_metric_window(r, s, "51 um");
   m.points = static_cast<int>(r.integer_or("points", 200, 3));
   if (m.response() && s.speed_max <= 0.0) {
     if (window_max <= 0.0)
@@ -157,10 +127,9 @@ std::size_t metric_index(Reader& r, const std::string& key, const std::vector<Me
     if (metrics[i].spec.name == name) return i;
     names.push_back(metrics[i].spec.name);
   }
-  const std::string hint = closest_match(name, names);
   std::string known;
   for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-  r.fail(key, "unknown metric '" + name + "'" + (hint.empty() ? " (metrics: " + known + ")" : "; did you mean '" + hint + "'?"));
+  r.fail(key, "unknown metric '" + name + "'" + studies::did_you_mean(name, names, " (metrics: " + known + ")"));
 }
 
 // A constraint bound in the unit the metric's values have (metric_unit): lengths in m, forces in N, speeds in rpm.
@@ -184,19 +153,13 @@ double bound_value(Reader& r, const std::string& key, const std::string& unit) {
 }
 
 // x/y (or fx/fy) channels of a pair stem, as the run-up metrics read them.
-bool has_pair(const std::vector<std::string>& names, const std::string& stem) {
-  auto has = [&](const std::string& n) { return std::find(names.begin(), names.end(), n) != names.end(); };
-  return (has(stem + ".x") && has(stem + ".y")) || (has(stem + ".fx") && has(stem + ".fy"));
-}
-
 // Checks the metrics against the base model (probes exist, response metrics have a linear model) and sets their
 // units.
 void resolve_metrics(OptimizationSpec& s) {
   const MachineSpec machine = load_model(s.model, run_overrides(s, start_design(s), &s.cases.front()));
   const std::unique_ptr<RunupModel> model = make_runup_model(machine);
   const std::vector<ProbeChannel>& channels = model->channels();
-  std::vector<std::string> names;
-  for (const ProbeChannel& c : channels) names.push_back(c.name);
+  const std::vector<std::string> names = studies::channel_names(channels);
   for (std::size_t i = 0; i < s.metrics.size(); ++i) {
     Metric& m = s.metrics[i];
     const std::string where = s.source.string() + ": metrics[" + std::to_string(i) + "].probe: ";
@@ -211,28 +174,16 @@ void resolve_metrics(OptimizationSpec& s) {
         for (const char* sfx : {"", ".x", ".y"}) stems.push_back("disk." + d.name + sfx);
       for (const BearingSpec& b : machine.bearings)
         for (const char* sfx : {"", ".fx", ".fy"}) stems.push_back("bearing." + b.name + sfx);
-      if (std::find(stems.begin(), stems.end(), m.spec.probe) == stems.end()) {
-        const std::string hint = closest_match(m.spec.probe, stems);
+      if (std::find(stems.begin(), stems.end(), m.spec.probe) == stems.end())
         throw ModelError(where + "the steady-state response has no probe '" + m.spec.probe + "'" +
-                         (hint.empty() ? " (use disk.NAME or bearing.NAME)" : "; did you mean '" + hint + "'?"));
-      }
+                         studies::did_you_mean(m.spec.probe, stems, " (use disk.NAME or bearing.NAME)"));
       m.unit = m.spec.kind == "response_peak_speed" ? "rpm" : m.spec.probe.rfind("disk.", 0) == 0 ? "m" : "N";
       continue;
     }
     if (m.spec.kind != "summary") {
-      const bool ok = m.spec.kind == "max_radius" ? has_pair(names, m.spec.probe)
-                                                  : std::find(names.begin(), names.end(), m.spec.probe) != names.end();
-      if (!ok) {
-        std::string msg = where + "the model has no probe '" + m.spec.probe + "'";
-        const std::string hint = closest_match(m.spec.probe, names);
-        if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
-        else {
-          msg += " (probes:";
-          for (const std::string& n : names) msg += " " + n;
-          msg += ")";
-        }
-        throw ModelError(msg);
-      }
+      const bool ok = m.spec.kind == "max_radius" ? studies::pair_channels(channels, m.spec.probe).first >= 0
+                                                  : studies::find_channel(channels, m.spec.probe) >= 0;
+      if (!ok) throw ModelError(where + studies::unknown_probe(m.spec.probe, names));
     }
     m.unit = studies::metric_unit(m.spec, channels);
   }
@@ -249,11 +200,9 @@ void resolve_metrics(OptimizationSpec& s) {
     }
   }
   for (const std::string& p : s.spectrogram_probes)
-    if (std::find(names.begin(), names.end(), p) == names.end()) {
-      const std::string hint = closest_match(p, names);
+    if (studies::find_channel(channels, p) < 0)
       throw ModelError(s.source.string() + ": optimize.spectrograms: the model has no probe '" + p + "'" +
-                       (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
-    }
+                       studies::did_you_mean(p, names));
 }
 
 }  // namespace
@@ -312,7 +261,7 @@ std::string value_text(const Variable& v, double value) { return shown(value, v.
 
 std::vector<Override> run_overrides(const OptimizationSpec& spec, const std::vector<double>& design,
                                     const OperatingCase* operating_case) {
-  std::vector<Override> o = spec.base_overrides;
+  std::vector<Override> o = spec.fixed;
   for (std::size_t i = 0; i < spec.variables.size(); ++i)
     for (const std::string& p : spec.variables[i].paths) o.push_back({p, value_text(spec.variables[i], design[i])});
   if (operating_case) o.insert(o.end(), operating_case->overrides.begin(), operating_case->overrides.end());
@@ -323,19 +272,12 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
   const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   OptimizationSpec s;
-  s.source = file;
   Reader top(root, "", src);
   const toml::table* opt = top.table("optimize");
   if (!opt) top.fail("optimize", "missing: an [optimize] table with at least model = \"...\"");
   {
     Reader r(*opt, "optimize", src);
-    const studies::StudyCommon c = studies::read_study_common(r, file);
-    s.name = c.name;
-    s.model = c.model;
-    s.threads = c.threads;
-    s.speed_window_min = c.speed_window_min;
-    s.speed_window_max = c.speed_window_max;
-    s.base_overrides = c.fixed;
+    static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
     if (const toml::array* probes = r.array("spectrograms"))
       for (const toml::node& n : *probes) {
         if (!n.is_string()) r.fail("spectrograms", "expected probe names such as \"disk.turbine.x\"");

@@ -99,14 +99,8 @@ struct AlgorithmOptions {
   bool IsValid(std::string* error) const;
 };
 
-struct OptimizationSpec {
-  std::filesystem::path source;            ///< the study file ("" when built in code)
-  std::string name;
-  std::filesystem::path model;             ///< base model file
-  std::vector<Override> base_overrides;    ///< `fixed`: applied to every run before the design
-  double speed_window_min = 0.0;           ///< rad/s (0 = start of the ramp)
-  double speed_window_max = 0.0;           ///< rad/s (0 = end of the ramp)
-  int threads = 0;                         ///< 0 = all cores
+/// The fixed overrides come before the design's (run_overrides).
+struct OptimizationSpec : studies::StudyCommon {
   std::vector<Variable> variables;
   std::vector<OperatingCase> cases;        ///< at least one
   std::vector<Metric> metrics;

@@ -1,4 +1,6 @@
 #include "optim/optimizer.h"
+#include "studies/parallel.h"
+#include "studies/table.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,8 +11,6 @@
 #include <set>
 
 #include <nlopt.hpp>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "optim/evaluation_log.h"
 
@@ -66,7 +66,8 @@ class Driver {
  public:
   Driver(const OptimizationSpec& spec, const Evaluator& evaluate, const OptimizerOptions& options)
       : spec_(spec), evaluate_(evaluate), options_(options),
-        log_(fingerprint(spec), options.log_file), t0_(std::chrono::steady_clock::now()) {}
+        log_(fingerprint(spec), options.log_file), threads_(studies::run_threads(options.threads, spec.threads)),
+        t0_(std::chrono::steady_clock::now()) {}
 
   double objective(const std::vector<double>& x, std::vector<double>& grad) {
     const std::vector<Point> pts = evaluate_stencil(x, !grad.empty());
@@ -153,7 +154,7 @@ class Driver {
       std::mutex mutex;
       bool cancelled = false;
       std::exception_ptr error;
-      tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
+      studies::parallel_runs(todo.size(), threads_, [&](std::size_t t) {
         const auto t0 = std::chrono::steady_clock::now();
         Evaluation e;
         e.id = first_id + t;
@@ -176,10 +177,9 @@ class Driver {
         }
         // For the reader of the log: objective (null if the evaluation failed) and constraint values.
         const Assessment a = assess(spec_, e, NAN);
-        nlohmann::json info = {{"objective", std::isfinite(a.objective) ? nlohmann::json(a.objective) : nlohmann::json()},
-                               {"constraint_values", nlohmann::json::array()}, {"feasible", a.feasible}};
-        for (double v : a.constraint_values)
-          info["constraint_values"].push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json());
+        const nlohmann::json info = {{"objective", studies::json_number(a.objective)},
+                                     {"constraint_values", studies::json_numbers(a.constraint_values)},
+                                     {"feasible", a.feasible}};
         log_.record(std::move(e), info);
       });
       if (error) {
@@ -252,6 +252,7 @@ class Driver {
   const Evaluator& evaluate_;
   const OptimizerOptions& options_;
   EvaluationLog log_;
+  int threads_;
   std::chrono::steady_clock::time_point t0_;
   OptimizationResult result_;
   OptimizationProgress progress_;
@@ -328,11 +329,6 @@ OptimizationResult optimize(const OptimizationSpec& spec, const Evaluator& evalu
   if (!a.IsValid(&why)) throw ModelError(spec.source.string() + ": [algorithm]: " + why);
   if (spec.variables.empty()) throw ModelError(spec.source.string() + ": no design variables");
   const unsigned n = static_cast<unsigned>(spec.variables.size());
-  const int threads = options.threads > 0 ? options.threads : spec.threads;
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(threads));
 
   Driver driver(spec, evaluate, options);
   OptimizationResult& result = driver.result();

@@ -6,25 +6,12 @@
 #include <sstream>
 
 #include "post/plot.h"
+#include "studies/table.h"
 
 namespace turbodyn::optim {
 namespace {
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-std::string number(double v) {
-  if (!std::isfinite(v)) return "";
-  std::ostringstream os;
-  os << std::setprecision(12) << v;
-  return os.str();
-}
-
-nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+using studies::json_number;
 
 std::string with_unit(const std::string& name, const std::string& unit) {
   return unit.empty() ? name : name + " [" + unit + "]";
@@ -65,32 +52,29 @@ nlohmann::json entry_json(const OptimizationSpec& s, const HistoryEntry& h) {
 }  // namespace
 
 void write_history_csv(const OptimizationSpec& s, const OptimizationResult& r, const std::filesystem::path& file) {
-  std::ofstream csv(file);
-  if (!csv) throw ModelError(file.string() + ": cannot write");
-  csv << "request,evaluation,source,kind";
-  for (const Variable& v : s.variables) csv << "," << csv_field(with_unit(v.path, v.unit));
+  studies::CsvWriter csv(file);
+  csv.texts({"request", "evaluation", "source", "kind"});
+  for (const Variable& v : s.variables) csv.text(with_unit(v.path, v.unit));
   for (std::size_t c = 0; c < s.cases.size(); ++c)
-    for (const Metric& m : s.metrics) csv << "," << csv_field(case_prefix(s, c) + with_unit(m.spec.name, m.unit));
-  csv << ",objective";
+    for (const Metric& m : s.metrics) csv.text(case_prefix(s, c) + with_unit(m.spec.name, m.unit));
+  csv.text("objective");
   for (const Constraint& k : s.constraints)
     for (std::size_t c = 0; c < s.cases.size(); ++c)
-      csv << "," << csv_field(case_prefix(s, c) + with_unit(k.name, s.metrics[k.metric].unit) +
-                              (k.upper ? " <= " : " >= ") + number(k.bound))
-          << "," << csv_field(case_prefix(s, c) + "g(" + k.name + ")");
-  csv << ",feasible,status,wall_time_s\n";
+      csv.text(case_prefix(s, c) + with_unit(k.name, s.metrics[k.metric].unit) + (k.upper ? " <= " : " >= ") +
+               studies::table_number(k.bound))
+          .text(case_prefix(s, c) + "g(" + k.name + ")");
+  csv.texts({"feasible", "status", "wall_time_s"}).end_row();
   for (const HistoryEntry& h : r.history) {
-    csv << h.request << "," << h.evaluation.id << "," << (h.cached ? "cached" : "new") << ","
-        << (h.gradient_point ? "gradient" : "design");
-    for (double v : h.evaluation.design) csv << "," << number(v);
+    csv.integer(h.request).integer(h.evaluation.id).text(h.cached ? "cached" : "new");
+    csv.text(h.gradient_point ? "gradient" : "design").numbers(h.evaluation.design);
     for (std::size_t c = 0; c < s.cases.size(); ++c)
       for (std::size_t m = 0; m < s.metrics.size(); ++m)
-        csv << "," << (c < h.evaluation.cases.size() ? number(h.evaluation.cases[c].metrics[m]) : "");
-    csv << "," << number(h.assessment.objective);
+        csv.number(c < h.evaluation.cases.size() ? h.evaluation.cases[c].metrics[m] : NAN);
+    csv.number(h.assessment.objective);
     for (std::size_t i = 0; i < h.assessment.g.size(); ++i)
-      csv << "," << number(h.assessment.constraint_values[i]) << "," << number(h.assessment.g[i]);
-    csv << "," << (h.assessment.feasible ? "yes" : "no") << ","
-        << csv_field(h.assessment.failed ? "failed: " + h.assessment.note : "ok") << "," << number(h.evaluation.wall_time)
-        << "\n";
+      csv.number(h.assessment.constraint_values[i]).number(h.assessment.g[i]);
+    csv.text(h.assessment.feasible ? "yes" : "no").text(h.assessment.failed ? "failed: " + h.assessment.note : "ok");
+    csv.number(h.evaluation.wall_time).end_row();
   }
 }
 

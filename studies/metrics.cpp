@@ -4,33 +4,13 @@
 #include <limits>
 
 #include "post/signal.h"
+#include "studies/channels.h"
 
 namespace turbodyn::studies {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kHzToRpm = 60.0;
-
-int find_channel(const std::vector<ProbeChannel>& channels, const std::string& name) {
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    if (channels[c].name == name) return static_cast<int>(c);
-  return -1;
-}
-
-int kind_channel(const std::vector<ProbeChannel>& channels, ProbeChannel::Kind k) {
-  for (std::size_t c = 0; c < channels.size(); ++c)
-    if (channels[c].kind == k) return static_cast<int>(c);
-  return -1;
-}
-
-// x and y channels of a pair stem: "disk.compressor" -> .x/.y, "bearing.turbine" -> .fx/.fy.
-std::pair<int, int> pair_channels(const std::vector<ProbeChannel>& channels, const std::string& stem) {
-  for (const auto& [sx, sy] : {std::pair<const char*, const char*>{".x", ".y"}, {".fx", ".fy"}}) {
-    const int a = find_channel(channels, stem + sx), b = find_channel(channels, stem + sy);
-    if (a >= 0 && b >= 0) return {a, b};
-  }
-  return {-1, -1};
-}
 
 bool in_window(const MetricSpec& m, double speed_hz) {
   const double w = 2.0 * M_PI * speed_hz;
@@ -85,24 +65,14 @@ std::string metric_unit(const MetricSpec& m, const std::vector<ProbeChannel>& ch
 }
 
 void check_metrics(const StudySpec& study, const std::vector<ProbeChannel>& channels) {
-  std::vector<std::string> names;
-  for (const ProbeChannel& c : channels) names.push_back(c.name);
   for (std::size_t i = 0; i < study.metrics.size(); ++i) {
     const MetricSpec& m = study.metrics[i];
     if (m.kind == "summary") continue;
     const bool ok = m.kind == "max_radius" ? pair_channels(channels, m.probe).first >= 0
                                             : find_channel(channels, m.probe) >= 0;
-    if (ok) continue;
-    std::string msg = study.source.string() + ": metrics[" + std::to_string(i) + "].probe: the model has no probe '" +
-                      m.probe + "'";
-    const std::string hint = closest_match(m.probe, names);
-    if (!hint.empty()) msg += "; did you mean '" + hint + "'?";
-    else {
-      msg += " (probes:";
-      for (const std::string& n : names) msg += " " + n;
-      msg += ")";
-    }
-    throw ModelError(msg);
+    if (!ok)
+      throw ModelError(study.source.string() + ": metrics[" + std::to_string(i) + "].probe: " +
+                       unknown_probe(m.probe, channel_names(channels)));
   }
 }
 

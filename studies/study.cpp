@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "model/io/toml_reader.h"
+#include "studies/study_keys.h"
+#include "studies/table.h"
 
 namespace turbodyn::studies {
 namespace {
@@ -19,15 +21,6 @@ std::string trim(std::string s) {
   return s;
 }
 
-// A number or "<number> <unit>" from a TOML node; the unit is checked later by the model loader.
-UnitValue node_value(const toml::node& n, const std::string& context) {
-  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
-  if (n.is_floating_point()) return {*n.value<double>(), ""};
-  if (n.is_string()) return split_value(*n.value<std::string>(), context);
-  throw ModelError(context + ": expected a number or a string such as \"580 mg*mm\"");
-}
-
-std::string location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
 
 // Reads one [[parameters]] entry into a Parameter and the unit it is written in.
 Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
@@ -38,7 +31,7 @@ Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
   unit.clear();
   bool unit_set = false;
   auto take = [&](const toml::node& n, const std::string& key) {
-    const UnitValue v = node_value(n, location(r, key));
+    const UnitValue v = node_value(n, key_location(r, key), "580 mg*mm");
     if (unit_set && v.unit != unit)
       r.fail(key, "is written in '" + v.unit + "' but the parameter's other values in '" + unit +
                       "'; write all values of a parameter in one unit");
@@ -82,31 +75,7 @@ MetricSpec read_metric(Reader& r) {
   m.probe = r.text_or("probe", "");
   if (m.probe.empty()) r.fail("probe", "missing required key (a probe name such as \"disk.compressor.x\")");
   m.name = r.text_or("name", m.kind + "(" + m.probe + ")");
-  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
-  if (!window.empty()) {
-    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
-    m.speed_min = window[0];
-    m.speed_max = window[1];
-  }
-  if (const toml::node* n = r.get("threshold")) {
-    // The unit follows the probe (m or N): read either.
-    const UnitValue v = node_value(*n, location(r, "threshold"));
-    m.threshold = v.value;
-    if (!v.unit.empty()) {
-      const std::string text = n->value<std::string>().value_or("");
-      try {
-        m.threshold = parse_quantity(text, dim::length);
-      } catch (const UnitError&) {
-        try {
-          m.threshold = parse_quantity(text, dim::force);
-        } catch (const UnitError& e) {
-          r.fail("threshold", std::string("expected a length or a force: ") + e.what());
-        }
-      }
-    }
-  }
-  if (m.kind == "subsync_onset_speed" && !(m.threshold > 0.0))
-    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+  read_metric_window(r, m, "580 mg*mm");
   r.finish();
   return m;
 }
@@ -125,6 +94,7 @@ UnitValue split_value(const std::string& text, const std::string& context) {
 
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file) {
   StudyCommon s;
+  s.source = file;
   s.name = r.text_or("name", file.stem().string());
   const std::string model = r.text_or("model", "");
   if (model.empty()) r.fail_missing("model", "the base model file");
@@ -149,19 +119,12 @@ StudySpec load_study(const std::filesystem::path& file) {
   const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
   const Sources src{file.string(), {}};
   StudySpec s;
-  s.source = file;
   Reader top(root, "", src);
   const toml::table* study = top.table("study");
   if (!study) top.fail("study", "missing: a [study] table with at least model = \"...\"");
   {
     Reader r(*study, "study", src);
-    const StudyCommon c = read_study_common(r, file);
-    s.name = c.name;
-    s.model = c.model;
-    s.threads = c.threads;
-    s.speed_window_min = c.speed_window_min;
-    s.speed_window_max = c.speed_window_max;
-    s.base_overrides = c.fixed;
+    static_cast<StudyCommon&>(s) = read_study_common(r, file);
     r.finish();
   }
   const toml::table* design = top.table("design");
@@ -184,7 +147,7 @@ StudySpec load_study(const std::filesystem::path& file) {
       for (const toml::node& row : *table) {
         if (!row.is_array()) r.fail("table", "expected rows [[v1, v2, ...], ...]");
         std::vector<double> values;
-        for (const toml::node& v : *row.as_array()) values.push_back(node_value(v, location(r, "table")).value);
+        for (const toml::node& v : *row.as_array()) values.push_back(node_value(v, key_location(r, "table"), "580 mg*mm").value);
         s.design.table.push_back(values);
       }
     }
@@ -224,14 +187,9 @@ StudySpec load_study(const std::filesystem::path& file) {
 }
 
 std::vector<Override> run_overrides(const StudySpec& study, const Design& design, std::size_t i) {
-  std::vector<Override> o = study.base_overrides;
-  for (std::size_t p = 0; p < design.paths.size(); ++p) {
-    char buf[64];
-    const auto res = std::to_chars(buf, buf + sizeof buf, design.values[i][p]);
-    std::string v(buf, res.ptr);
-    if (!study.parameter_units[p].empty()) v += " " + study.parameter_units[p];
-    o.push_back({design.paths[p], v});
-  }
+  std::vector<Override> o = study.fixed;
+  for (std::size_t p = 0; p < design.paths.size(); ++p)
+    o.push_back({design.paths[p], value_text(design.values[i][p], study.parameter_units[p])});
   return o;
 }
 

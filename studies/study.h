@@ -35,29 +35,25 @@ struct MetricSpec {
   double threshold = 0.0;                   ///< subsync_onset_speed: amplitude in the probe's SI unit
 };
 
-struct StudySpec {
-  std::filesystem::path source;            ///< the study file
+/// What every kind of study ([study], [optimize], [identify]) says about its runs: the keys name, model (relative to
+/// the study file, must exist), threads, speed_window = [low, high] and fixed = ["PATH=VALUE", ...]. The study types
+/// derive from it, so that one reader fills it and one run evaluation (run_evaluation.h) reads it.
+struct StudyCommon {
+  std::filesystem::path source;  ///< the study file ("" when built in code)
   std::string name;
-  std::filesystem::path model;             ///< base model file (relative paths are relative to the study file)
-  std::vector<Override> base_overrides;    ///< fixed overrides applied to every run ([fixed] table)
+  std::filesystem::path model;   ///< base model file
+  int threads = 0;               ///< parallel runs, 0 = all cores
+  double speed_window_min = 0.0; ///< rad/s: a run starts where the ramp reaches this speed (0 = start)
+  double speed_window_max = 0.0; ///< rad/s: a run stops where the ramp reaches this speed (0 = end)
+  std::vector<Override> fixed;   ///< applied to every run before the run's own overrides
+};
+StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file);
+
+struct StudySpec : StudyCommon {
   std::vector<std::string> parameter_units;///< unit each parameter is written and sampled in ("" = SI)
   DesignSpec design;
   std::vector<MetricSpec> metrics;
-  double speed_window_min = 0.0;           ///< rad/s: a run starts where the ramp reaches this speed (0 = start)
-  double speed_window_max = 0.0;           ///< rad/s: a run stops where the ramp reaches this speed (0 = end)
-  int threads = 0;                         ///< 0 = all cores
 };
-
-/// The keys every study-type table shares ([study], [optimize], [identify]): name, model (relative to the study
-/// file, must exist), threads, speed_window = [low, high], fixed = ["PATH=VALUE", ...].
-struct StudyCommon {
-  std::string name;
-  std::filesystem::path model;
-  int threads = 0;
-  double speed_window_min = 0.0, speed_window_max = 0.0;  ///< rad/s, 0 = not limited
-  std::vector<Override> fixed;
-};
-StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file);
 
 /// Reads and checks a study file; errors (ModelError) name file, line, key and cause.
 StudySpec load_study(const std::filesystem::path& file);

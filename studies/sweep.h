@@ -10,18 +10,10 @@
 #include <vector>
 
 #include "studies/design.h"
+#include "studies/run_evaluation.h"
 #include "studies/study.h"
 
 namespace turbodyn::studies {
-
-struct RunRecord {
-  std::size_t index = 0;             ///< row of the design
-  std::vector<double> parameters;    ///< in the units of the study file
-  std::vector<double> metrics;       ///< NaN where undefined
-  std::string status;                ///< "ok", "incomplete" (integrator gave up; metrics from the partial run), "failed"
-  std::string error;                 ///< why, for incomplete and failed runs
-  double wall_time = 0.0;            ///< s
-};
 
 struct SweepProgress {
   std::size_t done = 0, failed = 0, total = 0, resumed = 0;
@@ -44,13 +36,6 @@ struct SweepResult {
   bool complete = false;             ///< every run of the shard is recorded
 };
 
-/// One run-up of the study's base model with `overrides`, the complete list (study.base_overrides first, then the
-/// run's own, as run_overrides() builds them): its
-/// metrics (NaN where undefined), status ("ok", "incomplete", "cancelled", "failed"), error and wall time. Never
-/// throws for a failing run; index and parameters are left empty. Thread-safe (each call owns its model).
-RunRecord evaluate_run(const StudySpec& study, const std::vector<Override>& overrides,
-                       const std::atomic<bool>* cancel = nullptr);
-
 /// Runs (or resumes) the study into options.output_dir/runs.jsonl. Throws ModelError for a bad study (checked on
 /// the first run's model before anything runs) or an output directory holding another study's runs.
 SweepResult run_sweep(const StudySpec& study, const SweepOptions& options);
@@ -61,8 +46,5 @@ std::vector<RunRecord> read_runs(const StudySpec& study, const std::filesystem::
 /// Writes results.csv, results.json, sensitivity.csv and the pictures for `runs` into dir; returns the files.
 std::vector<std::string> write_results(const StudySpec& study, const Design& design, std::vector<RunRecord> runs,
                                        const std::filesystem::path& dir, bool plots);
-
-/// Time (s) at which the speed profile first reaches `speed` (rad/s); the profile's end if never.
-double time_at_speed(const SpeedProfile& profile, double speed);
 
 }  // namespace turbodyn::studies

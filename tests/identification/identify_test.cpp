@@ -18,6 +18,7 @@
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
 #include "model/io/timeseries_file.h"
+#include "studies/channels.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -179,13 +180,8 @@ std::filesystem::path runup_study(const std::filesystem::path& dir, const std::s
   const auto model = make_runup_model(spec);
   const RunupResult r = simulate_runup(*model, runup_options(spec));
   EXPECT_TRUE(r.complete) << r.message;
-  int cs = -1, ca = -1, cx = -1, cy = -1;
-  for (std::size_t c = 0; c < r.channels.size(); ++c) {
-    if (r.channels[c].name == "speed") cs = static_cast<int>(c);
-    if (r.channels[c].name == "spin_angle") ca = static_cast<int>(c);
-    if (r.channels[c].name == "disk.mid.x") cx = static_cast<int>(c);
-    if (r.channels[c].name == "disk.mid.y") cy = static_cast<int>(c);
-  }
+  const int cs = studies::find_channel(r.channels, "speed"), ca = studies::find_channel(r.channels, "spin_angle");
+  const int cx = studies::find_channel(r.channels, "disk.mid.x"), cy = studies::find_channel(r.channels, "disk.mid.y");
   std::mt19937_64 rng(7);
   std::normal_distribution<double> noise(0.0, kJournalNoiseUm);
   {

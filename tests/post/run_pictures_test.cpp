@@ -68,6 +68,7 @@ TEST(RunPictures, DisplayAndFileNames) {
   EXPECT_EQ(display_of("N").factor, 1.0);
   EXPECT_EQ(display_of("N").unit, "N");
   EXPECT_EQ(file_safe("disk a/x:1.5-b_c"), "disk_a_x_1.5-b_c");
+  EXPECT_EQ(file_safe("max(disk.x) [m]"), "max_disk.x___m_");
 }
 
 TEST(RunPictures, RunSpectrogramFollowsTheRotorSpeed) {

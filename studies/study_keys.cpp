@@ -1,0 +1,45 @@
+#include "studies/study_keys.h"
+
+namespace turbodyn::studies {
+
+using input::Bound;
+using input::Reader;
+
+UnitValue node_value(const toml::node& n, const std::string& context, const std::string& example) {
+  if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
+  if (n.is_floating_point()) return {*n.value<double>(), ""};
+  if (n.is_string()) return split_value(*n.value<std::string>(), context);
+  throw ModelError(context + ": expected a number or a string such as \"" + example + "\"");
+}
+
+std::string key_location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }
+
+void read_metric_window(Reader& r, MetricSpec& m, const std::string& example) {
+  const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
+  if (!window.empty()) {
+    if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
+    m.speed_min = window[0];
+    m.speed_max = window[1];
+  }
+  if (const toml::node* n = r.get("threshold")) {
+    // The unit follows the probe (m or N): read either.
+    const UnitValue v = node_value(*n, key_location(r, "threshold"), example);
+    m.threshold = v.value;
+    if (!v.unit.empty()) {
+      const std::string text = n->value<std::string>().value_or("");
+      try {
+        m.threshold = parse_quantity(text, dim::length);
+      } catch (const UnitError&) {
+        try {
+          m.threshold = parse_quantity(text, dim::force);
+        } catch (const UnitError& e) {
+          r.fail("threshold", std::string("expected a length or a force: ") + e.what());
+        }
+      }
+    }
+  }
+  if (m.kind == "subsync_onset_speed" && !(m.threshold > 0.0))
+    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+}
+
+}  // namespace turbodyn::studies

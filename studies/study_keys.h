@@ -1,0 +1,26 @@
+// The reading of keys that every study type writes alike inside its own tables: values with units, and a metric's
+// speed window and threshold.
+#pragma once
+
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "model/io/model_file.h"  // before toml_reader.h, which uses its closest_match without including it
+#include "model/io/toml_reader.h"
+#include "studies/study.h"
+
+namespace turbodyn::studies {
+
+/// A number or "<number> <unit>" (the unit is checked where the value is applied); otherwise ModelError naming
+/// `context`, with `example` (such as "580 mg*mm") as the form to write.
+UnitValue node_value(const toml::node& n, const std::string& context, const std::string& example);
+
+/// "FILE:LINE:COLUMN: table.key" of a key, to start a message with.
+std::string key_location(const input::Reader& r, const std::string& key);
+
+/// A metric's speed_window = [low, high] and threshold (a length or a force; subsync_onset_speed needs a positive
+/// one). `example` as for node_value.
+void read_metric_window(input::Reader& r, MetricSpec& m, const std::string& example);
+
+}  // namespace turbodyn::studies
