@@ -86,7 +86,7 @@ std::optional<plot::Heatmap> spectrogram(const MachineSpec& machine, const Runup
   signal::StftOptions so;
   so.segment_length = static_cast<std::size_t>(out.spectrogram_segment);
   so.overlap = out.spectrogram_overlap;
-  so.window = signal::window_from_string(out.spectrogram_window);
+  so.window = signal::window_from_string(to_string(out.spectrogram_window));
   if (col < 0 || speed_col < 0 || r.time.size() < so.segment_length) return std::nullopt;
   const std::vector<double>& speed_hz = r.columns[speed_col];
   const double top = *std::max_element(speed_hz.begin(), speed_hz.end());

@@ -126,7 +126,7 @@ void draw_pictures(const MachineSpec& spec, const RunupResult& r, const std::fil
   signal::StftOptions so;
   so.segment_length = static_cast<std::size_t>(out.spectrogram_segment);
   so.overlap = out.spectrogram_overlap;
-  so.window = signal::window_from_string(out.spectrogram_window);
+  so.window = signal::window_from_string(to_string(out.spectrogram_window));
   const double fmax = out.frequency_max > 0 ? out.frequency_max : std::min(fs / 2.0, 1.1 * std::max(top_speed, 1.0));
 
   for (std::size_t c = 0; c < r.channels.size(); ++c) {

@@ -70,8 +70,7 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
   for (int k = 0; k < spec.drill_holes; ++k)
     inner_.holes.push_back({spec.drill_hole_angle + 2.0 * M_PI * k / spec.drill_holes, 0.0, spec.drill_hole_diameter,
                             0.0});
-  if (!reynolds::cavitation_from_string(spec.cavitation, options_.cavitation))
-    throw std::logic_error("unknown cavitation model '" + spec.cavitation + "'");
+  options_.cavitation = spec.cavitation;
   eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
   eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
   inertia_diametral_ = spec.ring_diametral_inertia;

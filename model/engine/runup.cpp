@@ -509,19 +509,25 @@ std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
     else
       elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
   }
-  for (const BearingSpec& b : spec.bearings)
-    if (b.type == "journal")
-      elements.push_back(
-          std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, rotor.dof(rotor.node_at(b.z), kX)));
-    else if (b.type == "floating-ring")
-      elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil,
-                                                               rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
-    else if (b.type == "ball" && b.damper.enabled)
-      elements.push_back(std::make_unique<BallDamperElement>(b.name, b.ball, b.damper, spec.oil,
-                                                             rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
-    else if (b.type == "ball")
-      elements.push_back(
-          std::make_unique<BallBearingElement>(b.name, b.ball, rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+  for (const BearingSpec& b : spec.bearings) {
+    const int dof = rotor.dof(rotor.node_at(b.z), kX);
+    switch (b.type) {
+      case BearingType::Linear: break;  // built above from the rotor's linear bearings
+      case BearingType::Journal:
+        elements.push_back(std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, dof));
+        break;
+      case BearingType::FloatingRing:
+        elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil, dof, spec.gravity));
+        break;
+      case BearingType::Ball:
+        if (b.damper.enabled)
+          elements.push_back(
+              std::make_unique<BallDamperElement>(b.name, b.ball, b.damper, spec.oil, dof, spec.gravity));
+        else
+          elements.push_back(std::make_unique<BallBearingElement>(b.name, b.ball, dof, spec.gravity));
+        break;
+    }
+  }
   // The bearings act through the elements; the rotor's own matrices stay bearing-free.
   double cutoff = spec.solver.reduction_cutoff;
   if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz
@@ -653,18 +659,18 @@ RunupOptions runup_options(const MachineSpec& spec) {
   return ro;
 }
 
-std::string resolve_integrator(const RunupModel& model, const std::string& requested) {
-  if (requested != "auto") return requested;
+Integrator resolve_integrator(const RunupModel& model, Integrator requested) {
+  if (requested != Integrator::Auto) return requested;
   // Measured (bench/README.md): with linear bearings BDF with the structured Newton solver beats the explicit
   // method 1.5x on the reduced rotor and by far more on the unreduced one. New bearing types refine this rule
   // with their own measurements.
   (void)model;
-  return "cvode-bdf";
+  return Integrator::CvodeBdf;
 }
 
 RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options) {
-  if (options.atol_scaling != "uniform" && options.atol_scaling != "typical")
-    throw std::invalid_argument("unknown atol_scaling '" + options.atol_scaling + "' (uniform or typical)");
+  if (options.atol_scaling != AtolScaling::Uniform && options.atol_scaling != AtolScaling::Typical)
+    throw std::invalid_argument("unknown atol_scaling (uniform or typical)");
   const auto wall0 = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(); };
   RunupResult result;
@@ -706,7 +712,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
 
   N_Vector atol = N_VClone(y);
   {
-    const Eigen::VectorXd a = model.AbsoluteTolerances(options.atol, options.atol_scaling == "typical");
+    const Eigen::VectorXd a = model.AbsoluteTolerances(options.atol, options.atol_scaling == AtolScaling::Typical);
     for (int i = 0; i < ny; ++i) NV_Ith_S(atol, i) = a(i);
   }
   Integration in;
@@ -714,8 +720,8 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   in.ws = ws.get();
   void* mem = nullptr;
   SUNLinearSolver LS = nullptr;
-  const std::string integrator = resolve_integrator(model, options.integrator);
-  const bool bdf = integrator == "cvode-bdf";
+  const Integrator integrator = resolve_integrator(model, options.integrator);
+  const bool bdf = integrator == Integrator::CvodeBdf;
   if (bdf) {
     mem = CVodeCreate(CV_BDF, ctx);
     in.cvode = mem;
@@ -735,7 +741,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     LS->ops->solve = ls_solve;
     LS->ops->free = ls_free;
     CVodeSetLinearSolver(mem, LS, nullptr);
-  } else if (integrator == "arkode-erk") {
+  } else if (integrator == Integrator::ArkodeErk) {
     mem = ERKStepCreate(rhs_callback, t0, y, ctx);
     ERKStepSetUserData(mem, &in);
     ERKStepSetErrHandlerFn(mem, error_handler, &in);
@@ -747,7 +753,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     N_VDestroy(atol);
     N_VDestroy(y);
     SUNContext_Free(&ctx);
-    throw std::invalid_argument("unknown integrator '" + options.integrator + "' (cvode-bdf or arkode-erk)");
+    throw std::invalid_argument("unknown integrator (cvode-bdf or arkode-erk)");
   }
   N_VDestroy(atol);  // the integrators keep copies
 

@@ -139,10 +139,10 @@ class RunupModel {
 std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec);
 
 struct RunupOptions {
-  std::string integrator = "auto";  ///< "auto", "cvode-bdf" or "arkode-erk" (see SolverSpec)
+  Integrator integrator = Integrator::Auto;
   double rtol = 1e-6;
   double atol = 1e-9;
-  std::string atol_scaling = "uniform";  ///< "uniform" or "typical" (see SolverSpec and AbsoluteTolerances())
+  AtolScaling atol_scaling = AtolScaling::Uniform;  ///< see SolverSpec and AbsoluteTolerances()
   double max_step = 0.0;       ///< s, 0 = none
   double sample_rate = 20000;  ///< 1/s
   double t_start = 0.0;        ///< s
@@ -161,8 +161,8 @@ struct RunupOptions {
 /// The options a model file's [solver] and [output] tables ask for.
 RunupOptions runup_options(const MachineSpec& spec);
 
-/// The integrator "auto" stands for with this model.
-std::string resolve_integrator(const RunupModel& model, const std::string& requested);
+/// The integrator Auto stands for with this model (any other request is returned as it is).
+Integrator resolve_integrator(const RunupModel& model, Integrator requested);
 
 struct RunupStats {
   long steps = 0;

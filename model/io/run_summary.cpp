@@ -16,7 +16,8 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
   for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
   j["overrides"] = ov;
   const double t_end = ro.t_end > 0.0 ? ro.t_end : model.speed().duration();
-  j["options"] = {{"integrator", resolve_integrator(model, ro.integrator)}, {"rtol", ro.rtol}, {"atol", ro.atol}, {"atol_scaling", ro.atol_scaling},
+  j["options"] = {{"integrator", to_string(resolve_integrator(model, ro.integrator))}, {"rtol", ro.rtol},
+                  {"atol", ro.atol}, {"atol_scaling", to_string(ro.atol_scaling)},
                   {"max_step_s", ro.max_step}, {"max_steps", ro.max_steps}, {"max_order", ro.max_order},
                   {"sample_rate_hz", ro.sample_rate}, {"static_start", ro.static_start},
                   {"t_start_s", ro.t_start}, {"t_end_s", t_end}, {"rotor_coordinates", model.n_dof()},

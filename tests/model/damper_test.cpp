@@ -74,7 +74,7 @@ TEST(Damper, SealedEndsGiveTheLongDamperAndALeakySealLiesBetween) {
   // resistance to the land's: the force lies between the open and the closed damper.
   constexpr double kLongDamperTolerance = 0.01;
   DamperSpec d = test_damper(0.006);
-  d.cavitation = "none";
+  d.cavitation = Cavitation::None;
   const double eps = 0.3, w = 1000.0, R = 0.01, L = d.length, c = d.clearance, eta = 0.01;
   const OrbitForce open = orbit_force(d, eta, eps, w);
   d.end_seal_gap = 1e-3 * c;

@@ -29,7 +29,7 @@ MachineSpec rotor_in_journal_bearings(double speed) {
   for (double z : {0.0, 0.1}) {
     BearingSpec b;
     b.name = z == 0.0 ? "left" : "right";
-    b.type = "journal";
+    b.type = BearingType::Journal;
     b.z = z;
     b.journal.diameter = 2 * kR;
     b.journal.length = kL;

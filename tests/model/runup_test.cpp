@@ -328,7 +328,7 @@ TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
   const auto m2 = make_runup_model(spec);
   RunupOptions o = options_for(spec);
   const RunupResult r0 = simulate_runup(*m2, o);
-  o.atol_scaling = "typical";
+  o.atol_scaling = AtolScaling::Typical;
   o.atol = 1e-10;
   const RunupResult r1 = simulate_runup(*m2, o);
   ASSERT_TRUE(r0.complete && r1.complete);
@@ -337,7 +337,7 @@ TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
     const double ratio = max_abs(r1.columns[channel(r1, name)]) / max_abs(r0.columns[channel(r0, name)]);
     EXPECT_NEAR(ratio, 1.0, kMaximaAgreement) << name;
   }
-  o.atol_scaling = "typicl";
+  o.atol_scaling = static_cast<AtolScaling>(7);
   EXPECT_THROW(simulate_runup(*m2, o), std::invalid_argument);
 }
 
@@ -364,9 +364,9 @@ TEST(Runup, ExplicitAndImplicitIntegratorsAgree) {
   spec.speed.duration = 0.4;
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);
-  o.integrator = "cvode-bdf";
+  o.integrator = Integrator::CvodeBdf;
   const RunupResult bdf = simulate_runup(*model, o);
-  o.integrator = "arkode-erk";
+  o.integrator = Integrator::ArkodeErk;
   const RunupResult erk = simulate_runup(*model, o);
   ASSERT_TRUE(bdf.complete && erk.complete) << bdf.message << erk.message;
   const int c = channel(bdf, "disk.compressor.x");
@@ -379,7 +379,7 @@ TEST(Runup, IntegratorFailureKeepsTheSamplesAndSaysWhenAndWhy) {
   RunupOptions o = options_for(spec);
   o.max_steps = 200;  // the integrator gives up after 200 steps between two output samples
   o.sample_rate = 200;
-  for (const char* integrator : {"cvode-bdf", "arkode-erk"}) {
+  for (const Integrator integrator : {Integrator::CvodeBdf, Integrator::ArkodeErk}) {
     o.integrator = integrator;
     const RunupResult r = simulate_runup(*model, o);
     EXPECT_FALSE(r.complete);
