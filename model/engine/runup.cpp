@@ -12,41 +12,11 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 
-#include "model/elements/damper_element.h"
-#include "model/elements/ball/ball_bearing.h"
-#include "model/elements/ball/ball_damper_element.h"
-#include "model/engine/block_arrow_lu.h"
-#include "model/elements/floating_ring_element.h"
-#include "model/elements/journal_bearing_element.h"
-#include "model/elements/linear_bearing_element.h"
+#include "model/engine/element_factory.h"
+#include "model/engine/runup_workspace.h"
 #include "model/engine/serial_vector_ops.h"
 
 namespace turbodyn {
-
-// Per-simulation scratch space: sized once, reused by every right-hand-side and Jacobian call.
-struct RunupWorkspace {
-  Eigen::VectorXd f;                     // generalised force (n)
-  Eigen::VectorXd tmp;                   // scratch (n)
-  std::vector<std::unique_ptr<ElementWorkspace>> element_ws;
-  std::vector<Eigen::VectorXd> eq, ev, ef, ezdot;  // per element: gathered q, v; local force; (unused) zdot copy
-  std::vector<Eigen::MatrixXd> ejac;     // per element local Jacobian (d + m) x (2d + m)
-  std::vector<Eigen::VectorXd> ein;      // per element: perturbed inputs [q; v; z] for finite differences
-  std::vector<Eigen::VectorXd> eout0, eout1;  // per element: outputs [f; zdot] for finite differences
-  // Jacobian blocks of M v' = f(q, v, z), z' = g(q, v, z).
-  Eigen::MatrixXd Fq, Fv, Fz, Gq, Gv, Gz;
-  // Newton matrix: the n x n Schur complement on the rotor coordinates and its factorisation; per element with
-  // states, its block I - g G_zz, the factors, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), and scratch.
-  Eigen::MatrixXd A;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  std::vector<Eigen::MatrixXd> eA, eY, eT, eJY, eRJY;
-  std::vector<BlockArrowLU> elu;               // per element: factors of its Newton block
-  std::vector<Eigen::VectorXd> ew, ew0, eu;   // per element: m, m and d scratch
-  Eigen::VectorXd rhs, sol;
-  double jac_t = 0.0;
-  SpinState jac_spin;
-  long rhs_calls = 0, element_calls = 0, jacobian_evaluations = 0, factorisations = 0;
-  bool energy = true;  // accumulate the energy-balance states
-};
 
 RunupModel::~RunupModel() = default;
 
@@ -144,23 +114,34 @@ RunupModel::RunupModel(const MachineSpec& spec, Rotor rotor, std::vector<std::un
 
 void RunupWorkspaceDeleter::operator()(RunupWorkspace* ws) const { delete ws; }
 
+RunupWorkspace::Element::Element(const ForceElement& e, int n) {
+  const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
+  workspace = e.make_workspace();
+  q.setZero(d);
+  v.setZero(d);
+  f.setZero(d);
+  jacobian.setZero(d + m, 2 * d + m);
+  fd_in.setZero(2 * d + m);
+  fd_out0.setZero(d + m);
+  fd_out1.setZero(d + m);
+  newton_block.setZero(m, m);
+  lu = BlockArrowLU(m, e.independent_state_blocks(), std::max(d, 1));
+  Y.setZero(m, d);
+  T.setZero(m, d);
+  JY.setZero(d, d);
+  RJY.setZero(n, d);
+  w.setZero(m);
+  w0.setZero(m);
+  u.setZero(d);
+}
+
 RunupWorkspacePtr RunupModel::make_workspace() const {
   RunupWorkspacePtr ws(new RunupWorkspace);
   const int n = n_coordinates_, m = n_element_states_;
   ws->f.setZero(n);
   ws->tmp.setZero(n);
-  for (const auto& e : elements_) {
-    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
-    ws->element_ws.push_back(e->make_workspace());
-    ws->eq.emplace_back(Eigen::VectorXd::Zero(d));
-    ws->ev.emplace_back(Eigen::VectorXd::Zero(d));
-    ws->ef.emplace_back(Eigen::VectorXd::Zero(d));
-    ws->ezdot.emplace_back(Eigen::VectorXd::Zero(me));
-    ws->ejac.emplace_back(Eigen::MatrixXd::Zero(d + me, 2 * d + me));
-    ws->ein.emplace_back(Eigen::VectorXd::Zero(2 * d + me));
-    ws->eout0.emplace_back(Eigen::VectorXd::Zero(d + me));
-    ws->eout1.emplace_back(Eigen::VectorXd::Zero(d + me));
-  }
+  ws->elements.reserve(elements_.size());
+  for (const auto& e : elements_) ws->elements.emplace_back(*e, n);
   ws->Fq.setZero(n, n);
   ws->Fv.setZero(n, n);
   ws->Fz.setZero(n, m);
@@ -169,18 +150,6 @@ RunupWorkspacePtr RunupModel::make_workspace() const {
   ws->Gz.setZero(m, m);
   ws->A.setZero(n, n);
   ws->lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
-  for (const auto& e : elements_) {
-    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
-    ws->eA.emplace_back(Eigen::MatrixXd::Zero(me, me));
-    ws->elu.emplace_back(me, e->independent_state_blocks(), std::max(d, 1));
-    ws->eY.emplace_back(Eigen::MatrixXd::Zero(me, d));
-    ws->eT.emplace_back(Eigen::MatrixXd::Zero(me, d));
-    ws->ew0.emplace_back(Eigen::VectorXd::Zero(me));
-    ws->eJY.emplace_back(Eigen::MatrixXd::Zero(d, d));
-    ws->eRJY.emplace_back(Eigen::MatrixXd::Zero(n, d));
-    ws->ew.emplace_back(Eigen::VectorXd::Zero(me));
-    ws->eu.emplace_back(Eigen::VectorXd::Zero(d));
-  }
   ws->rhs.setZero(n);
   ws->sol.setZero(n);
   return ws;
@@ -193,8 +162,8 @@ SpinState RunupModel::spin(double t) const {
 void RunupModel::Gather(const ForceElement& e, const double* q, const double* v, RunupWorkspace& ws, int k) const {
   (void)e;
   const int n = n_coordinates_;
-  ws.eq[k].noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(q, n);
-  ws.ev[k].noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(v, n);
+  ws.elements[k].q.noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(q, n);
+  ws.elements[k].v.noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(v, n);
 }
 
 void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws) const {
@@ -227,16 +196,16 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
   double element_dissipation = 0.0, drive_power = 0.0;
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const ForceElement& e = *elements_[k];
+    RunupWorkspace::Element& we = ws.elements[k];
     Gather(e, y, y + n, ws, static_cast<int>(k));
-    ws.ef[k].setZero();
+    we.f.setZero();
     const double* z = y + state_offsets_[k];
-    e.CalcAndAddForces(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k], ws.ef[k].data(),
-                       ydot + state_offsets_[k]);
+    e.CalcAndAddForces(s, we.q.data(), we.v.data(), z, *we.workspace, we.f.data(), ydot + state_offsets_[k]);
     ++ws.element_calls;
-    f.noalias() += element_rows_[k].transpose() * ws.ef[k];
+    f.noalias() += element_rows_[k].transpose() * we.f;
     if (ws.energy) {
-      element_dissipation += e.DissipatedPower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
-      drive_power += e.DrivePower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
+      element_dissipation += e.DissipatedPower(s, we.q.data(), we.v.data(), z, *we.workspace);
+      drive_power += e.DrivePower(s, we.q.data(), we.v.data(), z, *we.workspace);
     }
   }
 
@@ -282,7 +251,8 @@ void RunupModel::Probes(double t, const double* y, RunupWorkspace& ws, double* o
       big.resize(np);
       buf = big.data();
     }
-    e.EvalProbes(s, ws.eq[k].data(), ws.ev[k].data(), y + state_offsets_[k], *ws.element_ws[k], buf);
+    RunupWorkspace::Element& we = ws.elements[k];
+    e.EvalProbes(s, we.q.data(), we.v.data(), y + state_offsets_[k], *we.workspace, buf);
     for (std::size_t i = 0; i < channels_.size(); ++i)
       if (channels_[i].kind == ProbeChannel::Kind::Element && channels_[i].index == static_cast<int>(k))
         out[i] = buf[channels_[i].element_probe];
@@ -305,30 +275,30 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
     const ForceElement& e = *elements_[k];
     const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
     const int zoff = state_offsets_[k];
-    Eigen::MatrixXd& J = ws.ejac[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    Eigen::MatrixXd& J = we.jacobian;
     J.setZero();
     Gather(e, y, y + n, ws, static_cast<int>(k));
     if (e.has_jacobian()) {
-      e.AddJacobian(s, ws.eq[k].data(), ws.ev[k].data(), y + zoff, *ws.element_ws[k], J.data());
+      e.AddJacobian(s, we.q.data(), we.v.data(), y + zoff, *we.workspace, J.data());
       ws.element_calls += e.jacobian_evaluations();
     } else {
       // Forward differences in the element's own inputs: 2d + m evaluations of the element alone.
-      Eigen::VectorXd& in = ws.ein[k];
-      in << ws.eq[k], ws.ev[k], Eigen::Map<const Eigen::VectorXd>(y + zoff, m);
+      Eigen::VectorXd& in = we.fd_in;
+      in << we.q, we.v, Eigen::Map<const Eigen::VectorXd>(y + zoff, m);
       auto eval = [&](Eigen::VectorXd& out) {
         out.setZero();
-        e.CalcAndAddForces(s, in.data(), in.data() + d, in.data() + 2 * d, *ws.element_ws[k], out.data(),
-                           out.data() + d);
+        e.CalcAndAddForces(s, in.data(), in.data() + d, in.data() + 2 * d, *we.workspace, out.data(), out.data() + d);
         ++ws.element_calls;
       };
-      eval(ws.eout0[k]);
+      eval(we.fd_out0);
       for (int j = 0; j < 2 * d + m; ++j) {
         const double saved = in(j);
         const double h = e.fd_step(j, d, saved);
         in(j) = saved + h;
-        eval(ws.eout1[k]);
+        eval(we.fd_out1);
         in(j) = saved;
-        J.col(j) = (ws.eout1[k] - ws.eout0[k]) / h;
+        J.col(j) = (we.fd_out1 - we.fd_out0) / h;
       }
     }
     const Eigen::MatrixXd& Rk = element_rows_[k];
@@ -351,19 +321,20 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
     if (m == 0) continue;
-    const Eigen::MatrixXd& J = ws.ejac[k];  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
-    Eigen::MatrixXd& Ak = ws.eA[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    const Eigen::MatrixXd& J = we.jacobian;  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
+    Eigen::MatrixXd& Ak = we.newton_block;
     Ak = -g * J.block(d, 2 * d, m, m);
     Ak.diagonal().array() += 1.0;
-    regular = ws.elu[k].compute(Ak) && regular;
+    regular = we.lu.compute(Ak) && regular;
     // Y = A_k^-1 (-g (G_zv + g G_zq)) in the element's local DOFs; the Schur term -(-g F_z) Y enters as g R' F_z Y R.
-    ws.eT[k] = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
-    ws.eY[k] = ws.eT[k];
-    ws.elu[k].solve_in_place(ws.eY[k]);
+    we.T = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
+    we.Y = we.T;
+    we.lu.solve_in_place(we.Y);
     // Small products (d = 4): coefficient-wise, without the packing of Eigen's general products.
-    ws.eJY[k].noalias() = J.block(0, 2 * d, d, m).lazyProduct(ws.eY[k]);
-    ws.eRJY[k].noalias() = element_rows_[k].transpose().lazyProduct(ws.eJY[k]);
-    ws.A.noalias() += g * ws.eRJY[k].lazyProduct(element_rows_[k]);
+    we.JY.noalias() = J.block(0, 2 * d, d, m).lazyProduct(we.Y);
+    we.RJY.noalias() = element_rows_[k].transpose().lazyProduct(we.JY);
+    ws.A.noalias() += g * we.RJY.lazyProduct(element_rows_[k]);
   }
   ws.lu.compute(ws.A);
   ++ws.factorisations;
@@ -380,15 +351,16 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
     if (m == 0) continue;
-    const Eigen::MatrixXd& J = ws.ejac[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    const Eigen::MatrixXd& J = we.jacobian;
     const int zoff = state_offsets_[k];
-    ws.eu[k].noalias() = element_rows_[k] * rq;
-    ws.ew0[k] = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
-    ws.ew0[k].noalias() += g * (J.block(d, 0, m, d) * ws.eu[k]);
-    ws.ew[k] = ws.ew0[k];
-    ws.elu[k].solve_in_place(ws.ew[k]);
-    ws.eu[k].noalias() = J.block(0, 2 * d, d, m) * ws.ew[k];
-    ws.rhs.noalias() += g * (element_rows_[k].transpose() * ws.eu[k]);
+    we.u.noalias() = element_rows_[k] * rq;
+    we.w0 = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
+    we.w0.noalias() += g * (J.block(d, 0, m, d) * we.u);
+    we.w = we.w0;
+    we.lu.solve_in_place(we.w);
+    we.u.noalias() = J.block(0, 2 * d, d, m) * we.w;
+    ws.rhs.noalias() += g * (element_rows_[k].transpose() * we.u);
   }
   ws.sol = ws.lu.solve(ws.rhs);
   Eigen::Map<Eigen::VectorXd> dq(x, n), dv(x + n, n);
@@ -399,10 +371,11 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
     const int m = elements_[k]->n_states();
     if (m == 0) continue;
     const int zoff = state_offsets_[k];
-    ws.eu[k].noalias() = element_rows_[k] * ws.sol;
+    RunupWorkspace::Element& we = ws.elements[k];
+    we.u.noalias() = element_rows_[k] * ws.sol;
     Eigen::Map<Eigen::VectorXd> dz(x + zoff, m);
-    dz = ws.ew[k];
-    dz.noalias() -= ws.eY[k] * ws.eu[k];
+    dz = we.w;
+    dz.noalias() -= we.Y * we.u;
   }
   // Energy-accounting states: their equations do not depend on y through the Newton matrix.
   const int ny = n_states();
@@ -495,39 +468,7 @@ void RunupModel::InitialState(double t, bool static_equilibrium, double* y, Runu
 
 std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
   Rotor rotor = build_rotor(spec);
-  std::vector<std::unique_ptr<ForceElement>> elements;
-  for (const LinearBearing& b : rotor.bearings) {
-    Pedestal pedestal;
-    const DamperSpec* damper = nullptr;
-    for (const BearingSpec& bs : spec.bearings)
-      if (bs.name == b.name) {
-        pedestal = Pedestal{bs.pedestal_mass, bs.pedestal_stiffness, bs.pedestal_damping};
-        if (bs.damper.enabled) damper = &bs.damper;
-      }
-    if (damper)
-      elements.push_back(std::make_unique<DamperElement>(b, rotor.dof(b.node, kX), *damper, spec.oil, spec.gravity));
-    else
-      elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
-  }
-  for (const BearingSpec& b : spec.bearings) {
-    const int dof = rotor.dof(rotor.node_at(b.z), kX);
-    switch (b.type) {
-      case BearingType::Linear: break;  // built above from the rotor's linear bearings
-      case BearingType::Journal:
-        elements.push_back(std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, dof));
-        break;
-      case BearingType::FloatingRing:
-        elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil, dof, spec.gravity));
-        break;
-      case BearingType::Ball:
-        if (b.damper.enabled)
-          elements.push_back(
-              std::make_unique<BallDamperElement>(b.name, b.ball, b.damper, spec.oil, dof, spec.gravity));
-        else
-          elements.push_back(std::make_unique<BallBearingElement>(b.name, b.ball, dof, spec.gravity));
-        break;
-    }
-  }
+  std::vector<std::unique_ptr<ForceElement>> elements = make_force_elements(spec, rotor);
   // The bearings act through the elements; the rotor's own matrices stay bearing-free.
   double cutoff = spec.solver.reduction_cutoff;
   if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz
