@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "post/plot.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "post/signal.h"
 #include "optim/model_patch.h"
 #include "optim/optimizer.h"

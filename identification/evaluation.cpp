@@ -7,7 +7,7 @@
 
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "studies/sweep.h"
 
 namespace turbodyn::identification {

@@ -15,7 +15,7 @@
 
 #include "post/plot.h"
 #include "model/io/run_summary.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "model/engine/speed_profile.h"
 #include "studies/metrics.h"
 

@@ -335,11 +335,11 @@ void read_ball_bearing(Reader& r, BearingSpec& b) {
   s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
   s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);
   s.outer_ring_mode =
-      r.choice("outer_ring", {"fixed", "spring"}, "fixed") == "spring" ? OuterRingMode::kSpring : OuterRingMode::kFixed;
+      r.choice("outer_ring", {"fixed", "spring"}, "fixed") == "spring" ? OuterRingMode::Spring : OuterRingMode::Fixed;
   s.outer_ring_stiffness =
       r.quantity_or("outer_ring_stiffness", dim::stiffness, s.outer_ring_stiffness, Bound::Positive);
   s.outer_ring_damping = r.quantity_or("outer_ring_damping", dim::damping, s.outer_ring_damping, Bound::NonNegative);
-  if (s.outer_ring_mode == OuterRingMode::kFixed && (r.has("outer_ring_stiffness") || r.has("outer_ring_damping")))
+  if (s.outer_ring_mode == OuterRingMode::Fixed && (r.has("outer_ring_stiffness") || r.has("outer_ring_damping")))
     r.fail("outer_ring", "outer_ring_stiffness/outer_ring_damping need outer_ring = \"spring\"");
   std::string why;
   if (!s.IsValid(&why)) r.fail("type", "ball bearing: " + why);
@@ -360,7 +360,7 @@ void read_bearing(Reader& r, BearingSpec& b) {
       read_damper(d, b.damper, b.type == BearingType::Linear);
     }
   }
-  if (b.type == BearingType::Ball && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::kSpring)
+  if (b.type == BearingType::Ball && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::Spring)
     r.fail("outer_ring", "\"spring\" and a [damper] both hold the outer ring: choose one");
   b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
   b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);

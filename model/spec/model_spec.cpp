@@ -44,6 +44,21 @@ bool value_of(const Name<Enum> (&names)[N], std::string_view name, Enum& value) 
 
 }  // namespace
 
+bool SolverSpec::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (name_of(kIntegrators, integrator) == "unknown") return fail("unknown integrator (auto, cvode-bdf or arkode-erk)");
+  if (name_of(kAtolScalings, atol_scaling) == "unknown") return fail("unknown atol_scaling (uniform or typical)");
+  if (!(rtol > 0.0 && rtol < 1.0)) return fail("rtol must lie between 0 and 1");
+  if (!(atol > 0.0)) return fail("atol must be positive");
+  if (!(max_step >= 0.0)) return fail("max_step must not be negative");
+  if (max_steps < 1) return fail("max_steps must be at least 1");
+  if (max_order < 1 || max_order > 5) return fail("max_order: BDF orders go from 1 to 5");
+  return true;
+}
+
 std::string to_string(Cavitation c) { return name_of(kCavitations, c); }
 bool from_string(std::string_view name, Cavitation& c) { return value_of(kCavitations, name, c); }
 std::string to_string(BearingType t) { return name_of(kBearingTypes, t); }

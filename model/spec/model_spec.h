@@ -90,9 +90,9 @@ struct JournalBearingSpec {
   double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
 };
 
-/// Full-floating-ring bearing (first version): a ring between the journal and the housing with two films, the
-/// ring translating and spinning freely, driven by the film torques; oil supplied through a feed hole in the
-/// housing. Not yet modelled: ring tilt and the drill holes that couple the films (issue 4).
+/// Full-floating-ring bearing: a ring between the journal and the housing with two films, the ring translating,
+/// tilting and spinning freely, driven by the film torques; oil supplied through a feed hole in the housing to the
+/// outer film and through radial drill holes in the ring to the inner one (model/elements/floating_ring_element.h).
 struct FloatingRingSpec {
   double inner_diameter = 0.0, inner_length = 0.0, inner_clearance = 0.0;  ///< m (journal diameter, width, radial)
   double outer_diameter = 0.0, outer_length = 0.0, outer_clearance = 0.0;  ///< m (ring outer diameter, ...)
@@ -190,6 +190,9 @@ struct SolverSpec {
   /// Hz; Craig-Bampton reduction of the shaft keeping fixed-interface modes below this frequency;
   /// 0 = no reduction, < 0 = automatic (3 x the highest rotor speed frequency, at least 5 kHz).
   double reduction_cutoff = -1.0;
+
+  /// True if every field is acceptable; otherwise *error names the first bad field and why.
+  bool IsValid(std::string* error) const;
 };
 
 /// Window of the spectrograms' segments. Model-file names: "hann", "hamming", "blackman", "flattop",

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "model/io/model_file.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "tests/model/test_support.h"
 
 namespace turbodyn {
@@ -44,7 +44,7 @@ OrbitForce orbit_force(const DamperSpec& d, double eta, double eps, double w) {
                        eps * c * w * std::cos(phase)};
   double out[5];
   const double q[2] = {0, 0}, v[2] = {0, 0};
-  e.EvalProbes(SpinState{}, q, v, z, *ws, out);
+  e.eval_probes(SpinState{}, q, v, z, *ws, out);
   // Force on the housing = -film force on the ring; projected on the radial and tangential directions.
   return {-(out[0] * std::cos(phase) + out[1] * std::sin(phase)),
           -(-out[0] * std::sin(phase) + out[1] * std::cos(phase)), out[4]};
@@ -125,7 +125,7 @@ TEST(Damper, RunUpThroughTheFirstCriticalsWithLowerForceAndClosedEnergyBalance) 
   };
   EXPECT_LT(peak(sfd, "bearing.compressor.fx"), 0.2 * peak(rigid, "bearing.compressor.fx"));
   EXPECT_LT(peak(sfd, "bearing.compressor.damper_eccentricity"), 0.9);
-  // Film dissipation enters the energy balance through the element's DissipatedPower.
+  // Film dissipation enters the energy balance through the element's dissipated_power.
   const double error = sfd.energy_final - sfd.energy_initial - sfd.work_in + sfd.dissipated;
   EXPECT_LT(std::abs(error), 1e-3 * sfd.work_in);
 }

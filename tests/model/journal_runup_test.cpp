@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "post/signal.h"
 #include "tests/model/test_support.h"
 
