@@ -51,7 +51,7 @@ int run_journal_command(const JournalCommandOptions& o) {
   const double supply = value("supply-pressure", o.supply_pressure, dim::pressure);
   if (hole > 0.0) g.holes.push_back({M_PI / 2, 0.0, hole, supply});
   SolverOptions so;
-  if (!cavitation_from_string(o.cavitation, so.cavitation))
+  if (!from_string(o.cavitation, so.cavitation))
     throw ModelError("--cavitation '" + o.cavitation + "': expected gumbel, mass-conserving or none");
   FilmSolver film(g, eta, so);
 

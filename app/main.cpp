@@ -34,7 +34,7 @@ int run_check(const std::filesystem::path& file, const std::vector<turbodyn::Ove
     std::cout << "    disk " << d.name << " at z = " << rotor.node_z[d.node] * 1e3 << " mm, m = " << d.mass
               << " kg, unbalance " << d.unbalance * 1e6 << " g*mm\n";
   for (const turbodyn::BearingSpec& b : spec.bearings)
-    std::cout << "    bearing " << b.name << " (" << b.type << ") at z = " << b.z * 1e3 << " mm\n";
+    std::cout << "    bearing " << b.name << " (" << to_string(b.type) << ") at z = " << b.z * 1e3 << " mm\n";
   return 0;
 }
 

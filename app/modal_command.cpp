@@ -161,8 +161,8 @@ void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const
 
 void require_linear_supports(const MachineSpec& spec) {
   for (const BearingSpec& b : spec.bearings)
-    if (b.type != "linear")
-      throw ModelError(spec.source.string() + ": bearings." + b.name + ": a " + b.type +
+    if (b.type != BearingType::Linear)
+      throw ModelError(spec.source.string() + ": bearings." + b.name + ": a " + to_string(b.type) +
                        " bearing is nonlinear; the linear analyses (modal, response) need linear bearings "
                        "(linearised coefficients, e.g. from `turbodyn journal`, as type = \"linear\")");
   for (const BearingSpec& b : spec.bearings)

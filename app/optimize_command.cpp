@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "post/plot.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "model/io/overrides.h"
 #include "post/run_pictures.h"
 #include "optim/optimizer.h"

@@ -14,7 +14,7 @@
 
 #include "post/plot.h"
 #include "model/io/run_summary.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "post/run_pictures.h"
 #include "model/io/timeseries_file.h"
 

@@ -36,7 +36,7 @@ void Forces(benchmark::State& state) {
   Setup b;
   double f[4] = {0, 0, 0, 0};
   for (auto _ : state) {
-    b.element.CalcAndAddForces(b.s, b.q, b.v, b.z.data(), *b.ws, f, b.zdot.data());
+    b.element.calc_and_add_forces(b.s, b.q, b.v, b.z.data(), *b.ws, f, b.zdot.data());
     benchmark::DoNotOptimize(f);
     benchmark::ClobberMemory();
   }
@@ -54,7 +54,7 @@ void FiniteDifferenceJacobian(benchmark::State& state) {
   std::copy(b.z.begin(), b.z.end(), in.begin() + 2 * d);
   const auto eval = [&](std::vector<double>& out) {
     std::fill(out.begin(), out.begin() + d, 0.0);
-    b.element.CalcAndAddForces(b.s, in.data(), in.data() + d, in.data() + 2 * d, *b.ws, out.data(), out.data() + d);
+    b.element.calc_and_add_forces(b.s, in.data(), in.data() + d, in.data() + 2 * d, *b.ws, out.data(), out.data() + d);
   };
   const double rel = b.element.fd_relative_step();
   for (auto _ : state) {

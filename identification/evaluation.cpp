@@ -6,7 +6,7 @@
 
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "studies/channels.h"
 #include "studies/run_evaluation.h"
 #include "studies/table.h"
@@ -89,9 +89,9 @@ Evaluator::Evaluator(const IdentifyStudy& study) : study_(study) {
   }
   if (study.method == Method::Response) {
     for (const BearingSpec& b : spec.bearings)
-      if (b.type != "linear" || b.pedestal_mass > 0.0 || b.damper.enabled)
+      if (b.type != BearingType::Linear || b.pedestal_mass > 0.0 || b.damper.enabled)
         throw ModelError(study.source.string() + ": identify.method = \"response\" needs linear bearings without "
-                         "pedestals or dampers; bearing '" + b.name + "' is " + b.type + " (use method = \"runup\")");
+                         "pedestals or dampers; bearing '" + b.name + "' is " + to_string(b.type) + " (use method = \"runup\")");
     const Rotor rotor = build_rotor(spec);
     const std::vector<std::string> names = response_probe_names(rotor);
     for (std::size_t i = 0; i < study.measurement.sensors.size(); ++i) {

@@ -165,7 +165,7 @@ void resolve_metrics(OptimizationSpec& s) {
     const std::string where = s.source.string() + ": metrics[" + std::to_string(i) + "].probe: ";
     if (m.response()) {
       for (const BearingSpec& b : machine.bearings)
-        if (b.type != "linear" || b.damper.enabled || b.pedestal_mass > 0.0)
+        if (b.type != BearingType::Linear || b.damper.enabled || b.pedestal_mass > 0.0)
           throw ModelError(s.source.string() + ": metrics[" + std::to_string(i) + "].kind: " + m.spec.kind +
                            " needs the linear rotor (linear bearings without dampers or pedestals); bearing '" +
                            b.name + "' is not; use a run-up metric");

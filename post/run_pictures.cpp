@@ -50,7 +50,7 @@ signal::StftOptions stft_options(const OutputSpec& out) {
   signal::StftOptions so;
   so.segment_length = static_cast<std::size_t>(out.spectrogram_segment);
   so.overlap = out.spectrogram_overlap;
-  so.window = signal::window_from_string(out.spectrogram_window);
+  so.window = signal::window_from_string(to_string(out.spectrogram_window));
   return so;
 }
 

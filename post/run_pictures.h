@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "model/spec/model_spec.h"
 #include "post/plot.h"
 #include "post/signal.h"

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "studies/study.h"
 
 namespace turbodyn::studies {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "model/io/model_file.h"
 #include "studies/study.h"
 

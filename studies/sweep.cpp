@@ -13,7 +13,7 @@
 
 #include "post/plot.h"
 #include "post/run_pictures.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "studies/metrics.h"
 #include "studies/parallel.h"
 #include "studies/run_log.h"

@@ -51,7 +51,7 @@ const reynolds::FilmResult& DamperElement::Film(const double* z, ElementWorkspac
   return w.result;
 }
 
-void DamperElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+void DamperElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                        ElementWorkspace& ws, double* f, double* zdot) const {
   Eigen::Matrix2d k, c;
   bearing_.coefficients(s.speed, k, c);
@@ -76,7 +76,7 @@ std::vector<ProbeInfo> DamperElement::probes() const {
           {"damper_eccentricity", "1", who + "damper eccentricity ratio e/c"}};
 }
 
-void DamperElement::EvalProbes(const SpinState&, const double*, const double*, const double* z, ElementWorkspace& ws,
+void DamperElement::eval_probes(const SpinState&, const double*, const double*, const double* z, ElementWorkspace& ws,
                                double* out) const {
   const reynolds::FilmResult& film = Film(z, ws);
   const double kc = damper_.centring_stiffness;
@@ -87,7 +87,7 @@ void DamperElement::EvalProbes(const SpinState&, const double*, const double*, c
   out[4] = std::hypot(z[0], z[1]) / damper_.clearance;
 }
 
-double DamperElement::PotentialEnergy(const double* q, const double* z) const {
+double DamperElement::potential_energy(const double* q, const double* z) const {
   Eigen::Matrix2d k, c;
   bearing_.coefficients(0.0, k, c);
   const Eigen::Vector2d du(q[0] - z[0], q[1] - z[1]);
@@ -95,11 +95,11 @@ double DamperElement::PotentialEnergy(const double* q, const double* z) const {
          0.5 * damper_.centring_stiffness * (z[0] * z[0] + z[1] * z[1]) + damper_.ring_mass * gravity_ * z[1];
 }
 
-double DamperElement::KineticEnergy(const double* z) const {
+double DamperElement::kinetic_energy(const double* z) const {
   return 0.5 * damper_.ring_mass * (z[2] * z[2] + z[3] * z[3]);
 }
 
-double DamperElement::DissipatedPower(const SpinState& s, const double*, const double* v, const double* z,
+double DamperElement::dissipated_power(const SpinState& s, const double*, const double* v, const double* z,
                                       ElementWorkspace& ws) const {
   Eigen::Matrix2d k, c;
   bearing_.coefficients(s.speed, k, c);

@@ -21,15 +21,15 @@ class DamperElement final : public ForceElement {
   double fd_relative_step() const override { return 1e-6; }
   void initial_states(double* z) const override;
   std::vector<ProbeInfo> probes() const override;
-  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
-  double PotentialEnergy(const double* q, const double* z) const override;
-  double KineticEnergy(const double* z) const override;
-  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  double potential_energy(const double* q, const double* z) const override;
+  double kinetic_energy(const double* z) const override;
+  double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override;
 
  private:

@@ -70,8 +70,7 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
   for (int k = 0; k < spec.drill_holes; ++k)
     inner_.holes.push_back({spec.drill_hole_angle + 2.0 * M_PI * k / spec.drill_holes, 0.0, spec.drill_hole_diameter,
                             0.0});
-  if (!reynolds::cavitation_from_string(spec.cavitation, options_.cavitation))
-    throw std::logic_error("unknown cavitation model '" + spec.cavitation + "'");
+  options_.cavitation = spec.cavitation;
   eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
   eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
   inertia_diametral_ = spec.ring_diametral_inertia;
@@ -104,8 +103,8 @@ double FloatingRingElement::centrifugal_head(double w_r) const {
 const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s, const double* q, const double* v,
                                                              const double* z, ElementWorkspace& ws) const {
   auto& w = static_cast<RingWorkspace&>(ws);
-  if (w.key.Matches(s.speed, q, v, z)) return w.films;
-  w.key.Invalidate();
+  if (w.key.matches(s.speed, q, v, z)) return w.films;
+  w.key.invalidate();
   const double wr = z[kSpin];
 
   // Outer film: the ring in the housing, housing frame.
@@ -160,11 +159,11 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   rotate(c, sn, i.fx, i.fy);
   rotate(c, sn, i.mx, i.my);
   w.films.hole_pressure = inner_.holes.empty() ? 0.0 : hole_sum / inner_.holes.size();
-  w.key.Set(s.speed, q, v, z);
+  w.key.set(s.speed, q, v, z);
   return w.films;
 }
 
-void FloatingRingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+void FloatingRingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                              ElementWorkspace& ws, double* f, double* zdot) const {
   const Films& films = Solve(s, q, v, z, ws);
   const reynolds::FilmResult& i = films.inner;
@@ -204,7 +203,7 @@ std::vector<ProbeInfo> FloatingRingElement::probes() const {
           {"drill_hole_pressure", "Pa", who + "pressure at the drill holes' inner mouths, mean over the holes"}};
 }
 
-void FloatingRingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+void FloatingRingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
                                      ElementWorkspace& ws, double* out) const {
   const Films& films = Solve(s, q, v, z, ws);
   out[0] = -films.outer.fx;
@@ -216,17 +215,17 @@ void FloatingRingElement::EvalProbes(const SpinState& s, const double* q, const 
   out[6] = films.hole_pressure;
 }
 
-double FloatingRingElement::KineticEnergy(const double* z) const {
+double FloatingRingElement::kinetic_energy(const double* z) const {
   return 0.5 * spec_.ring_mass * (z[kVx] * z[kVx] + z[kVy] * z[kVy]) +
          0.5 * inertia_diametral_ * (z[kWx] * z[kWx] + z[kWy] * z[kWy]) +
          0.5 * spec_.ring_polar_inertia * z[kSpin] * z[kSpin];
 }
 
-double FloatingRingElement::PotentialEnergy(const double*, const double* z) const {
+double FloatingRingElement::potential_energy(const double*, const double* z) const {
   return spec_.ring_mass * gravity_ * z[kY];
 }
 
-double FloatingRingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+double FloatingRingElement::dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                                             ElementWorkspace& ws) const {
   // All the films turn into heat: minus the power of their forces, moments and torques on the shaft and the ring
   // (the housing is fixed).
@@ -239,7 +238,7 @@ double FloatingRingElement::DissipatedPower(const SpinState& s, const double* q,
   return -(shaft + ring);
 }
 
-double FloatingRingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+double FloatingRingElement::drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                                        ElementWorkspace& ws) const {
   return -Solve(s, q, v, z, ws).inner.torque_inner * s.speed;
 }

@@ -39,13 +39,13 @@ class FloatingRingElement final : public ForceElement {
   double state_scale(int i) const override;
   double fd_relative_step() const override { return 1e-6; }
   std::vector<ProbeInfo> probes() const override;
-  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
-  double KineticEnergy(const double* z) const override;
-  double PotentialEnergy(const double* q, const double* z) const override;
-  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  double kinetic_energy(const double* z) const override;
+  double potential_energy(const double* q, const double* z) const override;
+  double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
-  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+  double drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                     ElementWorkspace& ws) const override;
 
   /// Centrifugal pressure drop across a drill hole at ring speed w_r (Pa).
@@ -54,7 +54,7 @@ class FloatingRingElement final : public ForceElement {
   double diametral_inertia() const { return inertia_diametral_; }
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override;
 
  public:

@@ -1,7 +1,8 @@
 // Force elements: everything that acts on the rotor besides its own linear beam and disk terms (bearings first).
 //
-// Modelled on Drake's ForceElement (public non-virtual entry that checks, protected virtual that adds into
-// preallocated arrays) and Chrono's elements with internal states: an element reads the rotor displacements and
+// Modelled on Drake's ForceElement (a public non-virtual entry, the one place for checks common to all elements,
+// forwarding to a protected virtual that adds into preallocated arrays; it checks nothing yet, as the engine is
+// the only caller) and Chrono's elements with internal states: an element reads the rotor displacements and
 // velocities at the DOFs it is attached to, plus its own states (ring or ball positions and velocities, a pedestal
 // mass...), adds forces on those rotor DOFs and writes the time derivatives of its own states.
 //
@@ -40,13 +41,13 @@ class EvaluationKey {
   EvaluationKey() = default;
   /// d rotor DOFs, m internal states.
   EvaluationKey(int d, int m) : d_(d), m_(m), key_(static_cast<std::size_t>(1 + 2 * d + m), 0.0) {}
-  bool Matches(double speed, const double* q, const double* v, const double* z) const {
+  bool matches(double speed, const double* q, const double* v, const double* z) const {
     return valid_ && std::memcmp(key_.data(), &speed, sizeof speed) == 0 &&
            std::memcmp(key_.data() + 1, q, bytes(d_)) == 0 && std::memcmp(key_.data() + 1 + d_, v, bytes(d_)) == 0 &&
            std::memcmp(key_.data() + 1 + 2 * d_, z, bytes(m_)) == 0;
   }
   /// Marks (speed, q, v, z) as the state of what the workspace holds.
-  void Set(double speed, const double* q, const double* v, const double* z) {
+  void set(double speed, const double* q, const double* v, const double* z) {
     key_[0] = speed;
     std::memcpy(key_.data() + 1, q, bytes(d_));
     std::memcpy(key_.data() + 1 + d_, v, bytes(d_));
@@ -54,7 +55,7 @@ class EvaluationKey {
     valid_ = true;
   }
   /// Call before recomputing, so that a throw leaves nothing stale marked valid.
-  void Invalidate() { valid_ = false; }
+  void invalidate() { valid_ = false; }
 
  private:
   static std::size_t bytes(int n) { return static_cast<std::size_t>(n) * sizeof(double); }
@@ -94,9 +95,9 @@ class ForceElement {
   /// Adds the element's generalised forces on its rotor DOFs into f (local order, dofs().size() values) and writes
   /// the derivatives of its internal states into zdot. q and v are the rotor displacements and velocities at
   /// dofs(); z the internal states.
-  void CalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                         double* f, double* zdot) const {
-    DoCalcAndAddForces(s, q, v, z, ws, f, zdot);
+    do_calc_and_add_forces(s, q, v, z, ws, f, zdot);
   }
 
   /// Typical magnitudes of the rotor displacements (m) and velocities (m/s): the smallest step scales of
@@ -127,47 +128,47 @@ class ForceElement {
   /// engine then factors the element's Newton block by block (BlockArrowLU). Empty: one dense block.
   virtual std::vector<int> independent_state_blocks() const { return {}; }
 
-  /// True if AddJacobian() is implemented; otherwise the engine differentiates numerically.
+  /// True if add_jacobian() is implemented; otherwise the engine differentiates numerically.
   virtual bool has_jacobian() const { return false; }
   /// Jacobian of [f; zdot] with respect to [q; v; z] (local numbering), column-major, of size
   /// (d + m) x (2d + m) with d = dofs().size(), m = n_states(); added into J.
-  virtual void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  virtual void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                            double* J) const {
     (void)s, (void)q, (void)v, (void)z, (void)ws, (void)J;
   }
-  /// Force evaluations one AddJacobian() call makes (0 for an analytic Jacobian), for the engine's count of
+  /// Force evaluations one add_jacobian() call makes (0 for an analytic Jacobian), for the engine's count of
   /// force-element calls.
   virtual int jacobian_evaluations() const { return 0; }
 
   /// Outputs of the element.
   virtual std::vector<ProbeInfo> probes() const { return {}; }
-  virtual void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  virtual void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* out) const {
     (void)s, (void)q, (void)v, (void)z, (void)ws, (void)out;
   }
 
   /// Energy bookkeeping of the run (RunupResult: E(t) - E(t0) = work in - dissipated). The rotor's spin is
   /// prescribed, so the drive supplies whatever torque an element puts on the shaft about the spin axis: that
-  /// power is work in (DrivePower); what the element turns into heat is DissipatedPower.
+  /// power is work in (drive_power); what the element turns into heat is dissipated_power.
   /// Potential energy stored in the element (J).
-  virtual double PotentialEnergy(const double* q, const double* z) const {
+  virtual double potential_energy(const double* q, const double* z) const {
     (void)q, (void)z;
     return 0.0;
   }
   /// Kinetic energy of the element's own bodies (J).
-  virtual double KineticEnergy(const double* z) const {
+  virtual double kinetic_energy(const double* z) const {
     (void)z;
     return 0.0;
   }
   /// Power dissipated in the element (W, >= 0).
-  virtual double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  virtual double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                                  ElementWorkspace& ws) const {
     (void)s, (void)q, (void)v, (void)z, (void)ws;
     return 0.0;
   }
   /// Power the drive puts into the element through the prescribed spin: -T Omega for a moment T of the element
   /// on the shaft about the spin axis (W; > 0 for a drag).
-  virtual double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+  virtual double drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                             ElementWorkspace& ws) const {
     (void)s, (void)q, (void)v, (void)z, (void)ws;
     return 0.0;
@@ -177,7 +178,7 @@ class ForceElement {
   ForceElement(std::string name, std::vector<int> dofs, int n_states)
       : name_(std::move(name)), dofs_(std::move(dofs)), n_states_(n_states) {}
 
-  virtual void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+  virtual void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                   ElementWorkspace& ws, double* f, double* zdot) const = 0;
 
  private:

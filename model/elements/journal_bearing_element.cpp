@@ -62,7 +62,7 @@ const reynolds::FilmResult& JournalBearingElement::Solve(const SpinState& s, con
   return w.result;
 }
 
-void JournalBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double*,
+void JournalBearingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double*,
                                                ElementWorkspace& ws, double* f, double*) const {
   const reynolds::FilmResult& r = Solve(s, q, v, ws);
   f[0] += r.fx;
@@ -80,7 +80,7 @@ std::vector<ProbeInfo> JournalBearingElement::probes() const {
           {"max_pressure", "Pa", who + "highest film pressure"}};
 }
 
-void JournalBearingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double*,
+void JournalBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double*,
                                        ElementWorkspace& ws, double* out) const {
   const reynolds::FilmResult& r = Solve(s, q, v, ws);
   out[0] = -r.fx;  // the film pushes the housing opposite to the journal
@@ -90,7 +90,7 @@ void JournalBearingElement::EvalProbes(const SpinState& s, const double* q, cons
   out[4] = r.max_pressure;
 }
 
-double JournalBearingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double*,
+double JournalBearingElement::dissipated_power(const SpinState& s, const double* q, const double* v, const double*,
                                               ElementWorkspace& ws) const {
   // All the film turns into heat: minus the power of its forces, moments and torque on the journal (the bush is
   // fixed).
@@ -98,7 +98,7 @@ double JournalBearingElement::DissipatedPower(const SpinState& s, const double* 
   return -(r.fx * v[0] + r.fy * v[1] + r.mx * v[2] + r.my * v[3] + r.torque_inner * s.speed);
 }
 
-double JournalBearingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double*,
+double JournalBearingElement::drive_power(const SpinState& s, const double* q, const double* v, const double*,
                                          ElementWorkspace& ws) const {
   return -Solve(s, q, v, ws).torque_inner * s.speed;
 }

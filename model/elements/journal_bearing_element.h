@@ -18,11 +18,11 @@ class JournalBearingElement final : public ForceElement {
   /// The film solver converges its active set / film fraction to a relative 1e-8 at best: difference above that.
   double fd_relative_step() const override { return 1e-6; }
   std::vector<ProbeInfo> probes() const override;
-  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
-  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
-  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+  double drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                     ElementWorkspace& ws) const override;
 
   const reynolds::FilmGeometry& geometry() const { return geometry_; }
@@ -31,7 +31,7 @@ class JournalBearingElement final : public ForceElement {
   reynolds::FilmState film_state(const SpinState& s, const double* q, const double* v) const;
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override;
 
  private:

@@ -18,7 +18,7 @@ void LinearBearingElement::relative(const double* q, const double* v, const doub
   }
 }
 
-void LinearBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+void LinearBearingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                               ElementWorkspace&, double* f, double* zdot) const {
   Eigen::Matrix2d k, c;
   bearing_.coefficients(s.speed, k, c);
@@ -35,7 +35,7 @@ void LinearBearingElement::DoCalcAndAddForces(const SpinState& s, const double* 
   }
 }
 
-void LinearBearingElement::AddJacobian(const SpinState& s, const double*, const double*, const double*,
+void LinearBearingElement::add_jacobian(const SpinState& s, const double*, const double*, const double*,
                                        ElementWorkspace&, double* J) const {
   // Rows [f_x, f_y, zdot...], columns [q_x, q_y, v_x, v_y, z...], column-major with leading dimension 2 + m.
   Eigen::Matrix2d k, c;
@@ -68,7 +68,7 @@ std::vector<ProbeInfo> LinearBearingElement::probes() const {
   return p;
 }
 
-void LinearBearingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+void LinearBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
                                       ElementWorkspace&, double* out) const {
   Eigen::Matrix2d k, c;
   bearing_.coefficients(s.speed, k, c);
@@ -87,7 +87,7 @@ void LinearBearingElement::EvalProbes(const SpinState& s, const double* q, const
   }
 }
 
-double LinearBearingElement::PotentialEnergy(const double* q, const double* z) const {
+double LinearBearingElement::potential_energy(const double* q, const double* z) const {
   // Only meaningful for symmetric stiffness; cross-coupled (circulatory) terms store no energy.
   Eigen::Matrix2d k, c;
   bearing_.coefficients(0.0, k, c);
@@ -99,12 +99,12 @@ double LinearBearingElement::PotentialEnergy(const double* q, const double* z) c
   return e;
 }
 
-double LinearBearingElement::KineticEnergy(const double* z) const {
+double LinearBearingElement::kinetic_energy(const double* z) const {
   if (n_states() == 0) return 0.0;
   return 0.5 * pedestal_.mass * (z[2] * z[2] + z[3] * z[3]);
 }
 
-double LinearBearingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+double LinearBearingElement::dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                                              ElementWorkspace&) const {
   Eigen::Matrix2d k, c;
   bearing_.coefficients(s.speed, k, c);

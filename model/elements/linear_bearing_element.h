@@ -26,18 +26,18 @@ class LinearBearingElement final : public ForceElement {
 
   bool has_jacobian() const override { return true; }
   double state_scale(int i) const override { return i < 2 ? 1e-6 : 1e-3; }  // pedestal position, velocity
-  void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                    double* J) const override;
   std::vector<ProbeInfo> probes() const override;
-  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
-  double PotentialEnergy(const double* q, const double* z) const override;
-  double KineticEnergy(const double* z) const override;
-  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  double potential_energy(const double* q, const double* z) const override;
+  double kinetic_energy(const double* z) const override;
+  double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override;
 
  private:

@@ -1,52 +1,13 @@
 #include "model/engine/runup.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
-#include <arkode/arkode_erkstep.h>
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sundials/sundials_linearsolver.h>
-
-#include "model/elements/damper_element.h"
-#include "model/elements/ball/ball_bearing.h"
-#include "model/elements/ball/ball_damper_element.h"
-#include "model/engine/block_arrow_lu.h"
-#include "model/elements/floating_ring_element.h"
-#include "model/elements/journal_bearing_element.h"
-#include "model/elements/linear_bearing_element.h"
-#include "model/engine/serial_vector_ops.h"
+#include "model/engine/element_factory.h"
+#include "model/engine/runup_workspace.h"
 
 namespace turbodyn {
-
-// Per-simulation scratch space: sized once, reused by every right-hand-side and Jacobian call.
-struct RunupWorkspace {
-  Eigen::VectorXd f;                     // generalised force (n)
-  Eigen::VectorXd tmp;                   // scratch (n)
-  std::vector<std::unique_ptr<ElementWorkspace>> element_ws;
-  std::vector<Eigen::VectorXd> eq, ev, ef, ezdot;  // per element: gathered q, v; local force; (unused) zdot copy
-  std::vector<Eigen::MatrixXd> ejac;     // per element local Jacobian (d + m) x (2d + m)
-  std::vector<Eigen::VectorXd> ein;      // per element: perturbed inputs [q; v; z] for finite differences
-  std::vector<Eigen::VectorXd> eout0, eout1;  // per element: outputs [f; zdot] for finite differences
-  // Jacobian blocks of M v' = f(q, v, z), z' = g(q, v, z).
-  Eigen::MatrixXd Fq, Fv, Fz, Gq, Gv, Gz;
-  // Newton matrix: the n x n Schur complement on the rotor coordinates and its factorisation; per element with
-  // states, its block I - g G_zz, the factors, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), and scratch.
-  Eigen::MatrixXd A;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  std::vector<Eigen::MatrixXd> eA, eY, eT, eJY, eRJY;
-  std::vector<BlockArrowLU> elu;               // per element: factors of its Newton block
-  std::vector<Eigen::VectorXd> ew, ew0, eu;   // per element: m, m and d scratch
-  Eigen::VectorXd rhs, sol;
-  double jac_t = 0.0;
-  SpinState jac_spin;
-  long rhs_calls = 0, element_calls = 0, jacobian_evaluations = 0, factorisations = 0;
-  bool energy = true;  // accumulate the energy-balance states
-};
 
 RunupModel::~RunupModel() = default;
 
@@ -144,23 +105,34 @@ RunupModel::RunupModel(const MachineSpec& spec, Rotor rotor, std::vector<std::un
 
 void RunupWorkspaceDeleter::operator()(RunupWorkspace* ws) const { delete ws; }
 
+RunupWorkspace::Element::Element(const ForceElement& e, int n) {
+  const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
+  workspace = e.make_workspace();
+  q.setZero(d);
+  v.setZero(d);
+  f.setZero(d);
+  jacobian.setZero(d + m, 2 * d + m);
+  fd_in.setZero(2 * d + m);
+  fd_out0.setZero(d + m);
+  fd_out1.setZero(d + m);
+  newton_block.setZero(m, m);
+  lu = BlockArrowLU(m, e.independent_state_blocks(), std::max(d, 1));
+  Y.setZero(m, d);
+  T.setZero(m, d);
+  JY.setZero(d, d);
+  RJY.setZero(n, d);
+  w.setZero(m);
+  w0.setZero(m);
+  u.setZero(d);
+}
+
 RunupWorkspacePtr RunupModel::make_workspace() const {
   RunupWorkspacePtr ws(new RunupWorkspace);
   const int n = n_coordinates_, m = n_element_states_;
   ws->f.setZero(n);
   ws->tmp.setZero(n);
-  for (const auto& e : elements_) {
-    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
-    ws->element_ws.push_back(e->make_workspace());
-    ws->eq.emplace_back(Eigen::VectorXd::Zero(d));
-    ws->ev.emplace_back(Eigen::VectorXd::Zero(d));
-    ws->ef.emplace_back(Eigen::VectorXd::Zero(d));
-    ws->ezdot.emplace_back(Eigen::VectorXd::Zero(me));
-    ws->ejac.emplace_back(Eigen::MatrixXd::Zero(d + me, 2 * d + me));
-    ws->ein.emplace_back(Eigen::VectorXd::Zero(2 * d + me));
-    ws->eout0.emplace_back(Eigen::VectorXd::Zero(d + me));
-    ws->eout1.emplace_back(Eigen::VectorXd::Zero(d + me));
-  }
+  ws->elements.reserve(elements_.size());
+  for (const auto& e : elements_) ws->elements.emplace_back(*e, n);
   ws->Fq.setZero(n, n);
   ws->Fv.setZero(n, n);
   ws->Fz.setZero(n, m);
@@ -169,18 +141,6 @@ RunupWorkspacePtr RunupModel::make_workspace() const {
   ws->Gz.setZero(m, m);
   ws->A.setZero(n, n);
   ws->lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
-  for (const auto& e : elements_) {
-    const int d = static_cast<int>(e->dofs().size()), me = e->n_states();
-    ws->eA.emplace_back(Eigen::MatrixXd::Zero(me, me));
-    ws->elu.emplace_back(me, e->independent_state_blocks(), std::max(d, 1));
-    ws->eY.emplace_back(Eigen::MatrixXd::Zero(me, d));
-    ws->eT.emplace_back(Eigen::MatrixXd::Zero(me, d));
-    ws->ew0.emplace_back(Eigen::VectorXd::Zero(me));
-    ws->eJY.emplace_back(Eigen::MatrixXd::Zero(d, d));
-    ws->eRJY.emplace_back(Eigen::MatrixXd::Zero(n, d));
-    ws->ew.emplace_back(Eigen::VectorXd::Zero(me));
-    ws->eu.emplace_back(Eigen::VectorXd::Zero(d));
-  }
   ws->rhs.setZero(n);
   ws->sol.setZero(n);
   return ws;
@@ -193,8 +153,8 @@ SpinState RunupModel::spin(double t) const {
 void RunupModel::Gather(const ForceElement& e, const double* q, const double* v, RunupWorkspace& ws, int k) const {
   (void)e;
   const int n = n_coordinates_;
-  ws.eq[k].noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(q, n);
-  ws.ev[k].noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(v, n);
+  ws.elements[k].q.noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(q, n);
+  ws.elements[k].v.noalias() = element_rows_[k] * Eigen::Map<const Eigen::VectorXd>(v, n);
 }
 
 void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws) const {
@@ -227,16 +187,16 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
   double element_dissipation = 0.0, drive_power = 0.0;
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const ForceElement& e = *elements_[k];
+    RunupWorkspace::Element& we = ws.elements[k];
     Gather(e, y, y + n, ws, static_cast<int>(k));
-    ws.ef[k].setZero();
+    we.f.setZero();
     const double* z = y + state_offsets_[k];
-    e.CalcAndAddForces(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k], ws.ef[k].data(),
-                       ydot + state_offsets_[k]);
+    e.calc_and_add_forces(s, we.q.data(), we.v.data(), z, *we.workspace, we.f.data(), ydot + state_offsets_[k]);
     ++ws.element_calls;
-    f.noalias() += element_rows_[k].transpose() * ws.ef[k];
+    f.noalias() += element_rows_[k].transpose() * we.f;
     if (ws.energy) {
-      element_dissipation += e.DissipatedPower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
-      drive_power += e.DrivePower(s, ws.eq[k].data(), ws.ev[k].data(), z, *ws.element_ws[k]);
+      element_dissipation += e.dissipated_power(s, we.q.data(), we.v.data(), z, *we.workspace);
+      drive_power += e.drive_power(s, we.q.data(), we.v.data(), z, *we.workspace);
     }
   }
 
@@ -282,7 +242,8 @@ void RunupModel::Probes(double t, const double* y, RunupWorkspace& ws, double* o
       big.resize(np);
       buf = big.data();
     }
-    e.EvalProbes(s, ws.eq[k].data(), ws.ev[k].data(), y + state_offsets_[k], *ws.element_ws[k], buf);
+    RunupWorkspace::Element& we = ws.elements[k];
+    e.eval_probes(s, we.q.data(), we.v.data(), y + state_offsets_[k], *we.workspace, buf);
     for (std::size_t i = 0; i < channels_.size(); ++i)
       if (channels_[i].kind == ProbeChannel::Kind::Element && channels_[i].index == static_cast<int>(k))
         out[i] = buf[channels_[i].element_probe];
@@ -305,30 +266,31 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
     const ForceElement& e = *elements_[k];
     const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
     const int zoff = state_offsets_[k];
-    Eigen::MatrixXd& J = ws.ejac[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    Eigen::MatrixXd& J = we.jacobian;
     J.setZero();
     Gather(e, y, y + n, ws, static_cast<int>(k));
     if (e.has_jacobian()) {
-      e.AddJacobian(s, ws.eq[k].data(), ws.ev[k].data(), y + zoff, *ws.element_ws[k], J.data());
+      e.add_jacobian(s, we.q.data(), we.v.data(), y + zoff, *we.workspace, J.data());
       ws.element_calls += e.jacobian_evaluations();
     } else {
       // Forward differences in the element's own inputs: 2d + m evaluations of the element alone.
-      Eigen::VectorXd& in = ws.ein[k];
-      in << ws.eq[k], ws.ev[k], Eigen::Map<const Eigen::VectorXd>(y + zoff, m);
+      Eigen::VectorXd& in = we.fd_in;
+      in << we.q, we.v, Eigen::Map<const Eigen::VectorXd>(y + zoff, m);
       auto eval = [&](Eigen::VectorXd& out) {
         out.setZero();
-        e.CalcAndAddForces(s, in.data(), in.data() + d, in.data() + 2 * d, *ws.element_ws[k], out.data(),
-                           out.data() + d);
+        e.calc_and_add_forces(s, in.data(), in.data() + d, in.data() + 2 * d, *we.workspace, out.data(),
+                              out.data() + d);
         ++ws.element_calls;
       };
-      eval(ws.eout0[k]);
+      eval(we.fd_out0);
       for (int j = 0; j < 2 * d + m; ++j) {
         const double saved = in(j);
         const double h = e.fd_step(j, d, saved);
         in(j) = saved + h;
-        eval(ws.eout1[k]);
+        eval(we.fd_out1);
         in(j) = saved;
-        J.col(j) = (ws.eout1[k] - ws.eout0[k]) / h;
+        J.col(j) = (we.fd_out1 - we.fd_out0) / h;
       }
     }
     const Eigen::MatrixXd& Rk = element_rows_[k];
@@ -351,19 +313,20 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
     if (m == 0) continue;
-    const Eigen::MatrixXd& J = ws.ejac[k];  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
-    Eigen::MatrixXd& Ak = ws.eA[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    const Eigen::MatrixXd& J = we.jacobian;  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
+    Eigen::MatrixXd& Ak = we.newton_block;
     Ak = -g * J.block(d, 2 * d, m, m);
     Ak.diagonal().array() += 1.0;
-    regular = ws.elu[k].compute(Ak) && regular;
+    regular = we.lu.compute(Ak) && regular;
     // Y = A_k^-1 (-g (G_zv + g G_zq)) in the element's local DOFs; the Schur term -(-g F_z) Y enters as g R' F_z Y R.
-    ws.eT[k] = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
-    ws.eY[k] = ws.eT[k];
-    ws.elu[k].solve_in_place(ws.eY[k]);
+    we.T = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
+    we.Y = we.T;
+    we.lu.solve_in_place(we.Y);
     // Small products (d = 4): coefficient-wise, without the packing of Eigen's general products.
-    ws.eJY[k].noalias() = J.block(0, 2 * d, d, m).lazyProduct(ws.eY[k]);
-    ws.eRJY[k].noalias() = element_rows_[k].transpose().lazyProduct(ws.eJY[k]);
-    ws.A.noalias() += g * ws.eRJY[k].lazyProduct(element_rows_[k]);
+    we.JY.noalias() = J.block(0, 2 * d, d, m).lazyProduct(we.Y);
+    we.RJY.noalias() = element_rows_[k].transpose().lazyProduct(we.JY);
+    ws.A.noalias() += g * we.RJY.lazyProduct(element_rows_[k]);
   }
   ws.lu.compute(ws.A);
   ++ws.factorisations;
@@ -380,15 +343,16 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const int d = static_cast<int>(elements_[k]->dofs().size()), m = elements_[k]->n_states();
     if (m == 0) continue;
-    const Eigen::MatrixXd& J = ws.ejac[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    const Eigen::MatrixXd& J = we.jacobian;
     const int zoff = state_offsets_[k];
-    ws.eu[k].noalias() = element_rows_[k] * rq;
-    ws.ew0[k] = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
-    ws.ew0[k].noalias() += g * (J.block(d, 0, m, d) * ws.eu[k]);
-    ws.ew[k] = ws.ew0[k];
-    ws.elu[k].solve_in_place(ws.ew[k]);
-    ws.eu[k].noalias() = J.block(0, 2 * d, d, m) * ws.ew[k];
-    ws.rhs.noalias() += g * (element_rows_[k].transpose() * ws.eu[k]);
+    we.u.noalias() = element_rows_[k] * rq;
+    we.w0 = Eigen::Map<const Eigen::VectorXd>(b + zoff, m);
+    we.w0.noalias() += g * (J.block(d, 0, m, d) * we.u);
+    we.w = we.w0;
+    we.lu.solve_in_place(we.w);
+    we.u.noalias() = J.block(0, 2 * d, d, m) * we.w;
+    ws.rhs.noalias() += g * (element_rows_[k].transpose() * we.u);
   }
   ws.sol = ws.lu.solve(ws.rhs);
   Eigen::Map<Eigen::VectorXd> dq(x, n), dv(x + n, n);
@@ -399,10 +363,11 @@ void RunupModel::SolveNewton(double gamma, const double* b, double* x, RunupWork
     const int m = elements_[k]->n_states();
     if (m == 0) continue;
     const int zoff = state_offsets_[k];
-    ws.eu[k].noalias() = element_rows_[k] * ws.sol;
+    RunupWorkspace::Element& we = ws.elements[k];
+    we.u.noalias() = element_rows_[k] * ws.sol;
     Eigen::Map<Eigen::VectorXd> dz(x + zoff, m);
-    dz = ws.ew[k];
-    dz.noalias() -= ws.eY[k] * ws.eu[k];
+    dz = we.w;
+    dz.noalias() -= we.Y * we.u;
   }
   // Energy-accounting states: their equations do not depend on y through the Newton matrix.
   const int ny = n_states();
@@ -449,7 +414,7 @@ double RunupModel::MechanicalEnergy(double t, const double* y) const {
     const ForceElement& el = *elements_[k];
     eq.resize(el.dofs().size());
     Eigen::Map<Eigen::VectorXd>(eq.data(), eq.size()) = element_rows_[k] * q;
-    e += el.PotentialEnergy(eq.data(), y + state_offsets_[k]) + el.KineticEnergy(y + state_offsets_[k]);
+    e += el.potential_energy(eq.data(), y + state_offsets_[k]) + el.kinetic_energy(y + state_offsets_[k]);
   }
   return e;
 }
@@ -495,33 +460,7 @@ void RunupModel::InitialState(double t, bool static_equilibrium, double* y, Runu
 
 std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
   Rotor rotor = build_rotor(spec);
-  std::vector<std::unique_ptr<ForceElement>> elements;
-  for (const LinearBearing& b : rotor.bearings) {
-    Pedestal pedestal;
-    const DamperSpec* damper = nullptr;
-    for (const BearingSpec& bs : spec.bearings)
-      if (bs.name == b.name) {
-        pedestal = Pedestal{bs.pedestal_mass, bs.pedestal_stiffness, bs.pedestal_damping};
-        if (bs.damper.enabled) damper = &bs.damper;
-      }
-    if (damper)
-      elements.push_back(std::make_unique<DamperElement>(b, rotor.dof(b.node, kX), *damper, spec.oil, spec.gravity));
-    else
-      elements.push_back(std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), pedestal, spec.gravity));
-  }
-  for (const BearingSpec& b : spec.bearings)
-    if (b.type == "journal")
-      elements.push_back(
-          std::make_unique<JournalBearingElement>(b.name, b.journal, spec.oil, rotor.dof(rotor.node_at(b.z), kX)));
-    else if (b.type == "floating-ring")
-      elements.push_back(std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil,
-                                                               rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
-    else if (b.type == "ball" && b.damper.enabled)
-      elements.push_back(std::make_unique<BallDamperElement>(b.name, b.ball, b.damper, spec.oil,
-                                                             rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
-    else if (b.type == "ball")
-      elements.push_back(
-          std::make_unique<BallBearingElement>(b.name, b.ball, rotor.dof(rotor.node_at(b.z), kX), spec.gravity));
+  std::vector<std::unique_ptr<ForceElement>> elements = make_force_elements(spec, rotor);
   // The bearings act through the elements; the rotor's own matrices stay bearing-free.
   double cutoff = spec.solver.reduction_cutoff;
   if (cutoff < 0.0) {  // automatic: three times the highest rotor frequency, at least 5 kHz
@@ -529,288 +468,6 @@ std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {
     cutoff = std::max(3.0 * top, 5000.0);
   }
   return std::make_unique<RunupModel>(spec, std::move(rotor), std::move(elements), cutoff);
-}
-
-// ------------------------------------------------------------------------------------------------ integration
-
-namespace {
-
-struct Integration {
-  const RunupModel* model = nullptr;
-  RunupWorkspace* ws = nullptr;
-  void* cvode = nullptr;
-  double gamma_factored = -1.0;
-  std::string last_error;
-  long jacobian_step = 0;       // integrator step count at the last Jacobian
-  long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
-};
-
-int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
-  auto* in = static_cast<Integration*>(user);
-  try {
-    in->model->Rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), *in->ws);
-  } catch (const std::exception& e) {
-    // A force element cannot be evaluated here (e.g. a film closes): recoverable, the integrator retries with a
-    // smaller step; the message explains the failure if it persists.
-    in->last_error = e.what();
-    return 1;
-  }
-  for (sunindextype i = 0, n = N_VGetLength(ydot); i < n; ++i)
-    if (!std::isfinite(NV_Ith_S(ydot, i))) return 1;  // recoverable: the integrator retries with a smaller step
-  return 0;
-}
-
-void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
-  (void)code;
-  auto* in = static_cast<Integration*>(user);
-  in->last_error = std::string(module) + "/" + function + ": " + msg;
-}
-
-SUNLinearSolver_Type ls_type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
-
-int ls_setup(SUNLinearSolver S, SUNMatrix) {
-  auto* in = static_cast<Integration*>(S->content);
-  sunrealtype tcur, gamma, rl1;
-  N_Vector ypred, yn, fn, zn1;
-  void* user = nullptr;
-  if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
-    return -1;
-  try {
-    in->model->Jacobian(tcur, N_VGetArrayPointer(ypred), *in->ws);
-  } catch (const std::exception& e) {
-    in->last_error = e.what();
-    return 1;
-  }
-  in->gamma_factored = gamma;
-  return in->model->FactorNewton(gamma, *in->ws) ? 0 : 1;
-}
-
-int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
-  auto* in = static_cast<Integration*>(S->content);
-  const RunupModel& model = *in->model;
-  RunupWorkspace& ws = *in->ws;
-  // CVODE does not call the setup of a matrix-embedded solver on its own schedule, so the solve keeps the Newton
-  // matrix current: a new Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than
-  // 2 % since the last one, when the nonlinear solver failed since then (the Jacobian is stale: nonlinear films),
-  // or every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51); a new factorisation
-  // when gamma (the step size) changed.
-  constexpr double kJacobianSpeedChange = 0.02;
-  constexpr long kJacobianMaxSteps = 50;
-  sunrealtype tcur, gamma, rl1;
-  N_Vector ypred, yn, fn, zn1;
-  void* user = nullptr;
-  if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
-    return -1;
-  const double w = model.speed().speed(tcur), w_jac = ws.jac_spin.speed;
-  long steps = 0, failures = 0;
-  CVodeGetNumSteps(in->cvode, &steps);
-  CVodeGetNumNonlinSolvConvFails(in->cvode, &failures);
-  if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0) ||
-      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps) {
-    in->jacobian_step = steps;
-    in->jacobian_failures = failures;
-    try {
-      model.Jacobian(tcur, N_VGetArrayPointer(ypred), ws);
-    } catch (const std::exception& e) {
-      in->last_error = e.what();
-      return 1;
-    }
-    in->gamma_factored = -1.0;
-  }
-  if (gamma != in->gamma_factored) {
-    in->gamma_factored = gamma;
-    if (!model.FactorNewton(gamma, ws)) return 1;  // recoverable: CVODE retries with a smaller step
-  }
-  model.SolveNewton(gamma, N_VGetArrayPointer(b), N_VGetArrayPointer(x), ws);
-  return 0;
-}
-
-int ls_free(SUNLinearSolver S) {
-  S->content = nullptr;
-  SUNLinSolFreeEmpty(S);
-  return 0;
-}
-
-std::string describe_stop(double t, double speed, const std::string& cause) {
-  std::ostringstream os;
-  os << "stopped at t = " << t << " s (" << std::llround(speed * 60.0 / (2.0 * M_PI)) << " rpm): " << cause;
-  return os.str();
-}
-
-}  // namespace
-
-RunupOptions runup_options(const MachineSpec& spec) {
-  RunupOptions ro;
-  ro.integrator = spec.solver.integrator;
-  ro.rtol = spec.solver.rtol;
-  ro.atol = spec.solver.atol;
-  ro.atol_scaling = spec.solver.atol_scaling;
-  ro.max_step = spec.solver.max_step;
-  ro.max_steps = spec.solver.max_steps;
-  ro.max_order = spec.solver.max_order;
-  ro.sample_rate = spec.output.sample_rate;
-  ro.static_start = spec.solver.static_start;
-  return ro;
-}
-
-std::string resolve_integrator(const RunupModel& model, const std::string& requested) {
-  if (requested != "auto") return requested;
-  // Measured (bench/README.md): with linear bearings BDF with the structured Newton solver beats the explicit
-  // method 1.5x on the reduced rotor and by far more on the unreduced one. New bearing types refine this rule
-  // with their own measurements.
-  (void)model;
-  return "cvode-bdf";
-}
-
-RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options) {
-  if (options.atol_scaling != "uniform" && options.atol_scaling != "typical")
-    throw std::invalid_argument("unknown atol_scaling '" + options.atol_scaling + "' (uniform or typical)");
-  const auto wall0 = std::chrono::steady_clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(); };
-  RunupResult result;
-  result.channels = model.channels();
-  result.columns.assign(result.channels.size(), {});
-
-  auto ws = model.make_workspace();
-  const int ny = model.n_states();
-  const double t0 = options.t_start;
-  const double t_end = options.t_end > 0.0 ? options.t_end : model.speed().duration();
-  const double dt_out = 1.0 / options.sample_rate;
-
-  SUNContext ctx = nullptr;
-  SUNContext_Create(nullptr, &ctx);
-  N_Vector y = N_VNew_Serial(ny, ctx);
-  UseCompiledVectorOps(y);  // the integrators' vectors are clones of y
-  std::vector<double> values(result.channels.size());
-  auto record = [&](double t) {
-    try {
-      model.Probes(t, N_VGetArrayPointer(y), *ws, values.data());
-    } catch (const std::exception&) {
-      std::fill(values.begin(), values.end(), std::nan(""));
-    }
-    result.time.push_back(t);
-    for (std::size_t c = 0; c < values.size(); ++c) result.columns[c].push_back(values[c]);
-    if (options.sink) options.sink(t, values.data());
-  };
-
-  try {
-    model.InitialState(t0, options.static_start, N_VGetArrayPointer(y), *ws);
-  } catch (const std::exception& e) {
-    result.message = describe_stop(t0, model.spin(t0).speed, e.what());
-    N_VDestroy(y);
-    SUNContext_Free(&ctx);
-    return result;
-  }
-  result.energy_initial = model.MechanicalEnergy(t0, N_VGetArrayPointer(y));
-  record(t0);
-
-  N_Vector atol = N_VClone(y);
-  {
-    const Eigen::VectorXd a = model.AbsoluteTolerances(options.atol, options.atol_scaling == "typical");
-    for (int i = 0; i < ny; ++i) NV_Ith_S(atol, i) = a(i);
-  }
-  Integration in;
-  in.model = &model;
-  in.ws = ws.get();
-  void* mem = nullptr;
-  SUNLinearSolver LS = nullptr;
-  const std::string integrator = resolve_integrator(model, options.integrator);
-  const bool bdf = integrator == "cvode-bdf";
-  if (bdf) {
-    mem = CVodeCreate(CV_BDF, ctx);
-    in.cvode = mem;
-    CVodeInit(mem, rhs_callback, t0, y);
-    CVodeSetUserData(mem, &in);
-    CVodeSetErrHandlerFn(mem, error_handler, &in);
-    CVodeSVtolerances(mem, options.rtol, atol);
-    CVodeSetMaxNumSteps(mem, options.max_steps);
-    if (options.max_step > 0) CVodeSetMaxStep(mem, options.max_step);
-    CVodeSetStopTime(mem, t_end);
-    CVodeSetMaxOrd(mem, options.max_order);
-    CVodeSetStabLimDet(mem, options.stability_limit_detection ? SUNTRUE : SUNFALSE);
-    LS = SUNLinSolNewEmpty(ctx);
-    LS->content = &in;
-    LS->ops->gettype = ls_type;
-    LS->ops->setup = ls_setup;
-    LS->ops->solve = ls_solve;
-    LS->ops->free = ls_free;
-    CVodeSetLinearSolver(mem, LS, nullptr);
-  } else if (integrator == "arkode-erk") {
-    mem = ERKStepCreate(rhs_callback, t0, y, ctx);
-    ERKStepSetUserData(mem, &in);
-    ERKStepSetErrHandlerFn(mem, error_handler, &in);
-    ERKStepSVtolerances(mem, options.rtol, atol);
-    ERKStepSetMaxNumSteps(mem, options.max_steps);
-    if (options.max_step > 0) ERKStepSetMaxStep(mem, options.max_step);
-    ERKStepSetStopTime(mem, t_end);
-  } else {
-    N_VDestroy(atol);
-    N_VDestroy(y);
-    SUNContext_Free(&ctx);
-    throw std::invalid_argument("unknown integrator '" + options.integrator + "' (cvode-bdf or arkode-erk)");
-  }
-  N_VDestroy(atol);  // the integrators keep copies
-
-  double last_progress = 0.0;
-  double t = t0;
-  const long n_out = static_cast<long>(std::floor((t_end - t0) * options.sample_rate + 1e-9));
-  result.complete = true;
-  for (long k = 1; k <= n_out; ++k) {
-    const double tout = std::min(t0 + k * dt_out, t_end);
-    const int flag = bdf ? CVode(mem, tout, y, &t, CV_NORMAL) : ERKStepEvolve(mem, tout, y, &t, ARK_NORMAL);
-    if (flag < 0) {
-      const char* name = bdf ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag);
-      std::string cause = std::string(name ? name : "integrator failure");
-      if (name) free(const_cast<char*>(name));
-      if (!in.last_error.empty()) cause += " (" + in.last_error + ")";
-      result.complete = false;
-      result.message = describe_stop(t, model.spin(t).speed, cause);
-      break;
-    }
-    record(t);
-    if (options.cancel && options.cancel->load()) {
-      result.complete = false;
-      result.message = describe_stop(t, model.spin(t).speed, "interrupted");
-      break;
-    }
-    if (options.progress && wall() - last_progress > 0.5) {
-      last_progress = wall();
-      options.progress(t, model.spin(t).speed, last_progress);
-    }
-  }
-  result.t_reached = t;
-  const double* yy = N_VGetArrayPointer(y);
-  result.energy_final = model.MechanicalEnergy(t, yy);
-  result.work_in = yy[ny - 2];
-  result.dissipated = yy[ny - 1];
-
-  long steps = 0, etf = 0, ncf = 0, nfe = 0;
-  if (bdf) {
-    CVodeGetNumSteps(mem, &steps);
-    CVodeGetNumErrTestFails(mem, &etf);
-    CVodeGetNumNonlinSolvConvFails(mem, &ncf);
-    CVodeFree(&mem);
-    SUNLinSolFree(LS);
-  } else {
-    ERKStepGetNumSteps(mem, &steps);
-    ERKStepGetNumErrTestFails(mem, &etf);
-    long expl = 0;
-    ERKStepGetNumRhsEvals(mem, &expl);
-    nfe = expl;
-    ERKStepFree(&mem);
-  }
-  (void)nfe;
-  result.stats.steps = steps;
-  result.stats.error_test_failures = etf;
-  result.stats.nonlinear_failures = ncf;
-  result.stats.rhs_calls = ws->rhs_calls;
-  result.stats.element_calls = ws->element_calls;
-  result.stats.jacobian_evaluations = ws->jacobian_evaluations;
-  result.stats.linear_setups = ws->factorisations;
-  result.stats.wall_time = wall();
-  N_VDestroy(y);
-  SUNContext_Free(&ctx);
-  return result;
 }
 
 }  // namespace turbodyn

@@ -17,8 +17,6 @@
 // parallel studies can run many simulations of one model). Rhs() allocates nothing.
 #pragma once
 
-#include <atomic>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -137,58 +135,5 @@ class RunupModel {
 
 /// Builds the run-up model of a machine: rotor (reduced as spec.solver says), one force element per bearing.
 std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec);
-
-struct RunupOptions {
-  std::string integrator = "auto";  ///< "auto", "cvode-bdf" or "arkode-erk" (see SolverSpec)
-  double rtol = 1e-6;
-  double atol = 1e-9;
-  std::string atol_scaling = "uniform";  ///< "uniform" or "typical" (see SolverSpec and AbsoluteTolerances())
-  double max_step = 0.0;       ///< s, 0 = none
-  double sample_rate = 20000;  ///< 1/s
-  double t_start = 0.0;        ///< s
-  double t_end = 0.0;          ///< s, 0 = end of the speed profile
-  bool static_start = true;    ///< start from the static equilibrium under gravity
-  long max_steps = 50'000'000; ///< integrator steps before giving up
-  int max_order = 5;           ///< BDF: highest order (1..5)
-  bool stability_limit_detection = true;  ///< BDF: lower the order when higher orders turn unstable
-  /// Called about twice a second of wall time.
-  std::function<void(double t, double speed, double wall_seconds)> progress;
-  /// Called with every output sample (time, channel values); e.g. to stream into a file.
-  std::function<void(double t, const double* values)> sink;
-  const std::atomic<bool>* cancel = nullptr;  ///< set to stop the run early (Ctrl-C)
-};
-
-/// The options a model file's [solver] and [output] tables ask for.
-RunupOptions runup_options(const MachineSpec& spec);
-
-/// The integrator "auto" stands for with this model.
-std::string resolve_integrator(const RunupModel& model, const std::string& requested);
-
-struct RunupStats {
-  long steps = 0;
-  long rhs_calls = 0;             ///< right-hand-side evaluations (including those for Jacobians)
-  long element_calls = 0;         ///< force-element evaluations
-  long jacobian_evaluations = 0;
-  long linear_setups = 0;         ///< Newton matrix factorisations
-  long error_test_failures = 0;
-  long nonlinear_failures = 0;
-  double wall_time = 0.0;         ///< s
-};
-
-struct RunupResult {
-  bool complete = false;
-  std::string message;            ///< why it stopped early (empty when complete)
-  double t_reached = 0.0;
-  std::vector<ProbeChannel> channels;
-  std::vector<double> time;
-  std::vector<std::vector<double>> columns;  ///< columns[c][sample]
-  RunupStats stats;
-  // Energy balance: E(t_end) - E(t0) against the work put in minus the energy dissipated.
-  double energy_initial = 0.0, energy_final = 0.0, work_in = 0.0, dissipated = 0.0;
-};
-
-/// Integrates the run-up. Never throws for integrator failures or cancellation: the result then has
-/// complete == false, a message naming the time, speed and cause, and all samples up to that point.
-RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options);
 
 }  // namespace turbodyn

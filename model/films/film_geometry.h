@@ -1,15 +1,12 @@
 // The film geometry of a plain film spec, shared by the journal bearing and both damper elements.
 #pragma once
 
-#include <stdexcept>
-
 #include "model/films/reynolds.h"
 
 namespace turbodyn {
 
 /// Film geometry and solver options of a plain film spec (JournalBearingSpec, DamperSpec: diameter, length,
-/// clearance, grid, feed hole, cavitation; end seals for dampers). Throws std::logic_error for a cavitation name
-/// the loader would refuse.
+/// clearance, grid, feed hole, cavitation; end seals for dampers).
 template <class Film>
 reynolds::FilmGeometry film_geometry(const Film& f, reynolds::SolverOptions& options) {
   reynolds::FilmGeometry g;
@@ -23,8 +20,7 @@ reynolds::FilmGeometry film_geometry(const Film& f, reynolds::SolverOptions& opt
     g.end_seal_gap = f.end_seal_gap;
     g.end_seal_length = f.end_seal_length;
   }
-  if (!reynolds::cavitation_from_string(f.cavitation, options.cavitation))
-    throw std::logic_error("unknown cavitation model '" + f.cavitation + "'");
+  options.cavitation = f.cavitation;
   return g;
 }
 

@@ -28,23 +28,6 @@ bool finite_state(const FilmState& s) {
 
 }  // namespace
 
-bool cavitation_from_string(const std::string& name, Cavitation& c) {
-  if (name == "gumbel") c = Cavitation::Gumbel;
-  else if (name == "mass-conserving") c = Cavitation::MassConserving;
-  else if (name == "none") c = Cavitation::None;
-  else return false;
-  return true;
-}
-
-std::string to_string(Cavitation c) {
-  switch (c) {
-    case Cavitation::None: return "none";
-    case Cavitation::Gumbel: return "gumbel";
-    case Cavitation::MassConserving: return "mass_conserving";
-  }
-  return "unknown";
-}
-
 Closed short_bearing(double eta, double omega, double R, double L, double c, double eps) {
   if (!(eps >= 0.0 && eps < 1.0)) throw std::invalid_argument("short_bearing: eccentricity ratio must be in [0, 1)");
   const double q = 1.0 - eps * eps;

@@ -29,16 +29,11 @@
 
 #include <Eigen/SparseCore>
 
+#include "model/spec/cavitation.h"
+
 namespace turbodyn::reynolds {
 
-enum class Cavitation {
-  None,           ///< full Sommerfeld: p may go below the cavitation pressure (and negative)
-  Gumbel,         ///< p >= p_cav as a complementarity problem (Swift-Stieber / Reynolds conditions), not a clamp
-  MassConserving  ///< JFO (Elrod-Adams): p >= p_cav, film fraction 0 <= theta <= 1, p_cav < p only where theta = 1
-};
-std::string to_string(Cavitation c);
-/// Model-file and command-line names: "gumbel", "mass-conserving", "none". False for any other name.
-bool cavitation_from_string(const std::string& name, Cavitation& c);
+using turbodyn::Cavitation;
 
 /// Radial hole in the outer surface. Grid nodes inside its circle (on the unrolled surface) get p = pressure; a
 /// hole smaller than the grid spacing fixes its nearest node.

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include <toml++/toml.h>
 
@@ -107,6 +108,16 @@ void read_linear_bearing(Reader& r, BearingSpec& b) {
   }
 }
 
+// The enum value a string key names, one of `names` (model-file spelling, all known to from_string); a missing key
+// means `fallback`, and "" makes the key required.
+template <class Enum>
+Enum read_choice(Reader& r, std::string_view key, const std::vector<std::string>& names, const std::string& fallback) {
+  Enum value{};
+  if (!from_string(r.choice(key, names, fallback), value))
+    throw std::logic_error("read_choice: '" + std::string(key) + "' has a name from_string does not know");
+  return value;
+}
+
 // Keys shared by the single-film specs (JournalBearingSpec, DamperSpec); `width` names the film's length in
 // messages.
 template <class Film>
@@ -116,7 +127,8 @@ void read_film(Reader& r, Film& f, const std::string& width) {
   f.clearance = r.quantity("clearance", dim::length, Bound::Positive);
   if (f.clearance >= 0.05 * f.diameter)
     r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
-  f.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, f.cavitation);
+  f.cavitation =
+      read_choice<Cavitation>(r, "cavitation", {"gumbel", "mass-conserving", "none"}, to_string(f.cavitation));
   f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
   f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
   f.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
@@ -126,7 +138,7 @@ void read_film(Reader& r, Film& f, const std::string& width) {
   if (f.feed_hole_diameter >= f.length) r.fail("feed_hole_diameter", "must be smaller than the " + width);
   if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
     r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
-  if (f.cavitation == "mass-conserving" && !(f.feed_hole_diameter > 0.0 && f.supply_pressure > 0.0))
+  if (f.cavitation == Cavitation::MassConserving && !(f.feed_hole_diameter > 0.0 && f.supply_pressure > 0.0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) with "
                          "supply_pressure > 0");
 }
@@ -168,7 +180,8 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
   f.ring_polar_inertia = r.quantity("ring_polar_inertia", dim::inertia, Bound::Positive);
   f.ring_diametral_inertia = r.quantity_or("ring_diametral_inertia", dim::inertia, 0.0, Bound::Positive);
   f.ring_tilt = r.flag_or("ring_tilt", f.ring_tilt);
-  f.cavitation = r.choice("cavitation", {"gumbel", "mass-conserving", "none"}, f.cavitation);
+  f.cavitation =
+      read_choice<Cavitation>(r, "cavitation", {"gumbel", "mass-conserving", "none"}, to_string(f.cavitation));
   f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
   f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
   f.inner_oil_temperature = r.quantity_or("inner_oil_temperature", dim::temperature, 0.0, Bound::Positive);
@@ -191,7 +204,7 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
   if (f.drill_hole_diameter >= f.inner_length) r.fail("drill_hole_diameter", "must be smaller than inner_length");
   if (f.drill_holes > 0 && f.drill_hole_diameter * f.drill_holes >= M_PI * f.inner_diameter)
     r.fail("drill_hole_diameter", "the drill holes overlap around the bore");
-  if (f.cavitation == "mass-conserving" && (f.supply_pressure == 0.0 || f.drill_holes == 0))
+  if (f.cavitation == Cavitation::MassConserving && (f.supply_pressure == 0.0 || f.drill_holes == 0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply in each film: a supply_pressure at the feed "
                          "hole (outer film) and drill_holes through the ring (inner film)");
 }
@@ -227,31 +240,33 @@ void read_ball_bearing(Reader& r, BearingSpec& b) {
   s.preload = r.quantity_or("preload", dim::force, s.preload, Bound::NonNegative);
   s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
   s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);
-  const std::string mode = r.choice("outer_ring", {"fixed", "spring"}, "fixed");
-  s.outer_ring_mode = mode == "spring" ? OuterRingMode::kSpring : OuterRingMode::kFixed;
+  s.outer_ring_mode =
+      r.choice("outer_ring", {"fixed", "spring"}, "fixed") == "spring" ? OuterRingMode::Spring : OuterRingMode::Fixed;
   s.outer_ring_stiffness =
       r.quantity_or("outer_ring_stiffness", dim::stiffness, s.outer_ring_stiffness, Bound::Positive);
   s.outer_ring_damping = r.quantity_or("outer_ring_damping", dim::damping, s.outer_ring_damping, Bound::NonNegative);
-  if (mode == "fixed" && (r.has("outer_ring_stiffness") || r.has("outer_ring_damping")))
+  if (s.outer_ring_mode == OuterRingMode::Fixed && (r.has("outer_ring_stiffness") || r.has("outer_ring_damping")))
     r.fail("outer_ring", "outer_ring_stiffness/outer_ring_damping need outer_ring = \"spring\"");
   std::string why;
   if (!s.IsValid(&why)) r.fail("type", "ball bearing: " + why);
 }
 
 void read_bearing(Reader& r, BearingSpec& b) {
-  b.type = r.choice("type", {"linear", "journal", "floating-ring", "ball"}, "");
+  b.type = read_choice<BearingType>(r, "type", {"linear", "journal", "floating-ring", "ball"}, "");
   b.z = r.quantity("z", dim::length);
-  if (b.type == "linear") read_linear_bearing(r, b);
-  if (b.type == "journal") read_journal_bearing(r, b);
-  if (b.type == "floating-ring") read_floating_ring(r, b);
-  if (b.type == "ball") read_ball_bearing(r, b);
-  if (b.type == "linear" || b.type == "ball") {
+  switch (b.type) {
+    case BearingType::Linear: read_linear_bearing(r, b); break;
+    case BearingType::Journal: read_journal_bearing(r, b); break;
+    case BearingType::FloatingRing: read_floating_ring(r, b); break;
+    case BearingType::Ball: read_ball_bearing(r, b); break;
+  }
+  if (b.type == BearingType::Linear || b.type == BearingType::Ball) {
     if (const toml::table* damper = r.table("damper")) {
       Reader d(*damper, r.key_path("damper"), r.sources());
-      read_damper(d, b.damper, b.type == "linear");
+      read_damper(d, b.damper, b.type == BearingType::Linear);
     }
   }
-  if (b.type == "ball" && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::kSpring)
+  if (b.type == BearingType::Ball && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::Spring)
     r.fail("outer_ring", "\"spring\" and a [damper] both hold the outer ring: choose one");
   b.pedestal_mass = r.quantity_or("pedestal_mass", dim::mass, 0.0, Bound::NonNegative);
   b.pedestal_stiffness = r.quantity_or("pedestal_stiffness", dim::stiffness, 0.0, Bound::NonNegative);
@@ -437,10 +452,12 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
   }
   if (const toml::table* solver = top.table("solver")) {
     Reader r(*solver, "solver", src);
-    spec.solver.integrator = r.choice("integrator", {"auto", "cvode-bdf", "arkode-erk"}, spec.solver.integrator);
+    spec.solver.integrator = read_choice<Integrator>(r, "integrator", {"auto", "cvode-bdf", "arkode-erk"},
+                                                     to_string(spec.solver.integrator));
     spec.solver.rtol = r.quantity_or("rtol", dim::dimensionless, spec.solver.rtol, Bound::Positive);
     spec.solver.atol = r.quantity_or("atol", dim::dimensionless, spec.solver.atol, Bound::Positive);
-    spec.solver.atol_scaling = r.choice("atol_scaling", {"uniform", "typical"}, spec.solver.atol_scaling);
+    spec.solver.atol_scaling =
+        read_choice<AtolScaling>(r, "atol_scaling", {"uniform", "typical"}, to_string(spec.solver.atol_scaling));
     spec.solver.max_step = r.quantity_or("max_step", dim::time, spec.solver.max_step, Bound::NonNegative);
     spec.solver.static_start = r.flag_or("static_start", spec.solver.static_start);
     spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1);
@@ -463,8 +480,9 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     o.spectrogram_overlap = r.quantity_or("spectrogram_overlap", dim::dimensionless, o.spectrogram_overlap,
                                           Bound::NonNegative);
     if (o.spectrogram_overlap >= 1.0) r.fail("spectrogram_overlap", "must be below 1");
-    o.spectrogram_window =
-        r.choice("spectrogram_window", {"hann", "hamming", "blackman", "flattop", "rectangular"}, o.spectrogram_window);
+    o.spectrogram_window = read_choice<SpectrogramWindow>(
+        r, "spectrogram_window", {"hann", "hamming", "blackman", "flattop", "rectangular"},
+        to_string(o.spectrogram_window));
     o.frequency_max = r.quantity_or("frequency_max", dim::frequency, o.frequency_max, Bound::NonNegative);
     o.orbit_speeds = r.quantity_list("orbit_speeds", dim::angular_speed, Bound::NonNegative);
     r.finish();

@@ -16,9 +16,11 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
   for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
   j["overrides"] = ov;
   const double t_end = ro.t_end > 0.0 ? ro.t_end : model.speed().duration();
-  j["options"] = {{"integrator", resolve_integrator(model, ro.integrator)}, {"rtol", ro.rtol}, {"atol", ro.atol}, {"atol_scaling", ro.atol_scaling},
-                  {"max_step_s", ro.max_step}, {"max_steps", ro.max_steps}, {"max_order", ro.max_order},
-                  {"sample_rate_hz", ro.sample_rate}, {"static_start", ro.static_start},
+  j["options"] = {{"integrator", to_string(resolve_integrator(model, ro.solver.integrator))}, {"rtol", ro.solver.rtol},
+                  {"atol", ro.solver.atol}, {"atol_scaling", to_string(ro.solver.atol_scaling)},
+                  {"max_step_s", ro.solver.max_step}, {"max_steps", ro.solver.max_steps},
+                  {"max_order", ro.solver.max_order},
+                  {"sample_rate_hz", ro.sample_rate}, {"static_start", ro.solver.static_start},
                   {"t_start_s", ro.t_start}, {"t_end_s", t_end}, {"rotor_coordinates", model.n_dof()},
                   {"rotor_fe_dof", model.n_physical_dof()},
                   {"reduction_lowest_dropped_mode_hz", model.reduction_cutoff()}};

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/io/model_file.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 
 namespace turbodyn {
 

@@ -525,12 +525,12 @@ void write_csv(const std::filesystem::path& file, const std::vector<Channel>& ch
 namespace {
 
 struct AttributeValue {
-  enum class Kind { kOther, kString, kNumber } kind = Kind::kOther;
+  enum class Kind { Other, String, Number } kind = Kind::Other;
   std::string text;
   double number = 0.0;
 };
 
-// Reads a single-valued string or numeric attribute; anything else (arrays, compounds...) gives Kind::kOther.
+// Reads a single-valued string or numeric attribute; anything else (arrays, compounds...) gives Kind::Other.
 AttributeValue read_attribute(hid_t location, const std::string& name, const std::string& context) {
   const std::string what = "cannot read attribute '" + name + "'";
   Handle attribute = checked(H5Aopen(location, name.c_str(), H5P_DEFAULT), H5Aclose, context, what.c_str());
@@ -561,10 +561,10 @@ AttributeValue read_attribute(hid_t location, const std::string& name, const std
       if (H5Tget_strpad(type.get()) == H5T_STR_SPACEPAD) text.erase(text.find_last_not_of(' ') + 1);
       value.text = std::move(text);
     }
-    value.kind = AttributeValue::Kind::kString;
+    value.kind = AttributeValue::Kind::String;
   } else if (type_class == H5T_INTEGER || type_class == H5T_FLOAT) {
     check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value.number), context, what.c_str());
-    value.kind = AttributeValue::Kind::kNumber;
+    value.kind = AttributeValue::Kind::Number;
   }
   return value;
 }
@@ -574,7 +574,7 @@ std::string read_string_attribute_or_empty(hid_t location, const char* name, con
   if (exists < 0) throw_hdf5(context, std::string("cannot look up attribute '") + name + "'");
   if (exists == 0) return "";
   AttributeValue value = read_attribute(location, name, context);
-  return value.kind == AttributeValue::Kind::kString ? value.text : "";
+  return value.kind == AttributeValue::Kind::String ? value.text : "";
 }
 
 herr_t collect_attribute_name(hid_t, const char* name, const H5A_info_t*, void* names) {
@@ -617,10 +617,10 @@ TimeSeriesData read_hdf5_timeseries(const std::filesystem::path& path) {
   for (const std::string& name : names) {
     const AttributeValue value = read_attribute(file.get(), name, context);
     if (name == kCompleteAttribute) {
-      data.complete = value.kind == AttributeValue::Kind::kNumber && value.number != 0.0;
-    } else if (value.kind == AttributeValue::Kind::kString) {
+      data.complete = value.kind == AttributeValue::Kind::Number && value.number != 0.0;
+    } else if (value.kind == AttributeValue::Kind::String) {
       data.string_attributes[name] = value.text;
-    } else if (value.kind == AttributeValue::Kind::kNumber) {
+    } else if (value.kind == AttributeValue::Kind::Number) {
       data.number_attributes[name] = value.number;
     }
   }

@@ -151,7 +151,7 @@ Rotor build_rotor(const MachineSpec& spec) {
     r.disks.push_back(disk);
   }
   for (const BearingSpec& b : spec.bearings) {
-    if (b.type != "linear") continue;  // nonlinear bearings are force elements of the run-up
+    if (b.type != BearingType::Linear) continue;  // nonlinear bearings are force elements of the run-up
     r.bearings.push_back(LinearBearing{b.name, r.node_at(std::clamp(b.z, 0.0, length)), b.linear});
   }
 

@@ -60,7 +60,7 @@ bool BallBearingSpec::IsValid(std::string* error) const {
   if (!non_negative(preload)) return fail(error, "preload", ">= 0", preload);
   if (!non_negative(preload_stiffness)) return fail(error, "preload_stiffness", ">= 0", preload_stiffness);
   if (!positive(outer_ring_mass)) return fail(error, "outer_ring_mass", "> 0", outer_ring_mass);
-  if (outer_ring_mode == OuterRingMode::kSpring && !positive(outer_ring_stiffness))
+  if (outer_ring_mode == OuterRingMode::Spring && !positive(outer_ring_stiffness))
     return fail(error, "outer_ring_stiffness", "> 0 for the spring outer-ring mode", outer_ring_stiffness);
   if (!non_negative(outer_ring_damping)) return fail(error, "outer_ring_damping", ">= 0", outer_ring_damping);
   return true;

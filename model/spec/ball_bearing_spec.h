@@ -8,9 +8,9 @@ namespace turbodyn {
 
 /// How the outer ring moves radially.
 enum class OuterRingMode {
-  kFixed,     ///< radially held in the housing (rigid); axial DOF on the preload spring only
-  kSpring,    ///< radial x, y on an isotropic spring-damper to the housing (4 extra states at the end)
-  kExternal,  ///< radial x, y given by a wrapping element (squeeze-film damper) through CalcBearing()
+  Fixed,     ///< radially held in the housing (rigid); axial DOF on the preload spring only
+  Spring,    ///< radial x, y on an isotropic spring-damper to the housing (4 extra states at the end)
+  External,  ///< radial x, y given by a wrapping element (squeeze-film damper) through calc_bearing()
 };
 
 /// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
@@ -58,10 +58,10 @@ struct BallBearingSpec {
   double preload_stiffness = 1.0e4;    ///< k_p in N/m (>= 0), stiffness of the preload spring
 
   // Outer ring.
-  OuterRingMode outer_ring_mode = OuterRingMode::kFixed;
-  double outer_ring_mass = 8.0e-3;        ///< kg (axial motion; radial motion in kSpring)
-  double outer_ring_stiffness = 1.0e9;    ///< N/m, radial, kSpring only
-  double outer_ring_damping = 200.0;      ///< N s/m, radial, kSpring only
+  OuterRingMode outer_ring_mode = OuterRingMode::Fixed;
+  double outer_ring_mass = 8.0e-3;        ///< kg (axial motion; radial motion in Spring)
+  double outer_ring_stiffness = 1.0e9;    ///< N/m, radial, Spring only
+  double outer_ring_damping = 200.0;      ///< N s/m, radial, Spring only
 
   /// True if every field is acceptable; otherwise *error names the first bad field and why.
   bool IsValid(std::string* error) const;

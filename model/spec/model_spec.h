@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/spec/ball_bearing_spec.h"
+#include "model/spec/cavitation.h"
 
 namespace turbodyn {
 
@@ -80,7 +82,7 @@ struct JournalBearingSpec {
   double diameter = 0.0;        ///< m, journal diameter
   double length = 0.0;          ///< m, bush width
   double clearance = 0.0;       ///< m, radial clearance
-  std::string cavitation = "gumbel";  ///< "gumbel", "mass-conserving", "none"
+  Cavitation cavitation = Cavitation::Gumbel;
   int n_circ = 60, n_axial = 12;
   double oil_temperature = 0.0; ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0; ///< Pa gauge at the feed hole
@@ -88,9 +90,9 @@ struct JournalBearingSpec {
   double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
 };
 
-/// Full-floating-ring bearing (first version): a ring between the journal and the housing with two films, the
-/// ring translating and spinning freely, driven by the film torques; oil supplied through a feed hole in the
-/// housing. Not yet modelled: ring tilt and the drill holes that couple the films (issue 4).
+/// Full-floating-ring bearing: a ring between the journal and the housing with two films, the ring translating,
+/// tilting and spinning freely, driven by the film torques; oil supplied through a feed hole in the housing to the
+/// outer film and through radial drill holes in the ring to the inner one (model/elements/floating_ring_element.h).
 struct FloatingRingSpec {
   double inner_diameter = 0.0, inner_length = 0.0, inner_clearance = 0.0;  ///< m (journal diameter, width, radial)
   double outer_diameter = 0.0, outer_length = 0.0, outer_clearance = 0.0;  ///< m (ring outer diameter, ...)
@@ -98,7 +100,7 @@ struct FloatingRingSpec {
   double ring_polar_inertia = 0.0;   ///< kg m^2
   double ring_diametral_inertia = 0.0;  ///< kg m^2; 0 = the thick-walled cylinder's
   bool ring_tilt = true;             ///< the ring tilts (2 DOF); false holds it aligned with the housing
-  std::string cavitation = "gumbel";
+  Cavitation cavitation = Cavitation::Gumbel;
   int n_circ = 60, n_axial = 12;
   double inner_oil_temperature = 0.0, outer_oil_temperature = 0.0;  ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0;      ///< Pa gauge at the housing feed hole (outer film)
@@ -119,7 +121,7 @@ struct DamperSpec {
   double clearance = 0.0;           ///< m, radial clearance
   double ring_mass = 0.0;           ///< kg, outer ring moving in the damper
   double centring_stiffness = 0.0;  ///< N/m, isotropic centring spring (0 = none)
-  std::string cavitation = "gumbel";
+  Cavitation cavitation = Cavitation::Gumbel;
   int n_circ = 60, n_axial = 12;
   double oil_temperature = 0.0;     ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0;     ///< Pa gauge at the feed hole
@@ -129,9 +131,15 @@ struct DamperSpec {
   double end_seal_length = 0.0;     ///< m, axial length of the seals' gap
 };
 
+/// Model-file names: "linear", "journal", "floating-ring", "ball".
+enum class BearingType { Linear, Journal, FloatingRing, Ball };
+std::string to_string(BearingType t);
+/// Sets t from its model-file name; false (t untouched) for any other name.
+bool from_string(std::string_view name, BearingType& t);
+
 struct BearingSpec {
   std::string name;
-  std::string type;  ///< "linear", "journal", "floating-ring" or "ball"
+  BearingType type = BearingType::Linear;
   double z = 0.0;    ///< m
   LinearBearingSpec linear;
   JournalBearingSpec journal;
@@ -153,17 +161,28 @@ struct SpeedProfile {
   std::vector<double> speeds;  ///< rad/s (table)
 };
 
+/// Model-file names: "auto", "cvode-bdf", "arkode-erk". Auto: the integrator measured fastest for the model's
+/// bearing types (BDF for linear bearings; see bench/README.md and resolve_integrator()).
+enum class Integrator { Auto, CvodeBdf, ArkodeErk };
+std::string to_string(Integrator i);
+/// Sets i from its model-file name; false (i untouched) for any other name.
+bool from_string(std::string_view name, Integrator& i);
+
+/// Model-file names: "uniform" (atol for every state in its own SI unit: m, m/s, rad, rad/s alike) and "typical"
+/// (atol scaled by each state's typical magnitude, see SolverSpec::atol).
+enum class AtolScaling { Uniform, Typical };
+std::string to_string(AtolScaling a);
+/// Sets a from its model-file name; false (a untouched) for any other name.
+bool from_string(std::string_view name, AtolScaling& a);
+
 /// Time-integration settings (used by `turbodyn run`).
 struct SolverSpec {
-  /// "auto", "cvode-bdf" or "arkode-erk". auto: the integrator measured fastest for the model's bearing types
-  /// (BDF for linear bearings; see bench/README.md and resolve_integrator()).
-  std::string integrator = "auto";
+  Integrator integrator = Integrator::Auto;
   double rtol = 1e-6;                    ///< relative tolerance [-]
-  /// Absolute tolerance of the displacements (m). With atol_scaling = "typical" every other state gets atol
+  /// Absolute tolerance of the displacements (m). With atol_scaling Typical every other state gets atol
   /// times its typical magnitude over 1 um (velocities: 1 mm/s per um; element states as each element declares).
   double atol = 1e-9;
-  /// "uniform": atol for every state in its own SI unit (m, m/s, rad, rad/s alike); "typical": scaled as above.
-  std::string atol_scaling = "uniform";
+  AtolScaling atol_scaling = AtolScaling::Uniform;
   double max_step = 0.0;                 ///< s; 0 = no limit
   long max_steps = 50'000'000;           ///< integrator steps before the run is declared failed
   int max_order = 5;                     ///< BDF: highest order (1..5)
@@ -171,7 +190,17 @@ struct SolverSpec {
   /// Hz; Craig-Bampton reduction of the shaft keeping fixed-interface modes below this frequency;
   /// 0 = no reduction, < 0 = automatic (3 x the highest rotor speed frequency, at least 5 kHz).
   double reduction_cutoff = -1.0;
+
+  /// True if every field is acceptable; otherwise *error names the first bad field and why.
+  bool IsValid(std::string* error) const;
 };
+
+/// Window of the spectrograms' segments. Model-file names: "hann", "hamming", "blackman", "flattop",
+/// "rectangular", the same as post/signal.h's windows.
+enum class SpectrogramWindow { Hann, Hamming, Blackman, FlatTop, Rectangular };
+std::string to_string(SpectrogramWindow w);
+/// Sets w from its model-file name; false (w untouched) for any other name.
+bool from_string(std::string_view name, SpectrogramWindow& w);
 
 /// Output settings (used by `turbodyn run`).
 struct OutputSpec {
@@ -179,7 +208,7 @@ struct OutputSpec {
   bool csv = false;                  ///< also write timeseries.csv
   int spectrogram_segment = 2048;    ///< samples per STFT segment
   double spectrogram_overlap = 0.75; ///< fraction of a segment shared with the next
-  std::string spectrogram_window = "hann";
+  SpectrogramWindow spectrogram_window = SpectrogramWindow::Hann;
   double frequency_max = 0.0;        ///< Hz, upper frequency of the spectrograms (0 = automatic)
   std::vector<double> orbit_speeds;  ///< rad/s; speeds at which orbits are drawn (empty = 4 evenly spaced)
 };

@@ -16,7 +16,7 @@
 #include "model/io/model_file.h"
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "model/io/timeseries_file.h"
 #include "studies/channels.h"
 

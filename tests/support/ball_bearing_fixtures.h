@@ -20,7 +20,7 @@ struct Evaluator {
   explicit Evaluator(const BallBearingElement& el) : e(el), ws(el.make_workspace()) {}
   void operator()(double speed, const double* q, const double* v, const double* z, double* f, double* zdot) {
     for (int i = 0; i < 4; ++i) f[i] = 0.0;
-    e.CalcAndAddForces(SpinState{0.0, speed, 0.0, 0.0}, q, v, z, *ws, f, zdot);
+    e.calc_and_add_forces(SpinState{0.0, speed, 0.0, 0.0}, q, v, z, *ws, f, zdot);
   }
 };
 

@@ -75,8 +75,8 @@ struct BallBearingWorkspace : ElementWorkspace {
       : zdot(n, 0.0), in(8 + n + 4, 0.0), out0(4 + n + 4, 0.0), out1(4 + n + 4, 0.0), share0(n_balls), share1(n_balls),
         step(n_balls, 0.0), key(4, n) {}
   std::vector<double> zdot;
-  // AddJacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps;
-  // room for the 4 radial outer-ring states of a wrapping element (AddJacobianOf).
+  // add_jacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps;
+  // room for the 4 radial outer-ring states of a wrapping element (add_jacobian_of).
   std::vector<double> in, out0, out1;
   std::vector<BallShare> share0, share1;
   std::vector<double> step;
@@ -151,7 +151,7 @@ BallBearingElement::BallBearingElement(const std::string& name, const BallBearin
                                        double gravity)
     : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3},
                    BallBearingElement::kBallStates * spec.n_balls + kCageStates + 2 +
-                       (spec.outer_ring_mode == OuterRingMode::kSpring ? 4 : 0)),
+                       (spec.outer_ring_mode == OuterRingMode::Spring ? 4 : 0)),
       spec_(spec),
       gravity_(gravity) {
   std::string error;
@@ -224,9 +224,9 @@ BallBearingElement::BallBearingElement(const std::string& name, const BallBearin
   zeta_eq_ = outer_z_ + zo_eq_ + to_ball * dz / L;
 }
 
-OuterRingKinematics BallBearingElement::OuterFromStates(const double* z) const {
+OuterRingKinematics BallBearingElement::outer_from_states(const double* z) const {
   OuterRingKinematics o;
-  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     o.x = z[n_core_];
     o.y = z[n_core_ + 1];
     o.vx = z[n_core_ + 2];
@@ -303,7 +303,7 @@ double BallBearingElement::state_scale(int i) const {
   return (i - 2) < 2 ? 1e-6 : 1e-3;
 }
 
-void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const double* v, const double* z,
+void BallBearingElement::calc_bearing(const SpinState& st, const double* q, const double* v, const double* z,
                                      const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
                                      BallShare* shares) const {
   loads = BallBearingLoads{};
@@ -495,25 +495,25 @@ void BallBearingElement::CalcBearing(const SpinState& st, const double* q, const
   loads.outer_contact_angle = (ao_r != 0.0 || ao_z != 0.0) ? std::atan2(ao_z, ao_r) : 0.0;
 }
 
-void BallBearingElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+void BallBearingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                             ElementWorkspace& ws, double* f, double* zdot) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
-  w.key.Invalidate();
+  w.key.invalidate();
   Evaluate(s, q, v, z, f, zdot, nullptr, &w.loads);
-  w.key.Set(s.speed, q, v, z);
+  w.key.set(s.speed, q, v, z);
 }
 
-const BallBearingLoads& BallBearingElement::LoadsAt(const SpinState& s, const double* q, const double* v,
+const BallBearingLoads& BallBearingElement::loads_at(const SpinState& s, const double* q, const double* v,
                                                     const double* z, ElementWorkspace& ws) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
-  if (w.key.Matches(s.speed, q, v, z)) return w.loads;
-  w.key.Invalidate();
-  CalcBearing(s, q, v, z, OuterFromStates(z), w.loads, w.zdot.data());
-  w.key.Set(s.speed, q, v, z);
+  if (w.key.matches(s.speed, q, v, z)) return w.loads;
+  w.key.invalidate();
+  calc_bearing(s, q, v, z, outer_from_states(z), w.loads, w.zdot.data());
+  w.key.set(s.speed, q, v, z);
   return w.loads;
 }
 
-void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
+void BallBearingElement::add_jacobian(const SpinState& s, const double* q, const double* v, const double* z,
                                      ElementWorkspace& ws, double* J) const {
   struct Own final : JacobianEvaluator {
     Own(const BallBearingElement& e, const SpinState& st) : e(e), st(st) {}
@@ -524,10 +524,10 @@ void BallBearingElement::AddJacobian(const SpinState& s, const double* q, const 
     const BallBearingElement& e;
     const SpinState& st;
   };
-  AddJacobianOf(*this, Own(*this, s), n_states(), q, v, z, ws, J);
+  add_jacobian_of(*this, Own(*this, s), n_states(), q, v, z, ws, J);
 }
 
-void BallBearingElement::AddJacobianOf(const ForceElement& owner, const JacobianEvaluator& eval, int m,
+void BallBearingElement::add_jacobian_of(const ForceElement& owner, const JacobianEvaluator& eval, int m,
                                        const double* q, const double* v, const double* z, ElementWorkspace& ws,
                                        double* J) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
@@ -595,9 +595,9 @@ void BallBearingElement::Evaluate(const SpinState& s, const double* q, const dou
                                   double* zdot, BallShare* shares, BallBearingLoads* loads_out) const {
   BallBearingLoads local;
   BallBearingLoads& loads = loads_out ? *loads_out : local;
-  CalcBearing(s, q, v, z, OuterFromStates(z), loads, zdot, shares);
+  calc_bearing(s, q, v, z, outer_from_states(z), loads, zdot, shares);
   for (int i = 0; i < 4; ++i) f[i] += loads.shaft[i];
-  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     const double* o = z + n_core_;
     double* od = zdot + n_core_;
     const double k = spec_.outer_ring_stiffness, c = spec_.outer_ring_damping, mo = spec_.outer_ring_mass;
@@ -619,10 +619,10 @@ std::vector<ProbeInfo> BallBearingElement::probes() const {
           {"outer_contact_angle", "rad", who + "mean loaded outer contact angle"}};
 }
 
-void BallBearingElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+void BallBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
                                     ElementWorkspace& ws, double* out) const {
-  const BallBearingLoads& loads = LoadsAt(s, q, v, z, ws);
-  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+  const BallBearingLoads& loads = loads_at(s, q, v, z, ws);
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     const double* o = z + n_core_;
     out[0] = spec_.outer_ring_stiffness * o[0] + spec_.outer_ring_damping * o[2];
     out[1] = spec_.outer_ring_stiffness * o[1] + spec_.outer_ring_damping * o[3];
@@ -637,7 +637,7 @@ void BallBearingElement::EvalProbes(const SpinState& s, const double* q, const d
   out[6] = loads.outer_contact_angle;
 }
 
-double BallBearingElement::CoreKineticEnergy(const double* z) const {
+double BallBearingElement::core_kinetic_energy(const double* z) const {
   double T = 0.0;
   for (int j = 0; j < spec_.n_balls; ++j) {
     const double* b = z + ball_offset(j);
@@ -651,16 +651,16 @@ double BallBearingElement::CoreKineticEnergy(const double* z) const {
   return T + 0.5 * spec_.outer_ring_mass * vzo * vzo;
 }
 
-double BallBearingElement::KineticEnergy(const double* z) const {
-  double T = CoreKineticEnergy(z);
-  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+double BallBearingElement::kinetic_energy(const double* z) const {
+  double T = core_kinetic_energy(z);
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     const double* o = z + n_core_;
     T += 0.5 * spec_.outer_ring_mass * (o[2] * o[2] + o[3] * o[3]);
   }
   return T;
 }
 
-double BallBearingElement::CorePotentialEnergy(const double* q, const double* z,
+double BallBearingElement::core_potential_energy(const double* q, const double* z,
                                                const OuterRingKinematics& outer) const {
   const int Z = spec_.n_balls;
   const double Rp = pitch_radius_;
@@ -693,28 +693,28 @@ double BallBearingElement::CorePotentialEnergy(const double* q, const double* z,
   return V;
 }
 
-double BallBearingElement::PotentialEnergy(const double* q, const double* z) const {
-  double V = CorePotentialEnergy(q, z, OuterFromStates(z));
-  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+double BallBearingElement::potential_energy(const double* q, const double* z) const {
+  double V = core_potential_energy(q, z, outer_from_states(z));
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     const double* o = z + n_core_;
     V += 0.5 * spec_.outer_ring_stiffness * (o[0] * o[0] + o[1] * o[1]) + spec_.outer_ring_mass * gravity_ * o[1];
   }
   return V;
 }
 
-double BallBearingElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+double BallBearingElement::dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                                            ElementWorkspace& ws) const {
-  double P = LoadsAt(s, q, v, z, ws).dissipated_power;
-  if (spec_.outer_ring_mode == OuterRingMode::kSpring) {
+  double P = loads_at(s, q, v, z, ws).dissipated_power;
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     const double* o = z + n_core_;
     P += spec_.outer_ring_damping * (o[2] * o[2] + o[3] * o[3]);
   }
   return P;
 }
 
-double BallBearingElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+double BallBearingElement::drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                                       ElementWorkspace& ws) const {
-  return -LoadsAt(s, q, v, z, ws).shaft_torque * s.speed;
+  return -loads_at(s, q, v, z, ws).shaft_torque * s.speed;
 }
 
 }  // namespace turbodyn

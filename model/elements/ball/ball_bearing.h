@@ -8,7 +8,7 @@
 //   m (rho'' - r psi'^2) = F_r,   m (r psi'' + 2 rho' psi') = F_psi,   m zeta'' = F_z,
 //   I (w' + psi' e_z x w) = M            (sphere: I = m D^2 / 10, no gyroscopic term of its own)
 // Cage: translations x, y, z and spin about z; tilt neglected. Outer ring: axial DOF on the preload spring,
-// radial x, y fixed, on a spring-damper, or given by a wrapping element (see CalcBearing). No ring tilt.
+// radial x, y fixed, on a spring-damper, or given by a wrapping element (see calc_bearing). No ring tilt.
 // docs/ball-bearing.md gives the equations, the sign conventions and the assumptions.
 #pragma once
 
@@ -47,7 +47,7 @@ struct OuterRingKinematics {
   double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
 };
 
-/// One ball's share of the sums CalcBearing() forms over the balls (housing frame): forces and moments on the
+/// One ball's share of the sums calc_bearing() forms over the balls (housing frame): forces and moments on the
 /// shaft, on the outer ring and on the cage.
 struct BallShare {
   double shaft[5] = {0, 0, 0, 0, 0};   ///< x, y (N), about x, y, z (N m)
@@ -76,8 +76,8 @@ class BallBearingElement final : public ForceElement {
   ///                            w_r, w_psi, w_z (rad/s, absolute angular velocity in the ball's orbital frame)
   ///   cage, 8:                 x, y, z (m), angle (rad), vx, vy, vz (m/s), spin (rad/s)
   ///   outer ring axial, 2:     z_o (m), v_zo (m/s)
-  ///   kSpring only, 4:         x_o, y_o (m), vx_o, vy_o (m/s)
-  /// The first n_core_states() (all but the last block) are the states CalcBearing() works on.
+  ///   Spring only, 4:         x_o, y_o (m), vx_o, vy_o (m/s)
+  /// The first n_core_states() (all but the last block) are the states calc_bearing() works on.
   BallBearingElement(const std::string& name, const BallBearingSpec& spec, int node_dof, double gravity);
 
   const BallBearingSpec& spec() const { return spec_; }
@@ -108,30 +108,30 @@ class BallBearingElement final : public ForceElement {
   /// 2d + 9 Z + 10. Steps as the engine's (fd_relative_step(), state_scale()).
   bool has_jacobian() const override { return true; }
   int jacobian_evaluations() const override { return 1 + 8 + (n_states() - kBallStates * spec_.n_balls) + kBallStates; }
-  void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                    double* J) const override;
-  /// What AddJacobianOf differentiates: an element's outputs [f (4); zdot] at inputs (q, v, z), added to f and
+  /// What add_jacobian_of differentiates: an element's outputs [f (4); zdot] at inputs (q, v, z), added to f and
   /// written to zdot, with each ball's share of the sums.
   struct JacobianEvaluator {
     virtual ~JacobianEvaluator() = default;
     virtual void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
                             BallShare* shares) const = 0;
   };
-  /// AddJacobian for an element `owner` that is this bearing or wraps it (a squeeze-film damper): m states, the
+  /// add_jacobian for an element `owner` that is this bearing or wraps it (a squeeze-film damper): m states, the
   /// core states first, then (m > n_core_states()) the outer ring's x, y, vx, vy, whose accelerations contain the
   /// balls' force on the ring divided by the outer-ring mass, plus terms that depend on those 4 states only. Steps
   /// are owner.fd_step(); ws is a workspace of this bearing.
-  void AddJacobianOf(const ForceElement& owner, const JacobianEvaluator& eval, int m, const double* q,
+  void add_jacobian_of(const ForceElement& owner, const JacobianEvaluator& eval, int m, const double* q,
                      const double* v, const double* z, ElementWorkspace& ws, double* J) const;
   std::vector<ProbeInfo> probes() const override;
-  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
-  double KineticEnergy(const double* z) const override;
-  double PotentialEnergy(const double* q, const double* z) const override;
-  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  double kinetic_energy(const double* z) const override;
+  double potential_energy(const double* q, const double* z) const override;
+  double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
   /// Drive power through the drag torque on the shaft, -T Omega (the rotor spin is prescribed).
-  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+  double drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                     ElementWorkspace& ws) const override;
 
   /// The bearing without its outer-ring radial dynamics, for this element and for an element that wraps it
@@ -139,14 +139,14 @@ class BallBearingElement final : public ForceElement {
   /// core states z (n_core_states() values) and the outer ring's radial kinematics, writes the derivatives of
   /// the core states into zdot and the forces into loads (which it overwrites). Allocates nothing.
   /// shares: if not null, n_balls entries that receive each ball's share of the sums.
-  void CalcBearing(const SpinState& s, const double* q, const double* v, const double* z,
+  void calc_bearing(const SpinState& s, const double* q, const double* v, const double* z,
                    const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
                    BallShare* shares = nullptr) const;
   /// Hertz (races and pockets), preload-spring and gravity energy of the core bodies (J); the radial spring of
-  /// kSpring and the outer ring's radial gravity are not included.
-  double CorePotentialEnergy(const double* q, const double* z, const OuterRingKinematics& outer) const;
+  /// Spring and the outer ring's radial gravity are not included.
+  double core_potential_energy(const double* q, const double* z, const OuterRingKinematics& outer) const;
   /// Kinetic energy of balls, cage and the outer ring's axial motion (J).
-  double CoreKineticEnergy(const double* z) const;
+  double core_kinetic_energy(const double* z) const;
 
   /// Derived constants (for tests and documentation).
   const HertzPointContact& inner_contact() const { return hertz_inner_; }
@@ -156,17 +156,17 @@ class BallBearingElement final : public ForceElement {
   double preload_displacement() const { return zo_eq_; } ///< z_o at the static preload equilibrium (m)
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override;
 
  private:
-  OuterRingKinematics OuterFromStates(const double* z) const;
-  /// DoCalcAndAddForces with the balls' shares of the sums (shares: n_balls entries, or null) and the loads
+  OuterRingKinematics outer_from_states(const double* z) const;
+  /// do_calc_and_add_forces with the balls' shares of the sums (shares: n_balls entries, or null) and the loads
   /// (loads_out, or null).
   void Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f, double* zdot,
                 BallShare* shares, BallBearingLoads* loads_out = nullptr) const;
   /// The loads at this state: those of the last engine evaluation if its inputs were the same, else evaluated.
-  const BallBearingLoads& LoadsAt(const SpinState& s, const double* q, const double* v, const double* z,
+  const BallBearingLoads& loads_at(const SpinState& s, const double* q, const double* v, const double* z,
                                   ElementWorkspace& ws) const;
   BallBearingSpec spec_;
   double gravity_ = 0.0;

@@ -19,7 +19,7 @@ struct BallDamperElement::Evaluation {
 namespace {
 
 BallBearingSpec external(BallBearingSpec s) {
-  s.outer_ring_mode = OuterRingMode::kExternal;
+  s.outer_ring_mode = OuterRingMode::External;
   return s;
 }
 
@@ -31,7 +31,7 @@ struct BallDamperWorkspace : ElementWorkspace {
   reynolds::FilmSolver solver;
   BallDamperElement::Evaluation eval;
   EvaluationKey key;  // the state of `eval`
-  // AddJacobian: the bearing's workspace, and the film at the ring state of fd_key (x, y, vx, vy), which most
+  // add_jacobian: the bearing's workspace, and the film at the ring state of fd_key (x, y, vx, vy), which most
   // finite-difference evaluations share (only the ring's own columns move the film).
   std::unique_ptr<ElementWorkspace> bearing;
   reynolds::FilmResult fd_film;
@@ -63,7 +63,7 @@ std::unique_ptr<ElementWorkspace> BallDamperElement::make_workspace() const {
   return w;
 }
 
-void BallDamperElement::AddJacobian(const SpinState& s, const double* q, const double* v, const double* z,
+void BallDamperElement::add_jacobian(const SpinState& s, const double* q, const double* v, const double* z,
                                     ElementWorkspace& ws, double* J) const {
   auto& w = static_cast<BallDamperWorkspace&>(ws);
   w.fd_valid = false;
@@ -74,7 +74,7 @@ void BallDamperElement::AddJacobian(const SpinState& s, const double* q, const d
       const double* ring = z + e.n_core_;
       const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
       BallBearingLoads loads;
-      e.bearing_.CalcBearing(st, q, v, z, outer, loads, zdot, shares);
+      e.bearing_.calc_bearing(st, q, v, z, outer, loads, zdot, shares);
       if (!w.fd_valid || std::memcmp(w.fd_key, ring, sizeof w.fd_key) != 0) {
         w.fd_valid = false;
         if (!w.solver.solve(e.FilmState(ring), w.fd_film))
@@ -83,13 +83,13 @@ void BallDamperElement::AddJacobian(const SpinState& s, const double* q, const d
         w.fd_valid = true;
       }
       for (int k = 0; k < 4; ++k) f[k] += loads.shaft[k];
-      e.RingDerivatives(ring, loads, w.fd_film, zdot + e.n_core_);
+      e.ring_derivatives(ring, loads, w.fd_film, zdot + e.n_core_);
     }
     const BallDamperElement& e;
     const SpinState& st;
     BallDamperWorkspace& w;
   };
-  bearing_.AddJacobianOf(*this, Wrapped(*this, s, w), n_states(), q, v, z, *w.bearing, J);
+  bearing_.add_jacobian_of(*this, Wrapped(*this, s, w), n_states(), q, v, z, *w.bearing, J);
 }
 
 reynolds::FilmState BallDamperElement::FilmState(const double* ring) const {
@@ -101,7 +101,7 @@ reynolds::FilmState BallDamperElement::FilmState(const double* ring) const {
   return f;
 }
 
-void BallDamperElement::RingDerivatives(const double* ring, const BallBearingLoads& loads,
+void BallDamperElement::ring_derivatives(const double* ring, const BallBearingLoads& loads,
                                         const reynolds::FilmResult& film, double* dring) const {
   const double kc = damper_.centring_stiffness;
   dring[0] = ring[2];
@@ -126,23 +126,23 @@ const BallDamperElement::Evaluation& BallDamperElement::Evaluate(const SpinState
                                                                  const double* v, const double* z,
                                                                  ElementWorkspace& ws) const {
   auto& w = static_cast<BallDamperWorkspace&>(ws);
-  if (w.key.Matches(s.speed, q, v, z)) return w.eval;
-  w.key.Invalidate();
+  if (w.key.matches(s.speed, q, v, z)) return w.eval;
+  w.key.invalidate();
   const double* ring = z + n_core_;
   const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
-  bearing_.CalcBearing(s, q, v, z, outer, w.eval.loads, w.eval.zdot.data());
+  bearing_.calc_bearing(s, q, v, z, outer, w.eval.loads, w.eval.zdot.data());
   if (!w.solver.solve(FilmState(ring), w.eval.film))
     throw std::runtime_error("squeeze-film damper of bearing '" + name() + "': " + w.solver.last_error());
-  w.key.Set(s.speed, q, v, z);
+  w.key.set(s.speed, q, v, z);
   return w.eval;
 }
 
-void BallDamperElement::DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z,
+void BallDamperElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                            ElementWorkspace& ws, double* f, double* zdot) const {
   const Evaluation& e = Evaluate(s, q, v, z, ws);
   for (int k = 0; k < 4; ++k) f[k] += e.loads.shaft[k];
   std::memcpy(zdot, e.zdot.data(), static_cast<std::size_t>(n_core_) * sizeof(double));
-  RingDerivatives(z + n_core_, e.loads, e.film, zdot + n_core_);
+  ring_derivatives(z + n_core_, e.loads, e.film, zdot + n_core_);
 }
 
 std::vector<ProbeInfo> BallDamperElement::probes() const {
@@ -156,7 +156,7 @@ std::vector<ProbeInfo> BallDamperElement::probes() const {
           {"max_contact_force", "N", who + "largest ball-race normal force"}};
 }
 
-void BallDamperElement::EvalProbes(const SpinState& s, const double* q, const double* v, const double* z,
+void BallDamperElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
                                    ElementWorkspace& ws, double* out) const {
   const Evaluation& e = Evaluate(s, q, v, z, ws);
   const double* ring = z + n_core_;
@@ -171,26 +171,26 @@ void BallDamperElement::EvalProbes(const SpinState& s, const double* q, const do
   out[6] = e.loads.max_contact_force;
 }
 
-double BallDamperElement::PotentialEnergy(const double* q, const double* z) const {
+double BallDamperElement::potential_energy(const double* q, const double* z) const {
   const double* ring = z + n_core_;
   const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
-  return bearing_.CorePotentialEnergy(q, z, outer) +
+  return bearing_.core_potential_energy(q, z, outer) +
          0.5 * damper_.centring_stiffness * (ring[0] * ring[0] + ring[1] * ring[1]) + ring_mass_ * gravity_ * ring[1];
 }
 
-double BallDamperElement::KineticEnergy(const double* z) const {
+double BallDamperElement::kinetic_energy(const double* z) const {
   const double* ring = z + n_core_;
-  return bearing_.CoreKineticEnergy(z) + 0.5 * ring_mass_ * (ring[2] * ring[2] + ring[3] * ring[3]);
+  return bearing_.core_kinetic_energy(z) + 0.5 * ring_mass_ * (ring[2] * ring[2] + ring[3] * ring[3]);
 }
 
-double BallDamperElement::DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+double BallDamperElement::dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                                           ElementWorkspace& ws) const {
   const Evaluation& e = Evaluate(s, q, v, z, ws);
   const double* ring = z + n_core_;
   return e.loads.dissipated_power - (e.film.fx * ring[2] + e.film.fy * ring[3]);
 }
 
-double BallDamperElement::DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+double BallDamperElement::drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                                      ElementWorkspace& ws) const {
   return -Evaluate(s, q, v, z, ws).loads.shaft_torque * s.speed;
 }

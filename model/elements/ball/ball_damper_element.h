@@ -4,7 +4,7 @@
 // a spring k_c:
 //   m_o p'' = F_balls(p, p', ...) + F_film(p, p') - k_c p - m_o g e_y,
 // p = (x_o, y_o) the outer ring's centre, m_o the outer ring's mass. The balls, the cage and the outer ring's axial
-// preload motion are the ball bearing's own states (BallBearingElement::CalcBearing).
+// preload motion are the ball bearing's own states (BallBearingElement::calc_bearing).
 #pragma once
 
 #include "model/elements/ball/ball_bearing.h"
@@ -16,7 +16,7 @@ namespace turbodyn {
 
 class BallDamperElement final : public ForceElement {
  public:
-  /// `bearing` must have outer_ring_mode = kExternal. States: the ball bearing's core states, then the outer
+  /// `bearing` must have outer_ring_mode = External. States: the ball bearing's core states, then the outer
   /// ring's x_o, y_o (m), vx_o, vy_o (m/s).
   BallDamperElement(const std::string& name, const BallBearingSpec& bearing, const DamperSpec& damper,
                     const OilSpec& oil, int node_dof, double gravity);
@@ -28,26 +28,26 @@ class BallDamperElement final : public ForceElement {
   /// The bearing's balls (the damper ring's states join the border).
   std::vector<int> independent_state_blocks() const override { return bearing_.independent_state_blocks(); }
   double fd_relative_step() const override { return 1e-6; }
-  /// The bearing's finite differences (BallBearingElement::AddJacobianOf: the balls' states one index at a time
+  /// The bearing's finite differences (BallBearingElement::add_jacobian_of: the balls' states one index at a time
   /// for all balls at once), with the damper film solved again only for the ring's own 4 columns.
   bool has_jacobian() const override { return true; }
   int jacobian_evaluations() const override { return bearing_.jacobian_evaluations() + 4; }
-  void AddJacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                    double* J) const override;
   std::vector<ProbeInfo> probes() const override;
-  void EvalProbes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;
-  double PotentialEnergy(const double* q, const double* z) const override;
-  double KineticEnergy(const double* z) const override;
-  double DissipatedPower(const SpinState& s, const double* q, const double* v, const double* z,
+  double potential_energy(const double* q, const double* z) const override;
+  double kinetic_energy(const double* z) const override;
+  double dissipated_power(const SpinState& s, const double* q, const double* v, const double* z,
                          ElementWorkspace& ws) const override;
-  double DrivePower(const SpinState& s, const double* q, const double* v, const double* z,
+  double drive_power(const SpinState& s, const double* q, const double* v, const double* z,
                     ElementWorkspace& ws) const override;
 
   const BallBearingElement& bearing() const { return bearing_; }
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override;
 
  public:
@@ -59,7 +59,7 @@ class BallDamperElement final : public ForceElement {
   /// The film's input at the ring states (x, y, vx, vy).
   reynolds::FilmState FilmState(const double* ring) const;
   /// Derivatives of the ring's 4 states from the balls' and the film's forces on it and the centring spring.
-  void RingDerivatives(const double* ring, const BallBearingLoads& loads, const reynolds::FilmResult& film,
+  void ring_derivatives(const double* ring, const BallBearingLoads& loads, const reynolds::FilmResult& film,
                        double* dring) const;
   BallBearingElement bearing_;
   DamperSpec damper_;

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "model/io/model_file.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -44,7 +44,7 @@ OrbitForce orbit_force(const DamperSpec& d, double eta, double eps, double w) {
                        eps * c * w * std::cos(phase)};
   double out[5];
   const double q[2] = {0, 0}, v[2] = {0, 0};
-  e.EvalProbes(SpinState{}, q, v, z, *ws, out);
+  e.eval_probes(SpinState{}, q, v, z, *ws, out);
   // Force on the housing = -film force on the ring; projected on the radial and tangential directions.
   return {-(out[0] * std::cos(phase) + out[1] * std::sin(phase)),
           -(-out[0] * std::sin(phase) + out[1] * std::cos(phase)), out[4]};
@@ -74,7 +74,7 @@ TEST(Damper, SealedEndsGiveTheLongDamperAndALeakySealLiesBetween) {
   // resistance to the land's: the force lies between the open and the closed damper.
   constexpr double kLongDamperTolerance = 0.01;
   DamperSpec d = test_damper(0.006);
-  d.cavitation = "none";
+  d.cavitation = Cavitation::None;
   const double eps = 0.3, w = 1000.0, R = 0.01, L = d.length, c = d.clearance, eta = 0.01;
   const OrbitForce open = orbit_force(d, eta, eps, w);
   d.end_seal_gap = 1e-3 * c;

@@ -21,7 +21,7 @@ double ring_torque(const FloatingRingElement& e, ElementWorkspace& ws, double W,
   double z[FloatingRingElement::kStates] = {};
   z[FloatingRingElement::kSpin] = wr;
   double f[4] = {0, 0, 0, 0}, zdot[FloatingRingElement::kStates];
-  e.CalcAndAddForces(SpinState{0.0, W, 0.0, 0.0}, q, v, z, ws, f, zdot);
+  e.calc_and_add_forces(SpinState{0.0, W, 0.0, 0.0}, q, v, z, ws, f, zdot);
   return zdot[FloatingRingElement::kSpin];  // proportional to the torque (divided by the ring's polar inertia)
 }
 
@@ -80,7 +80,7 @@ TEST(FloatingRing, DrillHolePressureIsTheSupplyLessTheCentrifugalHead) {
   for (double wr : {0.0, 1000.0, 3000.0, 6000.0}) {
     z[FloatingRingElement::kSpin] = wr;
     std::vector<double> out(probes.size());
-    e.EvalProbes(SpinState{0.0, 2.0 * wr, 0.0, 0.0}, q, v, z, *ws, out.data());
+    e.eval_probes(SpinState{0.0, 2.0 * wr, 0.0, 0.0}, q, v, z, *ws, out.data());
     const double head = 0.5 * oil.density * wr * wr * (ro * ro - ri * ri);
     EXPECT_NEAR(out[k_hole], std::max(f.supply_pressure - head, 0.0), 1e-6 * f.supply_pressure) << wr;
   }
@@ -109,7 +109,7 @@ TEST(FloatingRing, FreeSpinningRingNutatesForwardAtIpOverIdTimesItsSpeed) {
   const double t_end = 1.3 * 2 * M_PI / wn, dt = t_end / 4000;
   auto deriv = [&](const double* y, double* dy) {
     double shaft[4] = {0, 0, 0, 0};
-    e.CalcAndAddForces(SpinState{0.0, 0.0, 0.0, 0.0}, q, v, y, *ws, shaft, dy);
+    e.calc_and_add_forces(SpinState{0.0, 0.0, 0.0, 0.0}, q, v, y, *ws, shaft, dy);
   };
   constexpr int n = FloatingRingElement::kStates;
   for (int step = 0; step < 4000; ++step) {  // classical Runge-Kutta

@@ -23,7 +23,7 @@ struct Eval {
 Eval evaluate(const FloatingRingElement& e, ElementWorkspace& ws, double W, const double* q, const double* v,
               const double* ring) {
   Eval r;
-  e.CalcAndAddForces(SpinState{0.0, W, 0.0, 0.0}, q, v, ring, ws, r.f, r.zdot);
+  e.calc_and_add_forces(SpinState{0.0, W, 0.0, 0.0}, q, v, ring, ws, r.f, r.zdot);
   return r;
 }
 
@@ -55,7 +55,7 @@ TEST(FloatingRing, FilmForcesActOnShaftAndRingInOpposition) {
   double z[FloatingRingElement::kStates] = {};
   z[FloatingRingElement::kSpin] = 1000.0;
   double fs[4] = {0, 0, 0, 0}, zdot[FloatingRingElement::kStates];
-  e.CalcAndAddForces(SpinState{0.0, 3141.0, 0.0, 0.0}, q, v, z, *ws, fs, zdot);
+  e.calc_and_add_forces(SpinState{0.0, 3141.0, 0.0, 0.0}, q, v, z, *ws, fs, zdot);
   EXPECT_LT(fs[0], 0.0);
   EXPECT_GT(zdot[2], 0.0);  // the ring (centred in its own film, which carries no force there) is pushed to +x
 }

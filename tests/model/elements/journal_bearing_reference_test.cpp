@@ -25,7 +25,7 @@ TEST(JournalBearing, EccentricJournalAgainstTheShortBearingForces) {
   const double q[4] = {eps * j.clearance, 0, 0, 0}, v[4] = {0, 0, 0, 0};
   double f[4] = {0, 0, 0, 0};
   const SpinState s{0.0, omega, 0.0, 0.0};
-  e.CalcAndAddForces(s, q, v, nullptr, *ws, f, nullptr);
+  e.calc_and_add_forces(s, q, v, nullptr, *ws, f, nullptr);
   const reynolds::Closed ref = reynolds::short_bearing(oil.viscosity, omega, 0.005, j.length, j.clearance, eps);
   EXPECT_LT(f[0], 0.0);
   EXPECT_GT(f[1], 0.0);

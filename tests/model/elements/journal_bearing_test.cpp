@@ -26,11 +26,11 @@ TEST(JournalBearing, TiltedJournalFeelsARestoringMoment) {
   const double v[4] = {0, 0, 0, 0};
   double f[4] = {0, 0, 0, 0};
   const double qy[4] = {0, 0, 0, tilt};
-  e.CalcAndAddForces(s, qy, v, nullptr, *ws, f, nullptr);
+  e.calc_and_add_forces(s, qy, v, nullptr, *ws, f, nullptr);
   EXPECT_LT(f[3], 0.0);
   double g[4] = {0, 0, 0, 0};
   const double qx[4] = {0, 0, tilt, 0};
-  e.CalcAndAddForces(s, qx, v, nullptr, *ws, g, nullptr);
+  e.calc_and_add_forces(s, qx, v, nullptr, *ws, g, nullptr);
   EXPECT_LT(g[2], 0.0);
   // Axisymmetric film: the same restoring moment turned by 90 degrees (to the solver's tolerance).
   EXPECT_NEAR(g[2], f[3], 1e-3 * std::abs(f[3]));
@@ -43,7 +43,7 @@ TEST(JournalBearing, ClosingFilmIsAnErrorNotACrash) {
   const double q[4] = {20e-6, 0, 0, 0}, v[4] = {0, 0, 0, 0};
   double f[4] = {0, 0, 0, 0};
   try {
-    e.CalcAndAddForces(SpinState{0.1, 100.0, 0.0, 0.0}, q, v, nullptr, *ws, f, nullptr);
+    e.calc_and_add_forces(SpinState{0.1, 100.0, 0.0, 0.0}, q, v, nullptr, *ws, f, nullptr);
     FAIL() << "no error";
   } catch (const std::runtime_error& err) {
     EXPECT_NE(std::string(err.what()).find("compressor"), std::string::npos) << err.what();

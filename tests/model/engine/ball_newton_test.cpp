@@ -11,7 +11,7 @@
 #include "model/elements/ball/ball_bearing.h"
 #include "model/elements/ball/ball_damper_element.h"
 #include "model/io/model_file.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -89,10 +89,10 @@ TEST(BallNewton, BallBearingJacobianMatchesPlainFiniteDifferences) {
       in.segment(r, 4) << 0.3 * c, -0.4 * c, 2e-3, -1e-3;
     }
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, cols);
-    e.AddJacobian(s, in.data(), in.data() + d, in.data() + 2 * d, *ws, J.data());
+    e.add_jacobian(s, in.data(), in.data() + d, in.data() + 2 * d, *ws, J.data());
     const auto eval = [&](const Eigen::VectorXd& x) {
       Eigen::VectorXd out = Eigen::VectorXd::Zero(rows);
-      e.CalcAndAddForces(s, x.data(), x.data() + d, x.data() + 2 * d, *ws, out.data(), out.data() + d);
+      e.calc_and_add_forces(s, x.data(), x.data() + d, x.data() + 2 * d, *ws, out.data(), out.data() + d);
       return out;
     };
     const Eigen::VectorXd out0 = eval(in);

@@ -11,7 +11,7 @@
 #include "model/elements/ball/ball_bearing.h"
 #include "model/elements/ball/ball_damper_element.h"
 #include "model/io/model_file.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -60,7 +60,7 @@ TEST(BallRunup, CageFollowsTheKinematicsAndTheEnergyBalanceCloses) {
     const double kinematic = 0.5 * (1.0 - D * std::cos(alpha) / dm);
     EXPECT_NEAR(late_mean(r, p + "cage_speed_ratio", 0.1) / kinematic, 1.0, kKinematicTolerance) << b;
   }
-  // Contact damping and friction enter the balance through the element's DissipatedPower.
+  // Contact damping and friction enter the balance through the element's dissipated_power.
   const double error = r.energy_final - r.energy_initial - r.work_in + r.dissipated;
   EXPECT_LT(std::abs(error), 1e-2 * std::max(r.work_in, r.dissipated)) << r.work_in << " " << r.dissipated;
 }

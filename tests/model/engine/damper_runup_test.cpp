@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "model/io/model_file.h"
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -50,7 +50,7 @@ TEST(Damper, RunUpThroughTheFirstCriticalsWithLowerForceAndClosedEnergyBalance) 
   };
   EXPECT_LT(peak(sfd, "bearing.compressor.fx"), 0.2 * peak(rigid, "bearing.compressor.fx"));
   EXPECT_LT(peak(sfd, "bearing.compressor.damper_eccentricity"), 0.9);
-  // Film dissipation enters the energy balance through the element's DissipatedPower.
+  // Film dissipation enters the energy balance through the element's dissipated_power.
   const double error = sfd.energy_final - sfd.energy_initial - sfd.work_in + sfd.dissipated;
   EXPECT_LT(std::abs(error), 1e-3 * sfd.work_in);
 }

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 #include "post/signal.h"
 #include "tests/support/test_support.h"
 
@@ -29,7 +29,7 @@ MachineSpec rotor_in_journal_bearings(double speed) {
   for (double z : {0.0, 0.1}) {
     BearingSpec b;
     b.name = z == 0.0 ? "left" : "right";
-    b.type = "journal";
+    b.type = BearingType::Journal;
     b.z = z;
     b.journal.diameter = 2 * kR;
     b.journal.length = kL;

@@ -1,6 +1,6 @@
 // The run-up engine against the frequency-domain solution, run-up theory, exact Jacobians, the energy balance and
 // statics.
-#include "model/engine/runup.h"
+#include "model/engine/integrator.h"
 
 #include <cmath>
 #include <iostream>
@@ -147,9 +147,9 @@ class WithoutJacobian final : public ForceElement {
   double state_scale(int i) const override { return inner_->state_scale(i); }
 
  protected:
-  void DoCalcAndAddForces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+  void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                           double* f, double* zdot) const override {
-    inner_->CalcAndAddForces(s, q, v, z, ws, f, zdot);
+    inner_->calc_and_add_forces(s, q, v, z, ws, f, zdot);
   }
 
  private:
@@ -291,8 +291,8 @@ TEST(Runup, TighterToleranceChangesMaximaByLessThanOnePercent) {
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);
   const RunupResult a = simulate_runup(*model, o);
-  o.rtol /= 10;
-  o.atol /= 10;
+  o.solver.rtol /= 10;
+  o.solver.atol /= 10;
   const RunupResult b = simulate_runup(*model, o);
   ASSERT_TRUE(a.complete && b.complete);
   for (const char* name : {"disk.compressor.x", "disk.turbine.y", "bearing.compressor.fx"}) {
@@ -328,8 +328,8 @@ TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
   const auto m2 = make_runup_model(spec);
   RunupOptions o = options_for(spec);
   const RunupResult r0 = simulate_runup(*m2, o);
-  o.atol_scaling = "typical";
-  o.atol = 1e-10;
+  o.solver.atol_scaling = AtolScaling::Typical;
+  o.solver.atol = 1e-10;
   const RunupResult r1 = simulate_runup(*m2, o);
   ASSERT_TRUE(r0.complete && r1.complete);
   constexpr double kMaximaAgreement = 0.01;
@@ -337,7 +337,7 @@ TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
     const double ratio = max_abs(r1.columns[channel(r1, name)]) / max_abs(r0.columns[channel(r0, name)]);
     EXPECT_NEAR(ratio, 1.0, kMaximaAgreement) << name;
   }
-  o.atol_scaling = "typicl";
+  o.solver.atol_scaling = static_cast<AtolScaling>(7);
   EXPECT_THROW(simulate_runup(*m2, o), std::invalid_argument);
 }
 
@@ -364,9 +364,9 @@ TEST(Runup, ExplicitAndImplicitIntegratorsAgree) {
   spec.speed.duration = 0.4;
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);
-  o.integrator = "cvode-bdf";
+  o.solver.integrator = Integrator::CvodeBdf;
   const RunupResult bdf = simulate_runup(*model, o);
-  o.integrator = "arkode-erk";
+  o.solver.integrator = Integrator::ArkodeErk;
   const RunupResult erk = simulate_runup(*model, o);
   ASSERT_TRUE(bdf.complete && erk.complete) << bdf.message << erk.message;
   const int c = channel(bdf, "disk.compressor.x");
@@ -377,10 +377,10 @@ TEST(Runup, IntegratorFailureKeepsTheSamplesAndSaysWhenAndWhy) {
   MachineSpec spec = reference();
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);
-  o.max_steps = 200;  // the integrator gives up after 200 steps between two output samples
+  o.solver.max_steps = 200;  // the integrator gives up after 200 steps between two output samples
   o.sample_rate = 200;
-  for (const char* integrator : {"cvode-bdf", "arkode-erk"}) {
-    o.integrator = integrator;
+  for (const Integrator integrator : {Integrator::CvodeBdf, Integrator::ArkodeErk}) {
+    o.solver.integrator = integrator;
     const RunupResult r = simulate_runup(*model, o);
     EXPECT_FALSE(r.complete);
     EXPECT_THAT(r.message, HasSubstr("stopped at t = "));

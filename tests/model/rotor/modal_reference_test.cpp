@@ -69,7 +69,7 @@ TEST(Modal, DampingRatioOfRigidRotorOnDampedSupports) {
   for (double z : {0.0, 0.4}) {
     BearingSpec b;
     b.name = z == 0.0 ? "a" : "b";
-    b.type = "linear";
+    b.type = BearingType::Linear;
     b.z = z;
     b.linear.k = {{{1e4}, {0.0}, {0.0}, {1e4}}};
     b.linear.c = {{{5.0}, {0.0}, {0.0}, {5.0}}};

@@ -29,7 +29,7 @@ TEST(Response, RigidSymmetricRotorFollowsTheJeffcottFormula) {
   for (double z : {0.0, 0.4}) {
     BearingSpec b;
     b.name = z == 0.0 ? "a" : "b";
-    b.type = "linear";
+    b.type = BearingType::Linear;
     b.z = z;
     b.linear.k = {{{k}, {0.0}, {0.0}, {k}}};
     b.linear.c = {{{c}, {0.0}, {0.0}, {c}}};

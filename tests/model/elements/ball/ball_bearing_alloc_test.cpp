@@ -12,7 +12,7 @@ namespace turbodyn {
 namespace {
 
 TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
-  for (OuterRingMode mode : {OuterRingMode::kFixed, OuterRingMode::kSpring, OuterRingMode::kExternal}) {
+  for (OuterRingMode mode : {OuterRingMode::Fixed, OuterRingMode::Spring, OuterRingMode::External}) {
     BallBearingSpec spec;
     spec.outer_ring_mode = mode;
     const BallBearingElement e("alloc", spec, 0, 9.81);
@@ -25,16 +25,16 @@ TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
     const double q[4] = {1e-6, -0.5e-6, 1e-5, 0}, v[4] = {1e-3, 0, 0, 0};
     double f[4] = {0, 0, 0, 0};
     const SpinState s{0.0, W, 0.0, 0.0};
-    e.CalcAndAddForces(s, q, v, z.data(), *ws, f, zdot.data());  // warm-up
+    e.calc_and_add_forces(s, q, v, z.data(), *ws, f, zdot.data());  // warm-up
     const long before = testing::allocation_count();
     double sink = 0.0;
     for (int i = 0; i < 100; ++i) {
       z[0] += 1e-4;
-      e.CalcAndAddForces(s, q, v, z.data(), *ws, f, zdot.data());
-      e.EvalProbes(s, q, v, z.data(), *ws, out.data());
-      sink += e.DissipatedPower(s, q, v, z.data(), *ws) + e.KineticEnergy(z.data()) + e.PotentialEnergy(q, z.data());
+      e.calc_and_add_forces(s, q, v, z.data(), *ws, f, zdot.data());
+      e.eval_probes(s, q, v, z.data(), *ws, out.data());
+      sink += e.dissipated_power(s, q, v, z.data(), *ws) + e.kinetic_energy(z.data()) + e.potential_energy(q, z.data());
       BallBearingLoads loads;
-      e.CalcBearing(s, q, v, z.data(), OuterRingKinematics{1e-7, 0, 0, 0}, loads, zdot.data());
+      e.calc_bearing(s, q, v, z.data(), OuterRingKinematics{1e-7, 0, 0, 0}, loads, zdot.data());
       sink += loads.max_contact_force;
     }
     EXPECT_EQ(testing::allocation_count() - before, 0) << "outer-ring mode " << static_cast<int>(mode);

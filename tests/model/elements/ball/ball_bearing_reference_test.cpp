@@ -177,13 +177,13 @@ class Integrator {
     const double* z = N_VGetArrayPointer(y);
     double* zdot = N_VGetArrayPointer(ydot);
     if (!self->powers_) {
-      self->e_.CalcAndAddForces(s, self->q_.data(), v, z, *self->ws_, f, zdot);
+      self->e_.calc_and_add_forces(s, self->q_.data(), v, z, *self->ws_, f, zdot);
       return 0;
     }
     BallBearingLoads loads;
-    self->e_.CalcBearing(s, self->q_.data(), v, z, OuterRingKinematics{}, loads, zdot);
+    self->e_.calc_bearing(s, self->q_.data(), v, z, OuterRingKinematics{}, loads, zdot);
     zdot[self->n_] = -loads.shaft_torque * self->speed_;
-    zdot[self->n_ + 1] = self->e_.DissipatedPower(s, self->q_.data(), v, z, *self->ws_);
+    zdot[self->n_ + 1] = self->e_.dissipated_power(s, self->q_.data(), v, z, *self->ws_);
     return 0;
   }
   const BallBearingElement& e_;
@@ -231,7 +231,7 @@ KinematicRun run_at_speed(double speed_rpm, double revolutions) {
   const double v[4] = {0, 0, 0, 0};
   for (int k = 0; k < n; ++k) {
     EXPECT_TRUE(in.advance(t_settle + (k + 1) * dt));
-    e.EvalProbes(SpinState{0.0, W, 0.0, 0.0}, q.data(), v, in.z(), *ws, probes.data());
+    e.eval_probes(SpinState{0.0, W, 0.0, 0.0}, q.data(), v, in.z(), *ws, probes.data());
     fx[k] = probes[0];
     cage += probes[2] / n;
     ai += probes[5] / n;

@@ -81,13 +81,13 @@ class Integrator {
     const double* z = N_VGetArrayPointer(y);
     double* zdot = N_VGetArrayPointer(ydot);
     if (!self->powers_) {
-      self->e_.CalcAndAddForces(s, self->q_.data(), v, z, *self->ws_, f, zdot);
+      self->e_.calc_and_add_forces(s, self->q_.data(), v, z, *self->ws_, f, zdot);
       return 0;
     }
     BallBearingLoads loads;
-    self->e_.CalcBearing(s, self->q_.data(), v, z, OuterRingKinematics{}, loads, zdot);
+    self->e_.calc_bearing(s, self->q_.data(), v, z, OuterRingKinematics{}, loads, zdot);
     zdot[self->n_] = -loads.shaft_torque * self->speed_;
-    zdot[self->n_ + 1] = self->e_.DissipatedPower(s, self->q_.data(), v, z, *self->ws_);
+    zdot[self->n_ + 1] = self->e_.dissipated_power(s, self->q_.data(), v, z, *self->ws_);
     return 0;
   }
   const BallBearingElement& e_;
@@ -125,7 +125,7 @@ TEST(BallBearing, ShaftForcesAreTheGradientOfThePotentialWithoutFrictionAndDampi
     std::copy(q, q + 4, qm);
     qp[i] += h;
     qm[i] -= h;
-    const double grad = (e.PotentialEnergy(qp, z.data()) - e.PotentialEnergy(qm, z.data())) / (2 * h);
+    const double grad = (e.potential_energy(qp, z.data()) - e.potential_energy(qm, z.data())) / (2 * h);
     EXPECT_NEAR(f[i], -grad, 1e-4 * (std::abs(grad) + 1e-3)) << "dof " << i;
   }
 }
@@ -136,7 +136,7 @@ TEST(BallBearing, EnergyIsConservedWithoutFrictionAndDamping) {
   BallBearingSpec s = reference_bearing();
   s.friction_static = s.friction_sliding = 0.0;
   s.contact_damping = s.pocket_damping = 0.0;
-  s.outer_ring_mode = OuterRingMode::kSpring;
+  s.outer_ring_mode = OuterRingMode::Spring;
   s.outer_ring_damping = 0.0;
   const BallBearingElement e("ref", s, 0, 9.81);
   const double W = 30000 * kRpm;
@@ -144,13 +144,13 @@ TEST(BallBearing, EnergyIsConservedWithoutFrictionAndDamping) {
   e.initial_states(z.data());
   e.steady_states(W, z.data());
   const Eigen::Vector4d q(2e-6, -1e-6, 0.0, 0.0);
-  const auto energy = [&](const double* zz) { return e.KineticEnergy(zz) + e.PotentialEnergy(q.data(), zz); };
+  const auto energy = [&](const double* zz) { return e.kinetic_energy(zz) + e.potential_energy(q.data(), zz); };
   Integrator in(e, W, q, z, 1e-10, 1e-5);
   const double E0 = energy(z.data());
   double v_min = 1e30, v_max = -1e30, drift = 0.0;
   for (int k = 1; k <= 200; ++k) {
     ASSERT_TRUE(in.advance(k * 1e-5));
-    const double V = e.PotentialEnergy(q.data(), in.z());
+    const double V = e.potential_energy(q.data(), in.z());
     v_min = std::min(v_min, V), v_max = std::max(v_max, V);
     drift = std::max(drift, std::abs(energy(in.z()) - E0));
   }
@@ -177,18 +177,18 @@ TEST(BallBearing, PowersAndProbesAreThoseOfTheirOwnStateWhateverWasEvaluatedBefo
   const auto fresh = [&](const std::vector<double>& z, int what) {
     auto w = e.make_workspace();
     std::vector<double> out(e.probes().size());
-    if (what == 0) return e.DissipatedPower(s, q, v, z.data(), *w);
-    if (what == 1) return e.DrivePower(s, q, v, z.data(), *w);
-    e.EvalProbes(s, q, v, z.data(), *w, out.data());
+    if (what == 0) return e.dissipated_power(s, q, v, z.data(), *w);
+    if (what == 1) return e.drive_power(s, q, v, z.data(), *w);
+    e.eval_probes(s, q, v, z.data(), *w, out.data());
     return out[0];
   };
   for (const auto* z : {&z1, &z2}) {
     double f[4] = {0, 0, 0, 0};
-    e.CalcAndAddForces(s, q, v, z1.data(), *ws, f, zdot.data());
+    e.calc_and_add_forces(s, q, v, z1.data(), *ws, f, zdot.data());
     std::vector<double> out(e.probes().size());
-    EXPECT_EQ(e.DissipatedPower(s, q, v, z->data(), *ws), fresh(*z, 0));
-    EXPECT_EQ(e.DrivePower(s, q, v, z->data(), *ws), fresh(*z, 1));
-    e.EvalProbes(s, q, v, z->data(), *ws, out.data());
+    EXPECT_EQ(e.dissipated_power(s, q, v, z->data(), *ws), fresh(*z, 0));
+    EXPECT_EQ(e.drive_power(s, q, v, z->data(), *ws), fresh(*z, 1));
+    e.eval_probes(s, q, v, z->data(), *ws, out.data());
     EXPECT_EQ(out[0], fresh(*z, 2));
   }
   EXPECT_NE(fresh(z1, 0), fresh(z2, 0));
@@ -197,7 +197,7 @@ TEST(BallBearing, PowersAndProbesAreThoseOfTheirOwnStateWhateverWasEvaluatedBefo
 TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
   // With friction and damping on: E(t) - E(0) = work of the drive - dissipated energy, the drive holding the
   // rotor speed against the bearing's torque on the shaft (inner-race friction). The two powers are integrated
-  // as extra states by the same integrator. Fixed outer ring, so CalcBearing covers every state.
+  // as extra states by the same integrator. Fixed outer ring, so calc_bearing covers every state.
   const BallBearingSpec s = reference_bearing();
   const BallBearingElement e("ref", s, 0, 9.81);
   const double W = 30000 * kRpm;
@@ -206,7 +206,7 @@ TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
   e.steady_states(W, z.data());
   const Eigen::Vector4d q(1e-6, 0.0, 0.0, 0.0);
   const double v[4] = {0, 0, 0, 0};
-  const auto energy = [&](const double* zz) { return e.KineticEnergy(zz) + e.PotentialEnergy(q.data(), zz); };
+  const auto energy = [&](const double* zz) { return e.kinetic_energy(zz) + e.potential_energy(q.data(), zz); };
   auto ws = e.make_workspace();
   Integrator in(e, W, q, z, 1e-8, 1e-4, true);
   const double E0 = energy(z.data());
@@ -214,7 +214,7 @@ TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
   const double dt = 2e-6;
   for (int k = 1; k <= 1000; ++k) {
     ASSERT_TRUE(in.advance(k * dt));
-    p_min = std::min(p_min, e.DissipatedPower(SpinState{0.0, W, 0.0, 0.0}, q.data(), v, in.z(), *ws));
+    p_min = std::min(p_min, e.dissipated_power(SpinState{0.0, W, 0.0, 0.0}, q.data(), v, in.z(), *ws));
   }
   EXPECT_GE(p_min, 0.0);
   const double lost = in.dissipated(), work = in.drive_work();
@@ -254,7 +254,7 @@ TEST(BallBearing, BadSpecValuesThrowNamingTheField) {
   expect_throw([](BallBearingSpec& s) { s.cage_mass = 0.0; }, "cage_mass");
   expect_throw(
       [](BallBearingSpec& s) {
-        s.outer_ring_mode = OuterRingMode::kSpring;
+        s.outer_ring_mode = OuterRingMode::Spring;
         s.outer_ring_stiffness = 0.0;
       },
       "outer_ring_stiffness");

@@ -1,0 +1,49 @@
+// The per-simulation scratch space of a RunupModel (runup.h), private to the engine: the model and the integrator
+// glue (integrator.cpp) read it; everyone else holds it through RunupWorkspacePtr.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "model/elements/force_element.h"
+#include "model/engine/block_arrow_lu.h"
+
+namespace turbodyn {
+
+// Sized once, reused by every right-hand-side and Jacobian call.
+struct RunupWorkspace {
+  // Everything one element needs, kept together so that an element's pieces cannot drift apart; d = its rotor
+  // DOFs, m = its internal states.
+  struct Element {
+    Element(const ForceElement& e, int n);
+    std::unique_ptr<ElementWorkspace> workspace;
+    Eigen::VectorXd q, v, f;         // gathered displacements and velocities, local force (d)
+    Eigen::MatrixXd jacobian;        // d[f; zdot] / d[q; v; z], (d + m) x (2d + m)
+    Eigen::VectorXd fd_in;           // perturbed inputs [q; v; z] of the forward differences
+    Eigen::VectorXd fd_out0, fd_out1;  // outputs [f; zdot] of the forward differences
+    // Newton matrix: the block I - g G_zz, its factors, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), the
+    // right-hand side of Y (m x d), F_z Y (d x d), R' F_z Y (n x d); w, w0 (m) and u (d) are solve scratch.
+    Eigen::MatrixXd newton_block;
+    BlockArrowLU lu;
+    Eigen::MatrixXd Y, T, JY, RJY;
+    Eigen::VectorXd w, w0, u;
+  };
+
+  Eigen::VectorXd f;    // generalised force (n)
+  Eigen::VectorXd tmp;  // scratch (n)
+  std::vector<Element> elements;
+  // Jacobian blocks of M v' = f(q, v, z), z' = g(q, v, z).
+  Eigen::MatrixXd Fq, Fv, Fz, Gq, Gv, Gz;
+  // Newton matrix: the n x n Schur complement on the rotor coordinates and its factorisation.
+  Eigen::MatrixXd A;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::VectorXd rhs, sol;
+  double jac_t = 0.0;
+  SpinState jac_spin;
+  long rhs_calls = 0, element_calls = 0, jacobian_evaluations = 0, factorisations = 0;
+  bool energy = true;  // accumulate the energy-balance states
+};
+
+}  // namespace turbodyn
