@@ -10,11 +10,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
-#include <cvode/cvode.h>
 #include <gtest/gtest.h>
-#include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include "tests/support/ball_bearing_fixtures.h"
 
@@ -23,6 +19,7 @@ namespace {
 
 using testing::Evaluator;
 using testing::kRpm;
+using testing::ElementIntegrator;
 using testing::reference_bearing;
 
 // ---------------------------------------------------------------------------------------------- helpers
@@ -121,84 +118,6 @@ struct QuasiStatic {
   }
 };
 
-// CVODE (BDF, dense direct solver with CVODE's own difference-quotient Jacobian) on the element's states with
-// the shaft held at (q, v) and spinning at a constant speed.
-class Integrator {
- public:
-  // With `powers`, two more states integrate the drive power (-torque on the shaft x speed) and the dissipated
-  // power, so that an energy balance is as accurate as the integration itself.
-  Integrator(const BallBearingElement& e, double speed, const Eigen::Vector4d& q, std::vector<double> z0,
-             double rtol, double atol_factor, bool powers = false)
-      : e_(e), ws_(e.make_workspace()), speed_(speed), q_(q), n_(e.n_states()), powers_(powers) {
-    SUNContext_Create(nullptr, &ctx_);
-    const int n = n_ + (powers ? 2 : 0);
-    y_ = N_VNew_Serial(n, ctx_);
-    atol_ = N_VNew_Serial(n, ctx_);
-    for (int i = 0; i < n; ++i) {
-      NV_Ith_S(y_, i) = i < n_ ? z0[i] : 0.0;
-      NV_Ith_S(atol_, i) = i < n_ ? atol_factor * e.state_scale(i) : 1e-12;
-    }
-    mem_ = CVodeCreate(CV_BDF, ctx_);
-    CVodeInit(mem_, &Integrator::Rhs, 0.0, y_);
-    CVodeSetUserData(mem_, this);
-    CVodeSVtolerances(mem_, rtol, atol_);
-    A_ = SUNDenseMatrix(n, n, ctx_);
-    ls_ = SUNLinSol_Dense(y_, A_, ctx_);
-    CVodeSetLinearSolver(mem_, ls_, A_);
-    CVodeSetMaxNumSteps(mem_, 10000000);
-  }
-  ~Integrator() {
-    CVodeFree(&mem_);
-    SUNLinSolFree(ls_);
-    SUNMatDestroy(A_);
-    N_VDestroy(y_);
-    N_VDestroy(atol_);
-    SUNContext_Free(&ctx_);
-  }
-  bool advance(double t_out) {
-    double t = 0.0;
-    return CVode(mem_, t_out, y_, &t, CV_NORMAL) >= 0;
-  }
-  const double* z() const { return N_VGetArrayPointer(y_); }
-  double drive_work() const { return z()[n_]; }    ///< J, with `powers`
-  double dissipated() const { return z()[n_ + 1]; }  ///< J, with `powers`
-  long steps() const {
-    long s = 0;
-    CVodeGetNumSteps(mem_, &s);
-    return s;
-  }
-
- private:
-  static int Rhs(sunrealtype, N_Vector y, N_Vector ydot, void* user) {
-    auto* self = static_cast<Integrator*>(user);
-    double f[4] = {0, 0, 0, 0};
-    const double v[4] = {0, 0, 0, 0};
-    const SpinState s{0.0, self->speed_, 0.0, 0.0};
-    const double* z = N_VGetArrayPointer(y);
-    double* zdot = N_VGetArrayPointer(ydot);
-    if (!self->powers_) {
-      self->e_.calc_and_add_forces(s, self->q_.data(), v, z, *self->ws_, f, zdot);
-      return 0;
-    }
-    BallBearingLoads loads;
-    self->e_.calc_bearing(s, self->q_.data(), v, z, OuterRingKinematics{}, loads, zdot);
-    zdot[self->n_] = -loads.shaft_torque * self->speed_;
-    zdot[self->n_ + 1] = self->e_.dissipated_power(s, self->q_.data(), v, z, *self->ws_);
-    return 0;
-  }
-  const BallBearingElement& e_;
-  std::unique_ptr<ElementWorkspace> ws_;
-  double speed_;
-  Eigen::Vector4d q_;
-  int n_;
-  bool powers_;
-  SUNContext ctx_ = nullptr;
-  N_Vector y_ = nullptr, atol_ = nullptr;
-  void* mem_ = nullptr;
-  SUNMatrix A_ = nullptr;
-  SUNLinearSolver ls_ = nullptr;
-};
-
 // ------------------------------------------------------------------------------------------------ tests
 
 // Mean cage speed ratio, ball-pass frequencies from the balls' orbital speed and the spectrum of the housing
@@ -217,7 +136,7 @@ KinematicRun run_at_speed(double speed_rpm, double revolutions) {
   e.initial_states(z.data());
   e.steady_states(W, z.data());
   const Eigen::Vector4d q(1.0e-6, 0.0, 0.0, 0.0);  // about 50 N radial load (k_xx ~ 5e7 N/m)
-  Integrator in(e, W, q, z, 1e-6, 1e-3);
+  ElementIntegrator in(e, W, q, z, 1e-6, 1e-3);
   // Settle for 10 cage revolutions, then sample `revolutions` shaft revolutions at 16 samples per ball pass.
   const double f_cage = 0.5 * fs * (1 - s.ball_diameter / s.pitch_diameter * std::cos(s.contact_angle));
   const double t_settle = 10.0 / f_cage;
