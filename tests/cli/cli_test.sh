@@ -2,10 +2,8 @@
 # Command-line cases run by CTest: cli_test.sh TURBODYN SOURCE_DIR WORK_DIR CASE
 # Each case runs the program as a user would and checks exit code, files and messages.
 set -u
-exe=$1 src=$2 work=$3 case=$4
-out="$work/$case"
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL ($case): $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+cli_setup "" "$@"
 
 case $case in
   check_example)

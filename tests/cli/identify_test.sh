@@ -1,10 +1,8 @@
 #!/usr/bin/env bash
 # `turbodyn identify` as a user runs it, run by CTest: identify_test.sh TURBODYN SOURCE_DIR WORK_DIR CASE
 set -u
-exe=$1 src=$2 work=$3 case=$4
-out="$work/identify_$case"
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL (identify_$case): $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+cli_setup "identify_" "$@"
 
 case $case in
   example)

@@ -1,10 +1,8 @@
 #!/usr/bin/env bash
 # `turbodyn optimize` as a user runs it, for CTest: optimize_test.sh TURBODYN SOURCE_DIR WORK_DIR CASE
 set -u
-exe=$1 src=$2 work=$3 case=$4
-out="$work/optimize_$case"
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL (optimize_$case): $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+cli_setup "optimize_" "$@"
 
 case $case in
   run_and_outputs)
