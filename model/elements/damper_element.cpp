@@ -69,11 +69,7 @@ void DamperElement::do_calc_and_add_forces(const SpinState& s, const double* q, 
 
 std::vector<ProbeInfo> DamperElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return {{"fx", "N", who + "force transmitted to the housing through the damper, horizontal (x)"},
-          {"fy", "N", who + "force transmitted to the housing through the damper, vertical (y)"},
-          {"damper_x", "m", who + "outer ring displacement in the damper, horizontal"},
-          {"damper_y", "m", who + "outer ring displacement in the damper, vertical"},
-          {"damper_eccentricity", "1", who + "damper eccentricity ratio e/c"}};
+  return damper_probes(who);
 }
 
 void DamperElement::eval_probes(const SpinState&, const double*, const double*, const double* z, ElementWorkspace& ws,

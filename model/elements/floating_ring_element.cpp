@@ -194,13 +194,12 @@ void FloatingRingElement::do_calc_and_add_forces(const SpinState& s, const doubl
 
 std::vector<ProbeInfo> FloatingRingElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return {{"fx", "N", who + "force transmitted to the housing, horizontal (x)"},
-          {"fy", "N", who + "force transmitted to the housing, vertical (y)"},
-          {"ring_speed_ratio", "1", who + "ring speed / rotor speed"},
-          {"inner_eccentricity", "1", who + "inner-film eccentricity ratio at mid-width"},
-          {"outer_eccentricity", "1", who + "outer-film eccentricity ratio at mid-width"},
-          {"ring_tilt", "rad", who + "ring tilt against the housing (magnitude)"},
-          {"drill_hole_pressure", "Pa", who + "pressure at the drill holes' inner mouths, mean over the holes"}};
+  return housing_force_probes(who, "", {{"ring_speed_ratio", "1", "ring speed / rotor speed"},
+                                        {"inner_eccentricity", "1", "inner-film eccentricity ratio at mid-width"},
+                                        {"outer_eccentricity", "1", "outer-film eccentricity ratio at mid-width"},
+                                        {"ring_tilt", "rad", "ring tilt against the housing (magnitude)"},
+                                        {"drill_hole_pressure", "Pa",
+                                         "pressure at the drill holes' inner mouths, mean over the holes"}});
 }
 
 void FloatingRingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,

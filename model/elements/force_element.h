@@ -15,6 +15,7 @@
 #include <cstring>
 
 #include <memory>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,27 @@ struct ProbeInfo {
   std::string unit;         ///< e.g. "N"
   std::string description;  ///< e.g. "force on the housing, horizontal"
 };
+
+/// The probes every bearing reports first, fx and fy (N): the force it transmits to the housing, `via` naming the
+/// path (e.g. " through the damper"). `who` opens each description ("bearing 'NAME': "); `more` follow.
+inline std::vector<ProbeInfo> housing_force_probes(const std::string& who, const std::string& via,
+                                                   std::initializer_list<ProbeInfo> more = {}) {
+  std::vector<ProbeInfo> p = {{"fx", "N", who + "force transmitted to the housing" + via + ", horizontal (x)"},
+                              {"fy", "N", who + "force transmitted to the housing" + via + ", vertical (y)"}};
+  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description});
+  return p;
+}
+
+/// housing_force_probes through a squeeze-film damper, then the damper ring's displacement (m) and eccentricity
+/// ratio, then `more`.
+inline std::vector<ProbeInfo> damper_probes(const std::string& who, std::initializer_list<ProbeInfo> more = {}) {
+  std::vector<ProbeInfo> p = housing_force_probes(who, " through the damper",
+                                                  {{"damper_x", "m", "outer ring displacement in the damper, horizontal"},
+                                                   {"damper_y", "m", "outer ring displacement in the damper, vertical"},
+                                                   {"damper_eccentricity", "1", "damper eccentricity ratio e/c"}});
+  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description});
+  return p;
+}
 
 class ForceElement {
  public:

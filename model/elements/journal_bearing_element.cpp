@@ -73,11 +73,9 @@ void JournalBearingElement::do_calc_and_add_forces(const SpinState& s, const dou
 
 std::vector<ProbeInfo> JournalBearingElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return {{"fx", "N", who + "force transmitted to the housing, horizontal (x)"},
-          {"fy", "N", who + "force transmitted to the housing, vertical (y)"},
-          {"eccentricity", "1", who + "journal eccentricity ratio e/c at mid-width"},
-          {"friction_power", "W", who + "friction power loss in the film"},
-          {"max_pressure", "Pa", who + "highest film pressure"}};
+  return housing_force_probes(who, "", {{"eccentricity", "1", "journal eccentricity ratio e/c at mid-width"},
+                                        {"friction_power", "W", "friction power loss in the film"},
+                                        {"max_pressure", "Pa", "highest film pressure"}});
 }
 
 void JournalBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double*,

@@ -59,8 +59,7 @@ void LinearBearingElement::add_jacobian(const SpinState& s, const double*, const
 
 std::vector<ProbeInfo> LinearBearingElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  std::vector<ProbeInfo> p = {{"fx", "N", who + "force transmitted to the housing, horizontal (x)"},
-                              {"fy", "N", who + "force transmitted to the housing, vertical (y)"}};
+  std::vector<ProbeInfo> p = housing_force_probes(who, "");
   if (n_states() > 0) {
     p.push_back({"pedestal_x", "m", who + "pedestal displacement, horizontal"});
     p.push_back({"pedestal_y", "m", who + "pedestal displacement, vertical"});

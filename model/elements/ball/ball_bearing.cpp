@@ -610,13 +610,11 @@ void BallBearingElement::Evaluate(const SpinState& s, const double* q, const dou
 
 std::vector<ProbeInfo> BallBearingElement::probes() const {
   const std::string who = "ball bearing '" + name() + "': ";
-  return {{"fx", "N", who + "force transmitted to the housing, horizontal (x)"},
-          {"fy", "N", who + "force transmitted to the housing, vertical (y)"},
-          {"cage_speed_ratio", "1", who + "cage speed / rotor speed"},
-          {"max_contact_force", "N", who + "largest ball-race normal force"},
-          {"outer_ring_axial", "m", who + "axial displacement of the outer ring"},
-          {"inner_contact_angle", "rad", who + "mean loaded inner contact angle"},
-          {"outer_contact_angle", "rad", who + "mean loaded outer contact angle"}};
+  return housing_force_probes(who, "", {{"cage_speed_ratio", "1", "cage speed / rotor speed"},
+                                        {"max_contact_force", "N", "largest ball-race normal force"},
+                                        {"outer_ring_axial", "m", "axial displacement of the outer ring"},
+                                        {"inner_contact_angle", "rad", "mean loaded inner contact angle"},
+                                        {"outer_contact_angle", "rad", "mean loaded outer contact angle"}});
 }
 
 void BallBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,

@@ -147,13 +147,8 @@ void BallDamperElement::do_calc_and_add_forces(const SpinState& s, const double*
 
 std::vector<ProbeInfo> BallDamperElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return {{"fx", "N", who + "force transmitted to the housing through the damper, horizontal (x)"},
-          {"fy", "N", who + "force transmitted to the housing through the damper, vertical (y)"},
-          {"damper_x", "m", who + "outer ring displacement in the damper, horizontal"},
-          {"damper_y", "m", who + "outer ring displacement in the damper, vertical"},
-          {"damper_eccentricity", "1", who + "damper eccentricity ratio e/c"},
-          {"cage_speed_ratio", "1", who + "cage speed / rotor speed"},
-          {"max_contact_force", "N", who + "largest ball-race normal force"}};
+  return damper_probes(who, {{"cage_speed_ratio", "1", "cage speed / rotor speed"},
+                             {"max_contact_force", "N", "largest ball-race normal force"}});
 }
 
 void BallDamperElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
