@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "model/io/model_file.h"
 #include "model/spec/model_spec.h"
 #include "model/rotor/rotor.h"
 #include "model/engine/runup.h"
@@ -17,6 +18,11 @@
 namespace turbodyn::testing {
 
 inline std::string source_dir() { return TURBODYN_SOURCE_DIR; }
+
+/// The rotor of examples/EXAMPLE with the overrides applied.
+inline Rotor load_rotor(const std::string& example, const std::vector<Override>& overrides = {}) {
+  return build_rotor(load_model(source_dir() + "/examples/" + example, overrides));
+}
 
 /// The floating-ring bearing of docs/reference-machine.md, variant I.
 inline FloatingRingSpec reference_ring() {

@@ -13,11 +13,8 @@
 namespace turbodyn {
 namespace {
 
+using testing::load_rotor;
 using testing::source_dir;
-
-Rotor load_rotor(const std::string& example, const std::vector<Override>& overrides = {}) {
-  return build_rotor(load_model(source_dir() + "/examples/" + example, overrides));
-}
 
 // docs/references.md §6: Friswell et al. (2010) Example 5.9.1 with anisotropic bearings, damped natural
 // frequencies in rad/s from the ROSS test suite. The reference lists them per mode; compared in ascending order.

@@ -13,11 +13,8 @@
 namespace turbodyn {
 namespace {
 
+using testing::load_rotor;
 using testing::source_dir;
-
-Rotor load_rotor(const std::string& example, const std::vector<Override>& overrides = {}) {
-  return build_rotor(load_model(source_dir() + "/examples/" + example, overrides));
-}
 
 TEST(Modal, GyroscopicSplittingHasForwardAboveBackward) {
   // Isotropic bearings: the degenerate pairs at standstill split at speed into a backward (falling) and a forward

@@ -17,10 +17,7 @@
 namespace turbodyn {
 namespace {
 
-using testing::Evaluator;
-using testing::kRpm;
-using testing::ElementIntegrator;
-using testing::reference_bearing;
+using namespace testing;  // the ball-bearing fixtures
 
 // ------------------------------------------------------------------------------------------------ tests
 
