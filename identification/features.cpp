@@ -115,10 +115,7 @@ std::string to_string(FeatureKind k) {
 
 SpectraSet spectra_from_record(const Record& r, const ProcessingSpec& p) {
   SpectraSet s;
-  signal::StftOptions so;
-  so.segment_length = p.segment;
-  so.overlap = p.overlap;
-  so.window = p.window;
+  const signal::StftOptions so = p.stft();
   s.amplitude.resize(r.channels.size());
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
     const signal::Spectrogram sg = signal::stft(r.channels[c], r.sample_rate, so);

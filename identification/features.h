@@ -49,6 +49,15 @@ struct ProcessingSpec {
   std::size_t segment = 1024;       ///< STFT segment length, samples
   double overlap = 0.75;            ///< STFT overlap
   signal::Window window = signal::Window::Hann;
+
+  /// The STFT settings above, as the signal library takes them.
+  signal::StftOptions stft() const {
+    signal::StftOptions so;
+    so.segment_length = segment;
+    so.overlap = overlap;
+    so.window = window;
+    return so;
+  }
 };
 
 /// A feature's values at its speeds (NaN where undefined).

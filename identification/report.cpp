@@ -47,10 +47,7 @@ void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSp
     warnings.push_back(png.filename().string() + " not drawn: the record is shorter than one STFT segment");
     return;
   }
-  signal::StftOptions so;
-  so.segment_length = p.segment;
-  so.overlap = p.overlap;
-  so.window = p.window;
+  const signal::StftOptions so = p.stft();
   const signal::Spectrogram sg = signal::stft(r.channels[sensor], r.sample_rate, so);
   plot::Heatmap hm = post::spectrogram_heatmap(sg, signal::values_at_segment_centres(sg, r.speed_hz, r.sample_rate),
                                                fmax, disp.factor, kHzToRpm);

@@ -13,9 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
-#include <memory>
 #include <initializer_list>
+#include <memory>
 #include <string>
 #include <vector>
 
