@@ -237,6 +237,8 @@ void read_ball_bearing(Reader& r, BearingSpec& b) {
   s.friction_v1 = r.quantity_or("friction_v1", dim::velocity, s.friction_v1, Bound::Positive);
   s.friction_v2 = r.quantity_or("friction_v2", dim::velocity, s.friction_v2, Bound::Positive);
   s.spin_friction = r.flag_or("spin_friction", s.spin_friction);
+  s.race_traction =
+      r.choice("race_traction", {"spatial", "planar"}, "spatial") == "planar" ? RaceTraction::Planar : RaceTraction::Spatial;
   s.preload = r.quantity_or("preload", dim::force, s.preload, Bound::NonNegative);
   s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
   s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);

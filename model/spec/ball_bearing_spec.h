@@ -13,6 +13,15 @@ enum class OuterRingMode {
   External,  ///< radial x, y given by a wrapping element (squeeze-film damper) through calc_bearing()
 };
 
+/// Which slip the race friction of paper Eq. 23 acts on.
+enum class RaceTraction {
+  /// The whole tangential slip at the contact centre (rolling, cross-rolling and the tangential effect of spin).
+  Spatial,
+  /// The paper's planar contact (§2.2, Eqs. 17-19: circles in the plane of rolling): friction along the rolling
+  /// direction only, i.e. the slip component along e_psi projected into the contact's tangent plane.
+  Planar,
+};
+
 /// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
 struct BallBearingSpec {
   // Geometry.
@@ -52,6 +61,7 @@ struct BallBearingSpec {
   double friction_v1 = 0.05;       ///< v_1 in m/s (decay of mu_0 towards mu_r)
   double friction_v2 = 0.005;      ///< v_2 in m/s (tanh regularisation of sgn)
   bool spin_friction = true;       ///< add the spin moment of each race contact (3 pi / 16) mu Q a
+  RaceTraction race_traction = RaceTraction::Spatial;  ///< which slip the race friction acts on
 
   // Axial preload (spring-preloaded outer ring).
   double preload = 40.0;               ///< F_p in N (>= 0), spring force at the unloaded geometry

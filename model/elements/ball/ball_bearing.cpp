@@ -315,6 +315,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   const double v1 = spec_.friction_v1, v2 = spec_.friction_v2;
   const bool friction = mu0 > 0.0 || mur > 0.0;
   const bool spin = friction && spec_.spin_friction;
+  const bool planar = spec_.race_traction == RaceTraction::Planar;
   // mu(v)/v of paper Eq. 23 for v >= 0, finite at v = 0: the friction force is -Q (mu(|v_t|)/|v_t|) v_t.
   const auto mu_over_v = [=](double vt) {
     const double x = vt / v2;
@@ -375,17 +376,26 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
       Vec3 Fr = Q * geo.u;               // on the ring
       Vec3 Mr = geo.p.cross(Q * geo.u_l);  // about the ring centre (generalised force of the small rotation)
       F -= Q * geo.u;
+      if (k == 0) loads.shaft_power_normal += Fr.dot(race.velocity) + Mr.dot(race.tilt_rate);
+      double& friction_loss = k == 0 ? loads.friction_loss_inner : loads.friction_loss_outer;
       if (friction && Q > 0.0) {
         const Vec3 arm = Rb * geo.u;
         const Vec3 lever = geo.p + arm;  // contact point from the ring centre
         const Vec3 vrel = Vb + wb.cross(arm) - race.velocity - race.omega.cross(lever);
-        const Vec3 vt = vrel - vrel.dot(geo.u) * geo.u;
+        Vec3 vt = vrel - vrel.dot(geo.u) * geo.u;
+        if (planar) {
+          // The paper's planar contact: only the slip along the rolling direction, e_psi in the tangent plane.
+          const Vec3 roll = (Vec3(0.0, 1.0, 0.0) - geo.u.y() * geo.u).normalized();
+          vt = vt.dot(roll) * roll;
+        }
         const Vec3 Ft = (-Q * mu_over_v(vt.norm())) * vt;
         F += Ft;
         M += arm.cross(Ft);
         Fr -= Ft;
         Mr -= lever.cross(Ft);
         diss -= Ft.dot(vt);
+        friction_loss -= Ft.dot(vt);
+        if (k == 0) loads.shaft_power_friction -= Ft.dot(race.velocity) + lever.cross(Ft).dot(race.tilt_rate);
         if (spin) {
           const double a = hz.radius_factor * std::cbrt(Q);
           const double ws = (wb - race.omega).dot(geo.u);
@@ -393,6 +403,8 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
           M -= Ms * geo.u;
           Mr += Ms * geo.u;
           diss += Ms * ws;
+          friction_loss += Ms * ws;
+          if (k == 0) loads.shaft_power_friction += Ms * geo.u.dot(race.tilt_rate);
         }
       }
       qmax = std::max(qmax, Q);
@@ -435,6 +447,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
           Fc -= Ft;
           Tc -= lever.x() * Ft.y() - lever.y() * Ft.x();
           diss -= Ft.dot(vt);
+          loads.friction_loss_pocket -= Ft.dot(vt);
         }
         F_cage += Vec3(Fc.x() * c - Fc.y() * sn, Fc.x() * sn + Fc.y() * c, Fc.z());
         T_cage += Tc;
@@ -614,7 +627,14 @@ std::vector<ProbeInfo> BallBearingElement::probes() const {
                                         {"max_contact_force", "N", "largest ball-race normal force"},
                                         {"outer_ring_axial", "m", "axial displacement of the outer ring"},
                                         {"inner_contact_angle", "rad", "mean loaded inner contact angle"},
-                                        {"outer_contact_angle", "rad", "mean loaded outer contact angle"}});
+                                        {"outer_contact_angle", "rad", "mean loaded outer contact angle"},
+                                        {"shaft_power_normal", "W",
+                                         "power of the inner-race normal forces on the shaft's lateral motion"},
+                                        {"shaft_power_friction", "W",
+                                         "power of the inner-race friction on the shaft's lateral motion"},
+                                        {"friction_loss_inner", "W", "friction loss at the inner-race contacts"},
+                                        {"friction_loss_outer", "W", "friction loss at the outer-race contacts"},
+                                        {"friction_loss_pocket", "W", "friction loss at the cage pockets"}});
 }
 
 void BallBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
@@ -633,6 +653,11 @@ void BallBearingElement::eval_probes(const SpinState& s, const double* q, const 
   out[4] = z[outer_offset()];
   out[5] = loads.inner_contact_angle;
   out[6] = loads.outer_contact_angle;
+  out[7] = loads.shaft_power_normal;
+  out[8] = loads.shaft_power_friction;
+  out[9] = loads.friction_loss_inner;
+  out[10] = loads.friction_loss_outer;
+  out[11] = loads.friction_loss_pocket;
 }
 
 double BallBearingElement::core_kinetic_energy(const double* z) const {

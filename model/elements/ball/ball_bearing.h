@@ -62,6 +62,13 @@ struct BallBearingLoads {
   double outer_ring[3] = {0, 0, 0};     ///< force of the balls on the outer ring, x, y, z (N)
   double max_contact_force = 0.0;       ///< largest ball-race normal force (N)
   double dissipated_power = 0.0;        ///< contact damping and friction (W, >= 0)
+  /// Power of the inner-race contact forces on the shaft's lateral motion (x, y and tilt rates; the spin about
+  /// the axis is the drive's): normal (Hertz + damping) and tangential (friction) parts (W). Their mean over a
+  /// vibration cycle is the energy the bearing feeds into (> 0) or takes out of (< 0) the rotor's vibration.
+  double shaft_power_normal = 0.0;
+  double shaft_power_friction = 0.0;
+  /// Friction losses (slip and spin) at the inner-race, outer-race and pocket contacts (W, >= 0).
+  double friction_loss_inner = 0.0, friction_loss_outer = 0.0, friction_loss_pocket = 0.0;
   double inner_contact_angle = 0.0;     ///< mean direction of the loaded inner contacts (rad), 0 if none
   double outer_contact_angle = 0.0;     ///< same, outer contacts
 };

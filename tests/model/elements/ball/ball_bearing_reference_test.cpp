@@ -141,7 +141,7 @@ KinematicRun run_at_speed(double speed_rpm, double revolutions) {
   const double bp = s.n_balls * f_cage;
   const double dt = 1.0 / (16.0 * bp);
   const int n = static_cast<int>(revolutions / fs / dt);
-  std::vector<double> fx(n), probes(7);
+  std::vector<double> fx(n), probes(e.probes().size());
   auto ws = e.make_workspace();
   double cage = 0.0, orbit = 0.0, ai = 0.0, ao = 0.0;
   const double v[4] = {0, 0, 0, 0};

@@ -142,6 +142,80 @@ TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
               lost, lost / 2e-3, work, energy(in.z()) - E0, balance);
 }
 
+TEST(BallBearing, PowerFlowProbesSplitTheShaftPowerAndTheLosses) {
+  // The power-flow probes: the inner-race normal and friction parts of the power on the shaft's lateral motion add
+  // up to the generalised shaft forces times the shaft's velocities (x, y and tilt rates), and without contact and
+  // pocket damping the three friction losses add up to the dissipated power. Moving, tilted shaft with balls off
+  // their no-slip speeds and ball 2 pressed into its pocket, so that every channel is non-zero.
+  BallBearingSpec spec = reference_bearing();
+  spec.contact_damping = 0.0;
+  spec.pocket_damping = 0.0;
+  const BallBearingElement e("ref", spec, 0, 9.81);
+  const double W = 60000 * kRpm;
+  const SpinState s{0.0, W, 0.0, 0.0};
+  std::vector<double> z(e.n_states()), zdot(e.n_states());
+  e.initial_states(z.data());
+  e.steady_states(W, z.data());
+  for (int j = 0; j < spec.n_balls; ++j) z[e.ball_offset(j) + 6] += 50.0 * (j + 1);
+  z[e.ball_offset(2) + 0] += 1.2 * spec.pocket_clearance / (0.5 * spec.pitch_diameter);
+  const double q[4] = {2e-6, -1e-6, 2e-5, -1e-5}, v[4] = {0.02, -0.01, 3.0, 2.0};
+  BallBearingLoads loads;
+  e.calc_bearing(s, q, v, z.data(), OuterRingKinematics{}, loads, zdot.data());
+  const double lateral = loads.shaft[0] * v[0] + loads.shaft[1] * v[1] + loads.shaft[2] * v[2] + loads.shaft[3] * v[3];
+  EXPECT_NE(loads.shaft_power_normal, 0.0);
+  EXPECT_NE(loads.shaft_power_friction, 0.0);
+  EXPECT_NEAR(loads.shaft_power_normal + loads.shaft_power_friction, lateral, 1e-9 * std::abs(lateral) + 1e-15);
+  EXPECT_GT(loads.friction_loss_inner, 0.0);
+  EXPECT_GT(loads.friction_loss_outer, 0.0);
+  EXPECT_GT(loads.friction_loss_pocket, 0.0);
+  const double losses = loads.friction_loss_inner + loads.friction_loss_outer + loads.friction_loss_pocket;
+  EXPECT_NEAR(losses, loads.dissipated_power, 1e-9 * loads.dissipated_power);
+  // The probes report the same numbers.
+  auto ws = e.make_workspace();
+  const std::vector<ProbeInfo> info = e.probes();
+  std::vector<double> out(info.size());
+  e.eval_probes(s, q, v, z.data(), *ws, out.data());
+  const auto probe = [&](const std::string& name) {
+    for (std::size_t i = 0; i < info.size(); ++i)
+      if (info[i].name == name) return out[i];
+    ADD_FAILURE() << "no probe " << name;
+    return 0.0;
+  };
+  EXPECT_EQ(probe("shaft_power_normal"), loads.shaft_power_normal);
+  EXPECT_EQ(probe("shaft_power_friction"), loads.shaft_power_friction);
+  EXPECT_EQ(probe("friction_loss_inner"), loads.friction_loss_inner);
+  EXPECT_EQ(probe("friction_loss_outer"), loads.friction_loss_outer);
+  EXPECT_EQ(probe("friction_loss_pocket"), loads.friction_loss_pocket);
+}
+
+TEST(BallBearing, PlanarTractionIgnoresSlipAcrossTheRollingDirection) {
+  // race_traction = planar (the paper's planar contact) keeps only the slip along the rolling direction. An axial
+  // velocity of every ball slips its race contacts across the rolling direction only: with planar traction the race
+  // friction losses do not change, with spatial traction they grow. Spin friction and contact damping off, shaft
+  // centred, so that only the slip counts.
+  const double W = 30000 * kRpm;
+  const SpinState s{0.0, W, 0.0, 0.0};
+  const double q[4] = {0, 0, 0, 0}, v[4] = {0, 0, 0, 0};
+  const auto race_losses = [&](RaceTraction traction, double axial_velocity) {
+    BallBearingSpec spec = reference_bearing();
+    spec.spin_friction = false;
+    spec.contact_damping = 0.0;  // the axial velocity must not change the normal forces
+    spec.race_traction = traction;
+    const BallBearingElement e("ref", spec, 0, 0.0);
+    std::vector<double> z(e.n_states()), zdot(e.n_states());
+    e.initial_states(z.data());
+    e.steady_states(W, z.data());
+    for (int j = 0; j < spec.n_balls; ++j) z[e.ball_offset(j) + 5] = axial_velocity;
+    BallBearingLoads loads;
+    e.calc_bearing(s, q, v, z.data(), OuterRingKinematics{}, loads, zdot.data());
+    return loads.friction_loss_inner + loads.friction_loss_outer;
+  };
+  const double planar0 = race_losses(RaceTraction::Planar, 0.0), planar1 = race_losses(RaceTraction::Planar, 2e-3);
+  const double spatial0 = race_losses(RaceTraction::Spatial, 0.0), spatial1 = race_losses(RaceTraction::Spatial, 2e-3);
+  EXPECT_NEAR(planar1, planar0, 1e-9 * std::max(planar0, 1e-6));
+  EXPECT_GT(spatial1 - spatial0, 1e-3) << spatial0 << " -> " << spatial1;
+}
+
 TEST(BallBearing, BadSpecValuesThrowNamingTheField) {
   const auto expect_throw = [](void (*edit)(BallBearingSpec&), const std::string& field) {
     BallBearingSpec s;
