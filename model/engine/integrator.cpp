@@ -11,7 +11,6 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
-#include <sundials/sundials_matrix.h>
 
 #include "model/engine/runup_workspace.h"
 #include "model/engine/serial_vector_ops.h"
@@ -25,8 +24,9 @@ struct Integration {
   RunupWorkspace* ws = nullptr;
   void* cvode = nullptr;
   double gamma_factored = -1.0;
-  bool have_jacobian = false;
   std::string last_error;
+  long jacobian_step = 0;       // integrator step count at the last Jacobian
+  long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
 };
 
 int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
@@ -50,54 +50,57 @@ void error_handler(int code, const char* module, const char* function, char* msg
   in->last_error = std::string(module) + "/" + function + ": " + msg;
 }
 
-// The structured Newton solver (RunupModel::FactorNewton/SolveNewton) is attached as a "direct" linear solver with a
-// placeholder matrix and a linear-system function, so that CVODE's own setup policy drives it (Hindmarsh et al.,
-// "SUNDIALS", ACM TOMS 31(3), 2005, and the CVODE user guide, "Linear solver interface"): CVODE calls the
-// linear-system function when it wants a new Newton matrix (first step, every 20 steps, gamma changed by more than
-// 30 %, after a convergence or error-test failure) and says whether the Jacobian may be reused (it may not after 51
-// steps or a convergence failure with a stale Jacobian). Above all, when Newton's method fails with a stale
-// Jacobian, CVODE retries the same step with a fresh one instead of cutting the step by 4. (Declared matrix-embedded,
-// as before, the solver never got a setup call from CVODE: every convergence failure cost a step cut.)
-SUNLinearSolver_Type ls_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+SUNLinearSolver_Type ls_type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
 
-// CVODE's linear-system function: a new Jacobian when CVODE asks for one (jok false) or the spin speed, which
-// scales the gyroscopic terms, has moved by more than 2 % since the last; then the factorisation for gamma.
-int ls_linsys(sunrealtype t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype jok, sunbooleantype* jcur,
-              sunrealtype gamma, void* user, N_Vector, N_Vector, N_Vector) {
-  constexpr double kJacobianSpeedChange = 0.02;
-  auto* in = static_cast<Integration*>(user);
-  const RunupModel& model = *in->model;
-  RunupWorkspace& ws = *in->ws;
-  const double w = model.speed().speed(t), w_jac = ws.jac_spin.speed;
-  *jcur = SUNFALSE;
-  if (!jok || !in->have_jacobian || std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0)) {
-    try {
-      model.Jacobian(t, N_VGetArrayPointer(y), ws);
-    } catch (const std::exception& e) {
-      in->last_error = e.what();
-      return 1;  // recoverable: CVODE retries with a smaller step
-    }
-    in->have_jacobian = true;
-    *jcur = SUNTRUE;
-  }
-  in->gamma_factored = gamma;
-  return model.FactorNewton(gamma, ws) ? 0 : 1;
-}
-
-int ls_setup(SUNLinearSolver, SUNMatrix) { return 0; }  // the factorisation is done in ls_linsys
-
-int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
+int ls_setup(SUNLinearSolver S, SUNMatrix) {
   auto* in = static_cast<Integration*>(S->content);
-  const RunupModel& model = *in->model;
-  RunupWorkspace& ws = *in->ws;
-  // Between setups CVODE changes gamma by up to 30 %; a factorisation costs microseconds against the films'
-  // right-hand sides, so the matrix is refactored for the current gamma (CVODE's scaling of the correction for a
-  // stale gamma is switched off).
   sunrealtype tcur, gamma, rl1;
   N_Vector ypred, yn, fn, zn1;
   void* user = nullptr;
   if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
     return -1;
+  try {
+    in->model->Jacobian(tcur, N_VGetArrayPointer(ypred), *in->ws);
+  } catch (const std::exception& e) {
+    in->last_error = e.what();
+    return 1;
+  }
+  in->gamma_factored = gamma;
+  return in->model->FactorNewton(gamma, *in->ws) ? 0 : 1;
+}
+
+int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
+  auto* in = static_cast<Integration*>(S->content);
+  const RunupModel& model = *in->model;
+  RunupWorkspace& ws = *in->ws;
+  // CVODE does not call the setup of a matrix-embedded solver on its own schedule, so the solve keeps the Newton
+  // matrix current: a new Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than
+  // 2 % since the last one, when the nonlinear solver failed since then (the Jacobian is stale: nonlinear films),
+  // or every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51); a new factorisation
+  // when gamma (the step size) changed.
+  constexpr double kJacobianSpeedChange = 0.02;
+  constexpr long kJacobianMaxSteps = 50;
+  sunrealtype tcur, gamma, rl1;
+  N_Vector ypred, yn, fn, zn1;
+  void* user = nullptr;
+  if (CVodeGetNonlinearSystemData(in->cvode, &tcur, &ypred, &yn, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS)
+    return -1;
+  const double w = model.speed().speed(tcur), w_jac = ws.jac_spin.speed;
+  long steps = 0, failures = 0;
+  CVodeGetNumSteps(in->cvode, &steps);
+  CVodeGetNumNonlinSolvConvFails(in->cvode, &failures);
+  if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0) ||
+      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps) {
+    in->jacobian_step = steps;
+    in->jacobian_failures = failures;
+    try {
+      model.Jacobian(tcur, N_VGetArrayPointer(ypred), ws);
+    } catch (const std::exception& e) {
+      in->last_error = e.what();
+      return 1;
+    }
+    in->gamma_factored = -1.0;
+  }
   if (gamma != in->gamma_factored) {
     in->gamma_factored = gamma;
     if (!model.FactorNewton(gamma, ws)) return 1;  // recoverable: CVODE retries with a smaller step
@@ -188,7 +191,6 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   in.ws = ws.get();
   void* mem = nullptr;
   SUNLinearSolver LS = nullptr;
-  SUNMatrix placeholder = nullptr;
   const Integrator integrator = resolve_integrator(model, options.solver.integrator);
   const bool bdf = integrator == Integrator::CvodeBdf;
   if (bdf) {
@@ -209,10 +211,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     LS->ops->setup = ls_setup;
     LS->ops->solve = ls_solve;
     LS->ops->free = ls_free;
-    placeholder = SUNMatNewEmpty(ctx);  // never read: the Newton matrix lives in the workspace
-    CVodeSetLinearSolver(mem, LS, placeholder);
-    CVodeSetLinSysFn(mem, ls_linsys);
-    CVodeSetLinearSolutionScaling(mem, SUNFALSE);
+    CVodeSetLinearSolver(mem, LS, nullptr);
   } else if (integrator == Integrator::ArkodeErk) {
     mem = ERKStepCreate(rhs_callback, t0, y, ctx);
     ERKStepSetUserData(mem, &in);
@@ -269,7 +268,6 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     CVodeGetNumNonlinSolvConvFails(mem, &ncf);
     CVodeFree(&mem);
     SUNLinSolFree(LS);
-    SUNMatDestroy(placeholder);
   } else {
     ERKStepGetNumSteps(mem, &steps);
     ERKStepGetNumErrTestFails(mem, &etf);
