@@ -1,6 +1,7 @@
 #include "model/elements/floating_ring_element.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,10 +18,17 @@ struct RingWorkspace : ElementWorkspace {
   RingWorkspace(reynolds::FilmSolver i, reynolds::FilmSolver o) : inner(std::move(i)), outer(std::move(o)) {
     films.inner.hole_flows.reserve(8);
     films.outer.hole_flows.reserve(8);
+    jac_inner.hole_flows.reserve(8);
+    jac_outer.hole_flows.reserve(8);
+    for (reynolds::FilmResult& r : jac_rate_outer) r.hole_flows.reserve(8);
   }
   reynolds::FilmSolver inner, outer;
   FloatingRingElement::Films films;
   EvaluationKey key{4, FloatingRingElement::kStates};  // the state of `films`
+  bool solvers_at_key = false;  // the solvers' last solves (factorisations, pressures) are those of `films`
+  // Jacobian scratch: perturbed films, and the outer films and drill-hole pressures of the ring's rate columns.
+  reynolds::FilmResult jac_inner, jac_outer, jac_rate_outer[5];
+  std::array<double, 8> jac_rate_holes[5];
 };
 
 // Rotates (x, y) by angle a (c = cos a, s = sin a).
@@ -100,14 +108,8 @@ double FloatingRingElement::centrifugal_head(double w_r) const {
   return 0.5 * density_ * w_r * w_r * (ro * ro - ri * ri);
 }
 
-const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s, const double* q, const double* v,
-                                                             const double* z, ElementWorkspace& ws) const {
-  auto& w = static_cast<RingWorkspace&>(ws);
-  if (w.key.matches(s.speed, q, v, z)) return w.films;
-  w.key.invalidate();
-  const double wr = z[kSpin];
-
-  // Outer film: the ring in the housing, housing frame.
+reynolds::FilmState FloatingRingElement::outer_state(const double* z) const {
+  // The ring in the housing, housing frame.
   reynolds::FilmState out;
   out.ex = z[kX];
   out.ey = z[kY];
@@ -117,12 +119,15 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   out.sy = -z[kAx];
   out.dsx = z[kWy];
   out.dsy = -z[kWx];
-  out.omega_inner = wr;
-  if (!w.outer.solve(out, w.films.outer))
-    throw std::runtime_error("floating-ring bearing '" + name() + "', outer film: " + w.outer.last_error());
+  out.omega_inner = z[kSpin];
+  return out;
+}
 
-  // Inner film: the journal relative to the ring, in the ring frame (rotated by -phi_r). A vector e fixed in the
-  // housing frame appears as e' = R(-phi) e, with rate R(-phi) e' - w_r J e' (J the quarter turn).
+reynolds::FilmState FloatingRingElement::inner_state(const SpinState& s, const double* q, const double* v,
+                                                     const double* z, const double* holes) const {
+  // The journal relative to the ring, in the ring frame (rotated by -phi_r). A vector e fixed in the housing frame
+  // appears as e' = R(-phi) e, with rate R(-phi) e' - w_r J e' (J the quarter turn).
+  const double wr = z[kSpin];
   const double c = std::cos(z[kAngle]), sn = std::sin(z[kAngle]);
   reynolds::FilmState in;
   in.ex = q[0] - z[kX];
@@ -143,31 +148,47 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   in.dsy -= wr * in.sx;
   in.omega_inner = s.speed - wr;
   in.omega_outer = 0.0;
-  double hole_sum = 0.0;
   if (!inner_.holes.empty()) {
     in.use_override = true;
-    const double head = centrifugal_head(wr);
-    for (std::size_t k = 0; k < inner_.holes.size(); ++k) {
-      const double p_outer = midwidth_pressure(w.outer, z[kAngle] + inner_.holes[k].theta);
-      in.hole_pressure_override[k] = std::max(p_outer - head, inner_.cavitation_pressure);
-      hole_sum += in.hole_pressure_override[k];
-    }
+    for (std::size_t k = 0; k < inner_.holes.size(); ++k) in.hole_pressure_override[k] = holes[k];
   }
-  if (!w.inner.solve(in, w.films.inner))
+  return in;
+}
+
+void FloatingRingElement::drill_hole_pressures(const reynolds::FilmSolver& outer, const double* z,
+                                               double* holes) const {
+  const double head = centrifugal_head(z[kSpin]);
+  for (std::size_t k = 0; k < inner_.holes.size(); ++k) {
+    const double p_outer = midwidth_pressure(outer, z[kAngle] + inner_.holes[k].theta);
+    holes[k] = std::max(p_outer - head, inner_.cavitation_pressure);
+  }
+}
+
+const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s, const double* q, const double* v,
+                                                             const double* z, ElementWorkspace& ws) const {
+  auto& w = static_cast<RingWorkspace&>(ws);
+  if (w.key.matches(s.speed, q, v, z)) return w.films;
+  w.key.invalidate();
+  if (!w.outer.solve(outer_state(z), w.films.outer))
+    throw std::runtime_error("floating-ring bearing '" + name() + "', outer film: " + w.outer.last_error());
+  double holes[8];
+  drill_hole_pressures(w.outer, z, holes);
+  if (!w.inner.solve(inner_state(s, q, v, z, holes), w.films.inner))
     throw std::runtime_error("floating-ring bearing '" + name() + "', inner film: " + w.inner.last_error());
   reynolds::FilmResult& i = w.films.inner;
+  const double c = std::cos(z[kAngle]), sn = std::sin(z[kAngle]);
   rotate(c, sn, i.fx, i.fy);
   rotate(c, sn, i.mx, i.my);
+  double hole_sum = 0.0;
+  for (std::size_t k = 0; k < inner_.holes.size(); ++k) hole_sum += holes[k];
   w.films.hole_pressure = inner_.holes.empty() ? 0.0 : hole_sum / inner_.holes.size();
   w.key.set(s.speed, q, v, z);
+  w.solvers_at_key = true;
   return w.films;
 }
 
-void FloatingRingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
-                                             ElementWorkspace& ws, double* f, double* zdot) const {
-  const Films& films = Solve(s, q, v, z, ws);
-  const reynolds::FilmResult& i = films.inner;
-  const reynolds::FilmResult& o = films.outer;
+void FloatingRingElement::loads(const reynolds::FilmResult& i, const reynolds::FilmResult& o, const double* z,
+                                double* f, double* zdot) const {
   f[0] += i.fx;
   f[1] += i.fy;
   f[2] += i.mx;
@@ -189,6 +210,126 @@ void FloatingRingElement::do_calc_and_add_forces(const SpinState& s, const doubl
     zdot[kWy] = (-i.my + o.my + ip * (wr * z[kWx] + dwr * z[kAx])) / id;
   } else {
     zdot[kAx] = zdot[kAy] = zdot[kWx] = zdot[kWy] = 0.0;
+  }
+}
+
+void FloatingRingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
+                                             ElementWorkspace& ws, double* f, double* zdot) const {
+  const Films& films = Solve(s, q, v, z, ws);
+  loads(films.inner, films.outer, z, f, zdot);
+}
+
+void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, const double* v, const double* z,
+                                       ElementWorkspace& ws, double* J) const {
+  auto& w = static_cast<RingWorkspace&>(ws);
+  constexpr int d = 4, rows = d + kStates, cols = 2 * d + kStates;
+  // The films at the state, with the solvers holding their factorisations (a Jacobian at the same state before
+  // left them at perturbed states).
+  if (!w.solvers_at_key) w.key.invalidate();
+  const Films& base = Solve(s, q, v, z, ws);
+  double out0[rows] = {};
+  loads(base.inner, base.outer, z, out0, out0 + d);
+  double holes0[8], holes_angle[8];
+  drill_hole_pressures(w.outer, z, holes0);
+  // Inputs [q; v; z] and their steps.
+  double in[cols], step[cols];
+  for (int k = 0; k < d; ++k) in[k] = q[k], in[d + k] = v[k];
+  for (int k = 0; k < kStates; ++k) in[2 * d + k] = z[k];
+  for (int j = 0; j < cols; ++j) step[j] = fd_step(j, d, in[j]);
+  const double* qp = in;
+  const double* vp = in + d;
+  const double* zp = in + 2 * d;
+  {
+    const double saved = in[2 * d + kAngle];
+    in[2 * d + kAngle] = saved + step[2 * d + kAngle];
+    drill_hole_pressures(w.outer, zp, holes_angle);  // the base outer film seen from the turned ring
+    in[2 * d + kAngle] = saved;
+  }
+  w.solvers_at_key = false;
+
+  // A film re-solved for a perturbed state: with the base factorisation if only velocities, speeds or hole
+  // pressures changed (`same_matrix`) and the solver still holds it, else anew.
+  bool inner_base = true, outer_base = true;
+  auto film = [&](reynolds::FilmSolver& solver, bool& at_base, const reynolds::FilmState& st, bool same_matrix,
+                  reynolds::FilmResult& r, const char* which) {
+    if (same_matrix && at_base && solver.solve_same_matrix(st, r)) return;
+    at_base = false;
+    if (!solver.solve(st, r))
+      throw std::runtime_error("floating-ring bearing '" + name() + "', " + which + " film: " + solver.last_error());
+  };
+  auto column = [&](int j, const reynolds::FilmResult& inner, const reynolds::FilmResult& outer) {
+    double out[rows] = {};
+    loads(inner, outer, zp, out, out + d);
+    for (int r = 0; r < rows; ++r) J[j * rows + r] += (out[r] - out0[r]) / step[j];
+  };
+  // The inner film at the perturbed inputs, rotated into the housing frame, into w.jac_inner.
+  auto inner = [&](const double* holes, bool same_matrix) -> const reynolds::FilmResult& {
+    film(w.inner, inner_base, inner_state(s, qp, vp, zp, holes), same_matrix, w.jac_inner, "inner");
+    const double c = std::cos(zp[kAngle]), sn = std::sin(zp[kAngle]);
+    rotate(c, sn, w.jac_inner.fx, w.jac_inner.fy);
+    rotate(c, sn, w.jac_inner.mx, w.jac_inner.my);
+    return w.jac_inner;
+  };
+  const bool tilt = spec_.ring_tilt;
+  auto skip = [&](int k) { return !tilt && (k == kAx || k == kAy || k == kWx || k == kWy); };
+
+  // 1. The ring's rates and spin change the outer film's right-hand side only: back-substitutions. Their drill-hole
+  //    pressures are read from each outer solution before the next.
+  constexpr int kRates[5] = {kVx, kVy, kWx, kWy, kSpin};
+  for (int a = 0; a < 5; ++a) {
+    const int k = kRates[a], j = 2 * d + k;
+    w.jac_rate_holes[a].fill(0.0);
+    if (skip(k)) continue;
+    const double saved = in[j];
+    in[j] = saved + step[j];
+    film(w.outer, outer_base, outer_state(zp), true, w.jac_rate_outer[a], "outer");
+    drill_hole_pressures(w.outer, zp, w.jac_rate_holes[a].data());
+    in[j] = saved;
+  }
+  // 2. Columns that change the inner film's right-hand side only: the shaft's velocities (outer film unchanged)
+  //    and the ring's rates and spin (with their outer films from 1.).
+  for (int k = 0; k < d; ++k) {
+    const int j = d + k;
+    const double saved = in[j];
+    in[j] = saved + step[j];
+    column(j, inner(holes0, true), base.outer);
+    in[j] = saved;
+  }
+  for (int a = 0; a < 5; ++a) {
+    const int k = kRates[a], j = 2 * d + k;
+    if (skip(k)) continue;
+    const double saved = in[j];
+    in[j] = saved + step[j];
+    column(j, inner(w.jac_rate_holes[a].data(), true), w.jac_rate_outer[a]);
+    in[j] = saved;
+  }
+  // 3. The shaft's displacements and the ring angle change the inner film's thickness (the outer film does not
+  //    depend on them): new inner solves.
+  for (int k = 0; k < d; ++k) {
+    const double saved = in[k];
+    in[k] = saved + step[k];
+    column(k, inner(holes0, false), base.outer);
+    in[k] = saved;
+  }
+  {
+    const int j = 2 * d + kAngle;
+    const double saved = in[j];
+    in[j] = saved + step[j];
+    column(j, inner(holes_angle, false), base.outer);
+    in[j] = saved;
+  }
+  // 4. The ring's displacements and tilts change both films' thickness.
+  constexpr int kPositions[4] = {kX, kY, kAx, kAy};
+  for (int k : kPositions) {
+    if (skip(k)) continue;
+    const int j = 2 * d + k;
+    const double saved = in[j];
+    in[j] = saved + step[j];
+    film(w.outer, outer_base, outer_state(zp), false, w.jac_outer, "outer");
+    double holes[8];
+    drill_hole_pressures(w.outer, zp, holes);
+    column(j, inner(holes, false), w.jac_outer);
+    in[j] = saved;
   }
 }
 

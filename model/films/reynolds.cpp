@@ -66,6 +66,10 @@ struct FilmSolver::Impl {
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
   std::vector<std::uint8_t> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
+  // The band holds the factorisation of the last successful None or Gumbel solve, for the cavitated set in cr and
+  // the film thickness of (ex, ey, sx, sy) = factored_at (solve_same_matrix).
+  bool factored = false;
+  double factored_at[4] = {0, 0, 0, 0};
 
   // Reduced grid (i * m + j, j < m): the unknowns actually solved for.
   int m = 0;
@@ -991,8 +995,48 @@ struct FilmSolver::Impl {
     r.symmetric = sym;
   }
 
+  // Per-call inputs shared by solve() and solve_same_matrix(): speeds, pressures, the Dirichlet values and whether
+  // the mid-width symmetry applies.
+  void set_inputs(const FilmState& s) {
+    U = g.radius * (s.omega_inner + s.omega_outer);
+    pcav = g.cavitation_pressure;
+    pamb = g.ambient_pressure;
+    for (int k : dir_nodes) {
+      const int kd = kind[k];
+      dval[k] = kd >= 0 ? (s.use_override ? s.hole_pressure_override[kd] : g.holes[kd].pressure)
+                        : g.grooves[-2 - kd].pressure;
+    }
+  }
+  bool symmetric_state(const FilmState& s) const {
+    return o.use_symmetry && mask_symmetric && s.sx == 0.0 && s.sy == 0.0 && s.dsx == 0.0 && s.dsy == 0.0 &&
+           symmetric_values();
+  }
+
+  bool solve_same_matrix(const FilmState& s, FilmResult& r) {
+    err.clear();
+    if (o.cavitation == Cavitation::MassConserving)
+      return fail("solve_same_matrix: not for the mass-conserving model (its film fractions are not linear)");
+    if (!factored) return fail("solve_same_matrix: no factorisation of a previous solve to reuse");
+    if (!finite_state(s)) return fail("state is not finite");
+    if (s.ex != factored_at[0] || s.ey != factored_at[1] || s.sx != factored_at[2] || s.sy != factored_at[3])
+      return fail("solve_same_matrix: the film thickness differs from that of the last solve");
+    set_inputs(s);
+    if (symmetric_state(s) != sym) return fail("solve_same_matrix: the state changes the mid-width symmetry");
+    geometry_arrays(s);  // the same thickness; new squeeze and Couette terms
+    reduced_system();    // the same couplings; new sources and hole values
+    // The cavitated set (cr) and the free set (fr) of the factorisation are kept.
+    for (int kr = 0; kr < n * m; ++kr)
+      if (cr[kr]) pr[kr] = pcav;
+    iterations = 0;
+    solves = 0;
+    solve_free([&](int i, int j, int kr) { return b0[kr] + cavitated_couplings(i, j, kr); });
+    outputs(s, r);
+    return true;
+  }
+
   bool solve(const FilmState& s, FilmResult& r) {
     err.clear();
+    factored = false;
     if (!finite_state(s)) return fail("state is not finite");
     // Film closure: |e(z)| is convex in z, so the thinnest film is at one of the ends.
     const double hl = 0.5 * g.length;
@@ -1004,14 +1048,7 @@ struct FilmSolver::Impl {
          << " m (eccentricity ratio " << std::max(e1, e2) / g.clearance << ")";
       return fail(os.str());
     }
-    U = g.radius * (s.omega_inner + s.omega_outer);
-    pcav = g.cavitation_pressure;
-    pamb = g.ambient_pressure;
-    for (int k : dir_nodes) {
-      const int kd = kind[k];
-      dval[k] = kd >= 0 ? (s.use_override ? s.hole_pressure_override[kd] : g.holes[kd].pressure)
-                        : g.grooves[-2 - kd].pressure;
-    }
+    set_inputs(s);
     if (o.cavitation == Cavitation::MassConserving) {
       double supply = pamb;
       for (int k : dir_nodes) supply = std::max(supply, dval[k]);
@@ -1020,8 +1057,7 @@ struct FilmSolver::Impl {
             "mass-conserving cavitation needs an oil supply: a hole or groove above the cavitation pressure, or "
             "ambient pressure above it (without one the steady film runs dry)");
     }
-    sym = o.use_symmetry && mask_symmetric && s.sx == 0.0 && s.sy == 0.0 && s.dsx == 0.0 && s.dsy == 0.0 &&
-          symmetric_values();
+    sym = symmetric_state(s);
     m = sym ? (nz + 1) / 2 : nz;
     w_last = (sym && nz % 2 == 1) ? 0.5 : 1.0;
     geometry_arrays(s);
@@ -1051,6 +1087,11 @@ struct FilmSolver::Impl {
     }
     outputs(s, r);
     warm = true;
+    factored = o.cavitation != Cavitation::MassConserving;
+    factored_at[0] = s.ex;
+    factored_at[1] = s.ey;
+    factored_at[2] = s.sx;
+    factored_at[3] = s.sy;
     return true;
   }
 };
@@ -1067,6 +1108,7 @@ FilmSolver::FilmSolver(FilmSolver&&) noexcept = default;
 FilmSolver& FilmSolver::operator=(FilmSolver&&) noexcept = default;
 
 bool FilmSolver::solve(const FilmState& s, FilmResult& r) { return impl_->solve(s, r); }
+bool FilmSolver::solve_same_matrix(const FilmState& s, FilmResult& r) { return impl_->solve_same_matrix(s, r); }
 const std::string& FilmSolver::last_error() const { return impl_->err; }
 const std::vector<double>& FilmSolver::pressure() const { return impl_->p; }
 const std::vector<double>& FilmSolver::film_fraction() const { return impl_->ff; }

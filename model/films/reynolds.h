@@ -134,6 +134,17 @@ class FilmSolver {
   bool solve(const FilmState& s, FilmResult& r);
   const std::string& last_error() const;
 
+  /// Solves the film for a state that differs from that of the last successful solve() only in the velocities
+  /// (vx, vy, dsx, dsy), the surface speeds and the hole pressures, keeping that solve's cavitated set and
+  /// factorisation: one back-substitution instead of new factorisations. The film matrix depends on the film
+  /// thickness alone, and for a fixed cavitated set the pressure is affine in these inputs, so differences of such
+  /// solves are exact derivatives of the film wherever its cavitated set does not change (the complementarity
+  /// solution is locally affine there). For Jacobians (FloatingRingElement::add_jacobian). None and Gumbel models
+  /// only. Returns false, leaves `r` unchanged and sets last_error() if there is no such solve, the thickness
+  /// (ex, ey, sx, sy) is not bit-for-bit that solve's, the state changes whether mid-width symmetry applies, or the
+  /// model is mass-conserving. Keeps the cavitated set the next solve() starts from. Allocation-free.
+  bool solve_same_matrix(const FilmState& s, FilmResult& r);
+
   /// Pressure of the last solve, Pa gauge, n_circ x n_axial, theta-major: p[i * n_axial + j] at theta_nodes()[i],
   /// z_nodes()[j] (the ends, at z = -+L/2, are at ambient pressure).
   const std::vector<double>& pressure() const;

@@ -114,5 +114,72 @@ TEST(FloatingRing, FourDrillHolesRepeatEveryQuarterTurnOfTheRing) {
   EXPECT_GT(std::abs(c.f[0] - a.f[0]) + std::abs(c.f[1] - a.f[1]), 1e-3 * std::hypot(a.f[0], a.f[1]));
 }
 
+// The element's own Jacobian (factorisation reused for the rate columns, the outer film skipped for the shaft's)
+// against plain forward differences of calc_and_add_forces, which solve both films anew for every column. Each
+// entry is compared in units of its row's largest change over a typical step of the inputs (the engine's Newton
+// matrix weighs them that way); forward differences with relative steps of 1e-6 of an iterative active-set solve
+// agree to about sqrt(1e-6) = 1e-3 of that (Pinocchio and Ceres' GradientChecker use the same sqrt(h) rule).
+TEST(FloatingRing, OwnJacobianMatchesPlainFiniteDifferences) {
+  for (const bool tilt : {true, false}) {
+    FloatingRingSpec f = reference_ring();
+    f.drill_holes = 4;
+    f.drill_hole_diameter = 0.002;
+    f.ring_tilt = tilt;
+    OilSpec oil;
+    const FloatingRingElement e("test", f, oil, 0, 9.81);
+    ASSERT_TRUE(e.has_jacobian());
+    auto ws = e.make_workspace();
+    double q[4], v[4], z[FloatingRingElement::kStates];
+    general_state(q, v, z);
+    z[FloatingRingElement::kAngle] = 0.4;
+    const SpinState s{0.0, 3000.0, 50.0, 0.0};
+    constexpr int d = 4, m = FloatingRingElement::kStates, rows = d + m, cols = 2 * d + m;
+    // Plain forward differences with the element's own steps.
+    double in[cols];
+    for (int k = 0; k < d; ++k) in[k] = q[k], in[d + k] = v[k];
+    for (int k = 0; k < m; ++k) in[2 * d + k] = z[k];
+    auto eval = [&](double* out) {
+      std::fill(out, out + rows, 0.0);
+      e.calc_and_add_forces(s, in, in + d, in + 2 * d, *ws, out, out + d);
+    };
+    double out0[rows], out1[rows], fd[rows * cols];
+    eval(out0);
+    for (int j = 0; j < cols; ++j) {
+      const double saved = in[j], h = e.fd_step(j, d, saved);
+      in[j] = saved + h;
+      eval(out1);
+      in[j] = saved;
+      for (int r = 0; r < rows; ++r) fd[j * rows + r] = (out1[r] - out0[r]) / h;
+    }
+    // Own Jacobian at the same state, twice (the second call must not be disturbed by the first's perturbations).
+    std::vector<double> own(rows * cols, 0.0), again(rows * cols, 0.0);
+    e.add_jacobian(s, q, v, z, *ws, own.data());
+    e.add_jacobian(s, q, v, z, *ws, again.data());
+    auto typical = [&](int j) { return e.fd_step(j, d, 0.0) / e.fd_relative_step(); };
+    constexpr double kTolerance = 1e-3;  // sqrt of the relative step
+    for (int r = 0; r < rows; ++r) {
+      double row_scale = 0.0;
+      for (int j = 0; j < cols; ++j) row_scale = std::max(row_scale, std::abs(fd[j * rows + r]) * typical(j));
+      if (row_scale == 0.0) continue;
+      for (int j = 0; j < cols; ++j) {
+        const bool skipped_tilt = !tilt && (j == 2 * d + FloatingRingElement::kAx || j == 2 * d + FloatingRingElement::kAy ||
+                                            j == 2 * d + FloatingRingElement::kWx || j == 2 * d + FloatingRingElement::kWy);
+        if (skipped_tilt) {  // never used: the tilt states do not move
+          EXPECT_EQ(own[j * rows + r], 0.0);
+          continue;
+        }
+        EXPECT_NEAR(own[j * rows + r] * typical(j), fd[j * rows + r] * typical(j), kTolerance * row_scale)
+            << "row " << r << ", column " << j << (tilt ? "" : ", no tilt");
+        EXPECT_NEAR(again[j * rows + r] * typical(j), own[j * rows + r] * typical(j), 1e-8 * row_scale)
+            << "row " << r << ", column " << j << ", second call";
+      }
+    }
+    // The forces at the state are still those of the state after the Jacobian's perturbed solves.
+    double out2[rows];
+    eval(out2);
+    for (int r = 0; r < rows; ++r) EXPECT_EQ(out2[r], out0[r]) << r;
+  }
+}
+
 }  // namespace
 }  // namespace turbodyn

@@ -16,12 +16,14 @@ TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
     std::string file, label;
     std::vector<Override> overrides;
   };
-  // Linear bearings; a pedestal (element states); ball bearings (element states factored ball by ball).
+  // Linear bearings; a pedestal (element states); ball bearings (element states factored ball by ball); floating
+  // rings (two Reynolds films per bearing).
   const std::vector<Case> cases = {
       {"reference_linear.toml", "without pedestal", {}},
       {"reference_linear.toml", "with pedestal",
        {{"bearings.turbine.pedestal_mass", "0.5"}, {"bearings.turbine.pedestal_stiffness", "2e7"}}},
-      {"reference_ball.toml", "ball bearings", {}}};
+      {"reference_ball.toml", "ball bearings", {}},
+      {"reference_floating_ring.toml", "floating rings", {}}};
   for (const Case& c : cases) {
     const MachineSpec spec = load_model(testing::source_dir() + "/examples/" + c.file, c.overrides);
     const auto model = make_runup_model(spec);
@@ -31,8 +33,14 @@ TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
     const long before = testing::allocation_count();
     for (int i = 0; i < 100; ++i) model->Rhs(0.5 + 1e-4 * i, y.data(), ydot.data(), *ws);
     EXPECT_EQ(testing::allocation_count() - before, 0) << c.label;
-    // The Newton factorisation and solve of the BDF corrector, called at every step, allocate nothing either.
+    // The Newton factorisation and solve of the BDF corrector, called at every step, allocate nothing either; nor
+    // does the floating rings' own Jacobian (perturbed film solves and back-substitutions).
     model->Jacobian(0.5, y.data(), *ws);
+    if (c.label == "floating rings") {
+      const long before_jacobian = testing::allocation_count();
+      for (int i = 0; i < 3; ++i) model->Jacobian(0.5 + 1e-4 * i, y.data(), *ws);
+      EXPECT_EQ(testing::allocation_count() - before_jacobian, 0) << "Jacobian, " << c.label;
+    }
     std::vector<double> x(model->n_states());
     model->FactorNewton(1e-5, *ws);
     model->SolveNewton(1e-5, ydot.data(), x.data(), *ws);  // warm-up

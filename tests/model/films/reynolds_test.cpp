@@ -530,5 +530,128 @@ TEST(WarmStart, RepeatedSolvesAreIdenticalAndHistoryDoesNotMatter) {
   }
 }
 
+// Warm and cold starts of the Swift-Stieber problem reach the same cavitated set (the complementarity solution is
+// unique for the M-matrix of the film), so along a whirl orbit the warm-started forces equal cold solves to
+// round-off, not only to the 1e-9 of the mixed-history check above, while taking fewer sweeps when the state moves
+// as little as between integrator steps (0.25 degrees of whirl per call, as in bench/reynolds_benchmark.cpp).
+TEST(WarmStart, SwiftStieberForcesAlongAWhirlEqualColdSolvesToRoundOff) {
+  FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
+  for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2, 0.0, 0.002, 2e5});
+  FilmSolver warm(g, 0.0108, with(Cavitation::Gumbel));
+  int warm_sweeps = 0, cold_sweeps = 0;
+  for (int step = 0; step < 60; ++step) {
+    const double phi = step * kPi / 720.0;
+    FilmState s = journal(0.7, phi, 10000.0, 15e-6);
+    s.sx = 4e-4 * std::cos(phi);
+    s.sy = 4e-4 * std::sin(phi);
+    s.vx = -0.02 * std::sin(phi);
+    s.vy = 0.02 * std::cos(phi);
+    FilmSolver cold(g, 0.0108, with(Cavitation::Gumbel));
+    const FilmResult c = solve_ok(cold, s);
+    const FilmResult w = solve_ok(warm, s);
+    const double F = std::hypot(c.fx, c.fy), M = std::hypot(c.mx, c.my);
+    constexpr double kRoundOff = 1e-12;  // a direct band solve of ~480 unknowns on the same set
+    EXPECT_NEAR(w.fx, c.fx, kRoundOff * F) << step;
+    EXPECT_NEAR(w.fy, c.fy, kRoundOff * F) << step;
+    EXPECT_NEAR(w.mx, c.mx, kRoundOff * M) << step;
+    EXPECT_NEAR(w.my, c.my, kRoundOff * M) << step;
+    EXPECT_NEAR(w.torque_inner, c.torque_inner, kRoundOff * std::abs(c.torque_inner)) << step;
+    EXPECT_EQ(w.cavitated_fraction, c.cavitated_fraction) << step;
+    if (step > 0) warm_sweeps += w.iterations, cold_sweeps += c.iterations;
+  }
+  EXPECT_LT(warm_sweeps, cold_sweeps / 2);
+}
+
+// solve_same_matrix reuses the last solve's factorisation and cavitated set for new velocities, speeds and hole
+// pressures. For a fixed set the film is affine in them, so: at the solved state it reproduces the solve; it is
+// affine in each of these inputs; for a change too small to move the set it equals a new solve; and it refuses a
+// changed thickness, a change of the mid-width symmetry and the mass-conserving model.
+TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
+    FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
+    for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.3, 0.0, 0.002, 2e5});
+    FilmState a = journal(0.6, 0.3, 10000.0, 15e-6);
+    a.sx = 3e-4;
+    a.sy = -1e-4;
+    a.vx = 0.01;
+    a.vy = -0.005;
+    a.dsx = 0.5;
+    a.dsy = 0.2;
+    a.omega_outer = 2000.0;
+    a.use_override = true;
+    for (int k = 0; k < 4; ++k) a.hole_pressure_override[k] = 2e5 + 1e4 * k;
+    FilmSolver solver(g, 0.0108, with(cav));
+    const FilmResult base = solve_ok(solver, a);
+    const double F = std::hypot(base.fx, base.fy), M = std::hypot(base.mx, base.my);
+    const double T = std::abs(base.torque_inner);
+    FilmResult r;
+    ASSERT_TRUE(solver.solve_same_matrix(a, r)) << solver.last_error();
+    EXPECT_NEAR(r.fx, base.fx, 1e-13 * F) << to_string(cav);
+    EXPECT_NEAR(r.my, base.my, 1e-13 * M) << to_string(cav);
+    EXPECT_EQ(r.linear_solves, 1);
+    EXPECT_EQ(r.iterations, 0);
+    // Directions: squeeze velocities, tilt rates, journal speed, one hole's pressure (scale: a typical change).
+    struct Direction {
+      const char* name;
+      void (*apply)(FilmState&, double);
+      double scale;
+    };
+    const Direction dirs[] = {{"vx", [](FilmState& s, double t) { s.vx += t; }, 0.01},
+                              {"vy", [](FilmState& s, double t) { s.vy += t; }, 0.01},
+                              {"dsx", [](FilmState& s, double t) { s.dsx += t; }, 0.5},
+                              {"dsy", [](FilmState& s, double t) { s.dsy += t; }, 0.5},
+                              {"omega", [](FilmState& s, double t) { s.omega_inner += t; }, 1000.0},
+                              {"hole", [](FilmState& s, double t) { s.hole_pressure_override[1] += t; }, 1e4}};
+    for (const Direction& dir : dirs) {
+      auto same = [&](double t) {
+        FilmState s = a;
+        dir.apply(s, t * dir.scale);
+        FilmResult out;
+        EXPECT_TRUE(solver.solve_same_matrix(s, out)) << solver.last_error();
+        return out;
+      };
+      const FilmResult r1 = same(0.1), r2 = same(0.2);
+      // Affine: the change for twice the step is twice the change (to round-off relative to the film's loads).
+      const double d1 = std::hypot(r1.fx - base.fx, r1.fy - base.fy);
+      EXPECT_GT(d1, 1e-6 * F) << dir.name << " moves the film";
+      EXPECT_NEAR(r2.fx - base.fx, 2.0 * (r1.fx - base.fx), 1e-11 * F) << dir.name << " " << to_string(cav);
+      EXPECT_NEAR(r2.fy - base.fy, 2.0 * (r1.fy - base.fy), 1e-11 * F) << dir.name;
+      EXPECT_NEAR(r2.mx - base.mx, 2.0 * (r1.mx - base.mx), 1e-11 * M) << dir.name;
+      EXPECT_NEAR(r2.torque_inner - base.torque_inner, 2.0 * (r1.torque_inner - base.torque_inner), 1e-11 * T)
+          << dir.name;
+      // A change too small to move the cavitated set: a new (warm) solve takes one sweep and gives the same film.
+      const FilmResult small = same(1e-6);
+      FilmState s = a;
+      dir.apply(s, 1e-6 * dir.scale);
+      FilmSolver fresh(g, 0.0108, with(cav));
+      solve_ok(fresh, a);
+      const FilmResult full = solve_ok(fresh, s);
+      EXPECT_EQ(full.iterations, 1) << dir.name;
+      EXPECT_NEAR(small.fx, full.fx, 1e-12 * F) << dir.name << " " << to_string(cav);
+      EXPECT_NEAR(small.fy, full.fy, 1e-12 * F) << dir.name;
+      EXPECT_NEAR(small.my, full.my, 1e-12 * M) << dir.name;
+      EXPECT_NEAR(small.torque_outer, full.torque_outer, 1e-12 * T) << dir.name;
+      EXPECT_NEAR(small.flow_ends, full.flow_ends, 1e-11 * std::abs(full.flow_ends)) << dir.name;
+    }
+    // Refusals: another thickness; a state that would be solved on the symmetric half; nothing solved yet.
+    FilmState moved = a;
+    moved.ex += 1e-9;
+    EXPECT_FALSE(solver.solve_same_matrix(moved, r));
+    EXPECT_THAT(solver.last_error(), HasSubstr("thickness"));
+    FilmState flat = journal(0.6, 0.3, 10000.0, 15e-6);
+    solve_ok(solver, flat);  // no tilt, symmetric holes: the half-grid solve
+    flat.dsx = 0.1;
+    EXPECT_FALSE(solver.solve_same_matrix(flat, r));
+    EXPECT_THAT(solver.last_error(), HasSubstr("symmetry"));
+    FilmSolver unsolved(g, 0.0108, with(cav));
+    EXPECT_FALSE(unsolved.solve_same_matrix(a, r));
+  }
+  FilmSolver jfo(supplied(2e5), kEta, with(Cavitation::MassConserving));
+  FilmResult r;
+  solve_ok(jfo, journal(0.6));
+  EXPECT_FALSE(jfo.solve_same_matrix(journal(0.6), r));
+  EXPECT_THAT(jfo.last_error(), HasSubstr("mass-conserving"));
+}
+
 }  // namespace
 }  // namespace turbodyn::reynolds
