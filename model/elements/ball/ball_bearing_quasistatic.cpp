@@ -49,6 +49,11 @@ BallBearingQuasiStatic::BallBearingQuasiStatic(const BallBearingElement& element
     for (int j = 0; j < n_balls_; ++j) azimuths_.push_back(2.0 * kPi * j / n_balls_);
   if (static_cast<int>(azimuths_.size()) != n_balls_)
     throw std::invalid_argument("BallBearingQuasiStatic: QuasiStaticOptions.azimuths must have n_balls entries");
+  if (!(options_.outer_traction_share >= 0.0 && options_.outer_traction_share <= 1.0))
+    throw std::invalid_argument("BallBearingQuasiStatic: QuasiStaticOptions.outer_traction_share must be in [0, 1]");
+  if (!(options_.max_speed_step > 0.0) || !(options_.max_deflection_ratio > 0.0) || options_.max_iterations < 1)
+    throw std::invalid_argument("BallBearingQuasiStatic: QuasiStaticOptions.max_speed_step, max_deflection_ratio and "
+                                "max_iterations must be positive");
 }
 
 Eigen::VectorXd BallBearingQuasiStatic::unknowns(const BallBearingEquilibrium& s) {
