@@ -27,6 +27,9 @@ constexpr double kRadPerSToRpm = 60.0 / (2.0 * kPi);
 // force scale (preload, load, centrifugal force); a residual of 1e-10 of it leaves the finite-difference
 // stiffness (steps of kStep, forces changing by k h ~ 1e-1 N) accurate to about 1e-7.
 constexpr double kForceTolerance = 1e-11;
+// A Newton that can no longer reduce the residual is accepted below this (times the force scale): 1e-8 of it
+// leaves the finite-difference stiffness accurate to about 1e-5.
+constexpr double kStallTolerance = 1e-8;
 // Central-difference steps: 2 nm and 2 nm / R_p. The contact deflections are micrometres, so the truncation
 // error (h / delta)^2 is about 1e-5 and the round-off error (residual / (k h)) below 1e-7.
 constexpr double kStep = 2e-9;
@@ -137,12 +140,12 @@ double BallBearingQuasiStatic::evaluate(double speed, const Vector5d& q, double 
   return max_deflection;
 }
 
-bool BallBearingQuasiStatic::equilibrate_u(double speed, const Vector5d& q, double axial_load,
+bool BallBearingQuasiStatic::equilibrate_u(double speed, const Vector5d& q, double axial_load, double load,
                                            Eigen::VectorXd& u) const {
   const BallBearingSpec& sp = element_.spec();
   const int n = 2 * n_balls_ + 1;
   const double w_cage = 0.5 * speed;
-  const double scale = std::max({1.0, sp.preload, std::abs(axial_load),
+  const double scale = std::max({1.0, sp.preload, load,
                                  element_.ball_mass() * element_.pitch_radius() * w_cage * w_cage});
   const double tol = kForceTolerance * scale;
   Eigen::VectorXd r(n), r1(n), r2(n), trial(n);
@@ -173,16 +176,18 @@ bool BallBearingQuasiStatic::equilibrate_u(double speed, const Vector5d& q, doub
       trial_norm = r1.allFinite() ? r1.cwiseAbs().maxCoeff() : HUGE_VAL;
       if (trial_norm < (1.0 - 1e-4 * alpha) * norm) break;
     }
-    if (!(trial_norm < norm)) return du.cwiseAbs().maxCoeff() < 1e-16 && norm <= 1e3 * tol;
+    // A ball at the edge of a contact (delta -> 0, a clearance bearing's unloaded side) converges only linearly and
+    // stalls where the finite differences straddle the kink of delta^(3/2); its remaining force is negligible.
+    if (!(trial_norm < norm)) return norm <= kStallTolerance * scale;
     u = trial;
     r = r1;
   }
-  return r.cwiseAbs().maxCoeff() <= tol;
+  return r.cwiseAbs().maxCoeff() <= kStallTolerance * scale;  // the linear convergence at a contact's edge
 }
 
 bool BallBearingQuasiStatic::equilibrate(double speed, const Vector5d& q, BallBearingEquilibrium& s) const {
   Eigen::VectorXd u = unknowns(s), r;
-  if (!equilibrate_u(speed, q, s.load[2], u)) return false;
+  if (!equilibrate_u(speed, q, s.load[2], s.load.head<3>().norm(), u)) return false;
   s.speed = speed;
   s.displacement = q;
   s.outer_ring_axial = u(2 * n_balls_);
@@ -255,6 +260,9 @@ void BallBearingQuasiStatic::solve_at_speed(double speed, BallBearingEquilibrium
         break;
       }
     }
+    // A contact at the edge of closing (a clearance bearing) leaves the finite-difference Jacobian a little off
+    // and Newton stalls; a residual of 1e-6 of the force scale moves the ring by about 1e-11 m (k ~ 1e7 N/m).
+    if (!moved && norm <= 1e3 * tol) break;
     if (!moved) {
       std::ostringstream os;
       os << "no equilibrium found " << where << ": Newton stalled at a residual of " << norm << " N";

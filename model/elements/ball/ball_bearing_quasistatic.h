@@ -77,7 +77,8 @@ struct QuasiStaticOptions {
 };
 
 /// The quasi-static model of one ball bearing, built on the element's data; immutable and thread-safe after
-/// construction. The outer ring is held radially at the housing centre (in every outer-ring mode).
+/// construction; the element must outlive it. The outer ring is held radially at the housing centre (in every
+/// outer-ring mode).
 class BallBearingQuasiStatic {
  public:
   explicit BallBearingQuasiStatic(const BallBearingElement& element, QuasiStaticOptions options = {});
@@ -104,7 +105,8 @@ class BallBearingQuasiStatic {
   // shaft force. Returns the largest contact deflection.
   double evaluate(double speed, const Vector5d& q, double axial_load, const Eigen::VectorXd& u, Eigen::VectorXd& r,
                   std::vector<QuasiStaticBall>* balls, Vector5d* shaft_force) const;
-  bool equilibrate_u(double speed, const Vector5d& q, double axial_load, Eigen::VectorXd& u) const;
+  // load: magnitude of the external load (N), for the force scale of the tolerances.
+  bool equilibrate_u(double speed, const Vector5d& q, double axial_load, double load, Eigen::VectorXd& u) const;
   void solve_at_speed(double speed, BallBearingEquilibrium& s) const;
   void linearise(BallBearingEquilibrium& s) const;
   static Eigen::VectorXd unknowns(const BallBearingEquilibrium& s);

@@ -128,6 +128,37 @@ TEST(BallBearingQuasiStatic, SteadyRunOfTheElementAgrees) {
               r.shaft_force[0], zo * 1e6, r.outer_ring_axial * 1e6);
 }
 
+TEST(BallBearingQuasiStatic, DeepGrooveBearingWithClearanceCarriesARadialLoad) {
+  // A deep-groove bearing with diametral clearance: free contact angle 10 deg (the angle at which the clearance
+  // closes axially, Harris & Kotzalas 2007, ch. 2), radial clearance P_d / 2 = A (1 - cos a0) = 3.4 um, no
+  // preload and no spring, so the outer ring centres itself axially. 100 N radial: at rest the inner ring first
+  // crosses the clearance and only the balls near the load carry, at a contact angle of zero; at 50,000 rpm the
+  // centrifugal force also presses the unloaded balls onto the outer race.
+  BallBearingSpec s = testing::reference_bearing();
+  s.contact_angle = 10.0 * M_PI / 180.0;
+  s.preload = 0.0;
+  s.preload_stiffness = 0.0;
+  const BallBearingElement e("deep_groove", s, 0, 0.0);
+  const double A = (s.inner_groove_ratio + s.outer_groove_ratio - 1.0) * s.ball_diameter;
+  const double radial_clearance = A * (1.0 - std::cos(s.contact_angle));
+  const std::vector<BallBearingEquilibrium> r =
+      BallBearingQuasiStatic(e).sweep({0.0, 50000 * kRpm}, Eigen::Vector3d(100.0, 0.0, 0.0));
+  for (const BallBearingEquilibrium& x : r) {
+    EXPECT_NEAR(x.shaft_force[0], -100.0, 1e-5);
+    EXPECT_NEAR(x.shaft_force[1], 0.0, 1e-5);
+    EXPECT_GT(x.displacement[0], radial_clearance);
+    EXPECT_GT(x.balls[0].inner_load, 30.0);
+    EXPECT_LT(x.balls[4].inner_load, 1e-6);  // opposite the load
+  }
+  EXPECT_NEAR(r[0].balls[0].inner_angle, 0.0, 1.0 * M_PI / 180.0);  // radial contact (the free tilt adds ~0.5 deg)
+  EXPECT_LT(r[0].balls[4].outer_load, 1e-6);  // at rest: loose (to the solver's tolerance)
+  EXPECT_GT(r[1].balls[4].outer_load, 10.0);  // at speed: on the outer race
+  std::printf("[ clearance ] P_d/2 %.3f um; 100 N: x %.3f um at rest (ball 0 Q %.2f N), %.3f um at 50000 rpm "
+              "(ball 0 Q_i %.2f N, ball 4 Q_o %.2f N)\n",
+              radial_clearance * 1e6, r[0].displacement[0] * 1e6, r[0].balls[0].inner_load,
+              r[1].displacement[0] * 1e6, r[1].balls[0].inner_load, r[1].balls[4].outer_load);
+}
+
 TEST(BallBearingQuasiStatic, LoadsWithoutEquilibriumThrow) {
   const BallBearingElement e("ref", testing::reference_bearing(), 0, 0.0);
   const BallBearingQuasiStatic qs(e);
