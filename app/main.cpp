@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bearing_command.h"
 #include "app/identify_command.h"
 #include "app/journal_command.h"
 #include "app/modal_command.h"
@@ -70,6 +71,21 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"inertial", "rotating"}));
   modal->add_flag("!--no-plots", modal_options.plots, "Do not draw PNG pictures");
   add_sets(modal);
+
+  turbodyn::app::BearingCommandOptions bearing_options;
+  CLI::App* bearing = app.add_subcommand(
+      "bearing", "Quasi-static equilibrium of one ball bearing at speed: contact loads and angles, stiffness, damping");
+  bearing->add_option("MODEL", bearing_options.model_file, "Model file (TOML)")->required();
+  bearing->add_option("--bearing", bearing_options.bearing, "Name of a ball bearing (default: the model's first)");
+  bearing->add_option("--speeds", bearing_options.speeds,
+                      "Speeds: START:END:COUNT or a comma list, units allowed (\"0:150000 rpm:16\"); "
+                      "default: 11 speeds over [modal]");
+  bearing->add_option("--load", bearing_options.load,
+                      "Static load on the inner ring \"Fx,Fy[,Fz]\" (N, units allowed); Fz adds to the preload")
+      ->capture_default_str();
+  bearing->add_option("-o,--output", bearing_options.output_dir, "Output directory")->capture_default_str();
+  bearing->add_flag("!--no-plots", bearing_options.plots, "Do not draw PNG pictures");
+  add_sets(bearing);
 
   turbodyn::app::RunCommandOptions run_options;
   CLI::App* run = app.add_subcommand("run", "Run-up simulation: time series, summary, spectrograms, orbits");
@@ -160,6 +176,10 @@ int main(int argc, char** argv) {
     for (const std::string& s : sets) overrides.push_back(turbodyn::parse_override(s));
     if (check->parsed()) return run_check(check_file, overrides);
     if (journal->parsed()) return turbodyn::app::run_journal_command(jo);
+    if (bearing->parsed()) {
+      bearing_options.overrides = overrides;
+      return turbodyn::app::run_bearing_command(bearing_options);
+    }
     if (sweep->parsed()) return turbodyn::app::run_sweep_command(sweep_options);
     if (identify->parsed()) return turbodyn::app::run_identify_command(identify_options);
     if (optimize->parsed()) return turbodyn::app::run_optimize_command(optimize_options);

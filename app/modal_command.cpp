@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "post/plot.h"
 #include "model/rotor/rotor.h"
 #include "model/spec/units.h"
@@ -159,9 +160,9 @@ void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const
 
 }  // namespace
 
-void require_linear_supports(const MachineSpec& spec) {
+void require_linear_supports(const MachineSpec& spec, bool ball_bearings) {
   for (const BearingSpec& b : spec.bearings)
-    if (b.type != BearingType::Linear)
+    if (b.type != BearingType::Linear && !(ball_bearings && b.type == BearingType::Ball))
       throw ModelError(spec.source.string() + ": bearings." + b.name + ": a " + to_string(b.type) +
                        " bearing is nonlinear; the linear analyses (modal, response) need linear bearings "
                        "(linearised coefficients, e.g. from `turbodyn journal`, as type = \"linear\")");
@@ -217,20 +218,26 @@ std::vector<double> analysis_speeds(const MachineSpec& spec, const std::string& 
 int run_modal_command(const ModalCommandOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const MachineSpec spec = load_model(options.model_file, options.overrides);
-  require_linear_supports(spec);
-  const Rotor rotor = build_rotor(spec);
+  require_linear_supports(spec, true);
+  Rotor rotor = build_rotor(spec);
+  // Ball bearings: their quasi-static linearisation at every speed (docs/ball-bearing.md).
+  add_ball_bearing_linearisations(spec, rotor);
 
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, spec.modal.n_speeds);
   ModalOptions mo;
   mo.n_modes = options.n_modes > 0 ? options.n_modes : spec.modal.n_modes;
   mo.frame = options.frame;
   mo.torsion = spec.modal.torsion;
-  const Campbell campbell = campbell_diagram(rotor, speeds, spec.modal.orders, mo);
-
+  Campbell campbell;
   std::vector<double> shape_speeds = spec.modal.mode_shape_speeds;
   if (shape_speeds.empty()) shape_speeds = {speeds.front(), speeds.back()};
   std::vector<ModalResult> shapes;
-  for (double s : shape_speeds) shapes.push_back(modal_analysis(rotor, s, mo));
+  try {
+    campbell = campbell_diagram(rotor, speeds, spec.modal.orders, mo);
+    for (double s : shape_speeds) shapes.push_back(modal_analysis(rotor, s, mo));
+  } catch (const QuasiStaticError& e) {
+    throw ModelError(spec.source.string() + ": a ball bearing's linearisation failed: " + e.what());
+  }
 
   std::filesystem::create_directories(options.output_dir);
   const std::string frame_name = options.frame == Frame::Rotating ? "rotating" : "inertial";

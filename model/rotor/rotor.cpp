@@ -39,6 +39,13 @@ double shear_factor_for(const MachineSpec& spec, const ShaftSection& s, std::siz
 }  // namespace
 
 void LinearBearing::coefficients(double speed, Eigen::Matrix2d& k, Eigen::Matrix2d& c) const {
+  if (linearisation) {
+    Eigen::Matrix4d k4, c4;
+    linearisation(speed, k4, c4);
+    k = k4.topLeftCorner<2, 2>();
+    c = c4.topLeftCorner<2, 2>();
+    return;
+  }
   for (int i = 0; i < 4; ++i) {
     k(i / 2, i % 2) = interpolate(table.speeds, table.k[i], speed);
     c(i / 2, i % 2) = interpolate(table.speeds, table.c[i], speed);
@@ -51,13 +58,33 @@ int Rotor::node_at(double z) const {
   throw std::out_of_range("no node at z = " + std::to_string(z) + " m");
 }
 
+void LinearBearing::coefficients(double speed, Eigen::Matrix4d& k, Eigen::Matrix4d& c) const {
+  if (linearisation) {
+    linearisation(speed, k, c);
+    return;
+  }
+  Eigen::Matrix2d k2, c2;
+  coefficients(speed, k2, c2);
+  k.setZero();
+  c.setZero();
+  k.topLeftCorner<2, 2>() = k2;
+  c.topLeftCorner<2, 2>() = c2;
+}
+
 void Rotor::add_bearings(double speed, Eigen::MatrixXd& K_total, Eigen::MatrixXd& D_total) const {
-  Eigen::Matrix2d k, c;
   for (const LinearBearing& b : bearings) {
-    b.coefficients(speed, k, c);
     const int i = dof(b.node, kX);
-    K_total.block<2, 2>(i, i) += k;
-    D_total.block<2, 2>(i, i) += c;
+    if (b.linearisation) {
+      Eigen::Matrix4d k, c;
+      b.linearisation(speed, k, c);
+      K_total.block<4, 4>(i, i) += k;
+      D_total.block<4, 4>(i, i) += c;
+    } else {  // a table: only the x, y block, exactly as before the 4-DOF coefficients
+      Eigen::Matrix2d k, c;
+      b.coefficients(speed, k, c);
+      K_total.block<2, 2>(i, i) += k;
+      D_total.block<2, 2>(i, i) += c;
+    }
   }
 }
 
@@ -152,7 +179,7 @@ Rotor build_rotor(const MachineSpec& spec) {
   }
   for (const BearingSpec& b : spec.bearings) {
     if (b.type != BearingType::Linear) continue;  // nonlinear bearings are force elements of the run-up
-    r.bearings.push_back(LinearBearing{b.name, r.node_at(std::clamp(b.z, 0.0, length)), b.linear});
+    r.bearings.push_back(LinearBearing{b.name, r.node_at(std::clamp(b.z, 0.0, length)), b.linear, {}});
   }
 
   r.D = spec.damping.alpha * r.M + spec.damping.beta * r.K;

@@ -5,6 +5,7 @@
 // analysis and every thread, each thread with its own workspace.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,12 +30,22 @@ struct RigidDisk {
   double unbalance_phase = 0.0;   ///< rad
 };
 
+/// Stiffness and damping of a bearing at a rotor speed (rad/s) on the 4 DOFs of its node (x, y, theta_x, theta_y):
+/// k in N/m, N/rad, N m/m, N m/rad; c likewise per velocity. Called from several threads at once.
+using BearingLinearisation = std::function<void(double speed, Eigen::Matrix4d& k, Eigen::Matrix4d& c)>;
+
 struct LinearBearing {
   std::string name;
   int node = 0;
   LinearBearingSpec table;
-  /// Stiffness and damping at rotor speed `speed` (rad/s): linear interpolation in the table, constant outside.
+  /// If set, the bearing's coefficients come from a model of the bearing (a ball bearing's quasi-static
+  /// linearisation) on all 4 DOFs of the node instead of the table.
+  BearingLinearisation linearisation;
+  /// The x, y block at rotor speed `speed` (rad/s): the table linearly interpolated (constant outside it), or the
+  /// linearisation's top-left block.
   void coefficients(double speed, Eigen::Matrix2d& k, Eigen::Matrix2d& c) const;
+  /// All 4 DOFs: the table in the x, y block and zeros elsewhere, or the linearisation.
+  void coefficients(double speed, Eigen::Matrix4d& k, Eigen::Matrix4d& c) const;
 };
 
 struct BeamElement {
@@ -66,7 +77,8 @@ struct Rotor {
   /// Index of the node at axial position z (m); throws std::out_of_range if there is none within 1 nm.
   int node_at(double z) const;
 
-  /// Adds the bearing stiffness and damping at rotor speed `speed` (rad/s) into K and D.
+  /// Adds the bearing stiffness and damping at rotor speed `speed` (rad/s) into K and D: a table's x, y block, a
+  /// linearisation's 4 x 4 block.
   void add_bearings(double speed, Eigen::MatrixXd& K_total, Eigen::MatrixXd& D_total) const;
 
   /// Matrices of paper Eq. (9) in the frame that spins with the shaft (the paper's body frame K):

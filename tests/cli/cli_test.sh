@@ -140,6 +140,55 @@ EOF2
     "$exe" journal --eccentricity 1.2 > "$out/bad.log" 2>&1
     [ $? -eq 2 ] || fail "eccentricity 1.2 accepted"
     ;;
+  bearing_reference_ball)
+    # turbodyn bearing on the reference ball bearing: files, the picture, a radial stiffness at rest of about
+    # 4.96e7 N/m (the element's static value) and a cage speed ratio that rises with speed.
+    "$exe" bearing "$src/examples/reference_ball.toml" --bearing turbine --speeds "0:100000 rpm:5" --load "20,-10" \
+      -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    for f in bearing.json bearing.csv bearing_balls.csv stiffness.png tilt_stiffness.png; do
+      [ -s "$out/$f" ] || fail "missing $f"
+    done
+    python3 - "$out/bearing.json" <<'EOF2' || fail "bearing.json: $(head -c 2000 "$out/bearing.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+r = j["results"]
+assert j["bearing"]["name"] == "turbine" and len(r) == 5, (j["bearing"], len(r))
+assert abs(r[0]["force_on_inner_ring"][0] + 20) < 1e-6 and abs(r[0]["force_on_inner_ring"][1] - 10) < 1e-6
+assert 4.5e7 < r[0]["stiffness"][0][0] < 5.5e7, r[0]["stiffness"][0][0]
+assert r[-1]["cage_speed_ratio"] > r[1]["cage_speed_ratio"] > 0.3
+assert len(r[-1]["balls"]) == 8
+EOF2
+    ;;
+  bearing_bad_input)
+    # Each bad input: exit 2 and a message naming the file or option and the cause.
+    expect_error() {  # expected-message then arguments
+      local msg=$1; shift
+      "$exe" bearing "$@" -o "$out" > "$out/log" 2>&1
+      local rc=$?
+      [ $rc -eq 2 ] || fail "exit $rc for $*: $(cat "$out/log")"
+      grep -q -- "$msg" "$out/log" || fail "message for $*: $(cat "$out/log")"
+    }
+    expect_error "bearings.nope: no such bearing\|--bearing 'nope': no such bearing" \
+      "$src/examples/reference_ball.toml" --bearing nope --speeds 0
+    expect_error "bearings.compressor is a linear bearing" "$src/examples/reference_linear.toml" --bearing compressor --speeds 0
+    expect_error "the model has no ball bearing" "$src/examples/reference_linear.toml" --speeds 0
+    expect_error "--speeds '0:1:x'" "$src/examples/reference_ball.toml" --speeds 0:1:x
+    expect_error "--load '1;2'" "$src/examples/reference_ball.toml" --speeds 0 --load "1;2"
+    expect_error "--load '1,2,3,4'" "$src/examples/reference_ball.toml" --speeds 0 --load "1,2,3,4"
+    expect_error "--load '1 kg,2'" "$src/examples/reference_ball.toml" --speeds 0 --load "1 kg,2"
+    expect_error "cannot carry the load" "$src/examples/reference_ball.toml" --speeds 0 --load "3e6,0"
+    expect_error "pitch_diameter" "$src/examples/reference_ball.toml" --speeds 0 \
+      --set "bearings.compressor.pitch_diameter=4 mm"
+    ;;
+  modal_reference_ball)
+    # turbodyn modal linearises the ball bearings at every speed; a damper is refused as nonlinear.
+    "$exe" modal "$src/examples/reference_ball.toml" --speeds "0:150000 rpm:7" --no-plots -o "$out" > "$out/log" 2>&1 \
+      || fail "exit $?: $(cat "$out/log")"
+    grep -q "1x  forward branch 1" "$out/log" || fail "no critical speeds: $(cat "$out/log")"
+    "$exe" modal "$src/examples/reference_ball_sfd.toml" --speeds "0:150000 rpm:7" -o "$out/sfd" > "$out/sfd.log" 2>&1
+    [ $? -eq 2 ] || fail "damper accepted: $(cat "$out/sfd.log")"
+    grep -q "squeeze-film dampers are nonlinear" "$out/sfd.log" || fail "message: $(cat "$out/sfd.log")"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS ($case)"

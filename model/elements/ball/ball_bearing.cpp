@@ -8,11 +8,17 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "model/elements/ball/race_geometry.h"
+
 namespace turbodyn {
 
 namespace {
 
 using Vec3 = Eigen::Vector3d;
+using ball_detail::Race;
+using ball_detail::RaceGeometry;
+using ball_detail::race_geometry;
+using ball_detail::to_orbital;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -86,43 +92,6 @@ struct BallBearingWorkspace : ElementWorkspace {
   BallBearingLoads loads;
 };
 
-// One race as the balls see it, all vectors in the orbital basis (e_r, e_psi, e_z) of the current ball.
-struct Race {
-  Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero();   // ring centre (m, m/s)
-  Vec3 tilt = Vec3::Zero(), tilt_rate = Vec3::Zero();    // small rotation theta (rad) and its rate (rad/s)
-  Vec3 omega = Vec3::Zero();                             // angular velocity of the ring (rad/s)
-  double dr = 0.0, dz = 0.0, r0 = 0.0;  // groove-centre circle (radius - R_p, axial), unloaded distance
-};
-
-struct RaceGeometry {
-  double delta = 0.0;  // normal approach (m), > 0 in contact
-  Vec3 p;              // ball centre relative to the ring centre, housing orientation
-  Vec3 u_l;            // unit vector groove centre -> ball centre in the ring's (tilted) frame
-  Vec3 u;              // the same in the housing frame: u = (I - [theta x])^T u_l = u_l + theta x u_l
-};
-
-// Ball centre at (R, 0, zeta) in the orbital basis, R = R_p + rho. The ring frame is reached with the
-// small rotation p_l = p - theta x p; the closest groove centre lies in the ring-frame plane through the axis and
-// the ball. Radial differences are formed from small quantities only (no R_p - R_p cancellation).
-inline bool race_geometry(const Race& race, double R, double rho, double zeta, RaceGeometry& g) {
-  g.p = Vec3(R - race.centre.x(), -race.centre.y(), zeta - race.centre.z());
-  const Vec3 tp = race.tilt.cross(g.p);
-  const double a = -race.centre.x() - tp.x();  // radial offset of the ball in the ring frame, minus R
-  const double b = -race.centre.y() - tp.y();  // tangential offset
-  const double zl = g.p.z() - tp.z();
-  const double rl = std::sqrt((R + a) * (R + a) + b * b);
-  const double rl_minus_R = ((2.0 * R + a) * a + b * b) / (rl + R);
-  const double dr = rho - race.dr + rl_minus_R;  // r_l - R_g
-  const double dz = zl - race.dz;
-  const double dist = std::sqrt(dr * dr + dz * dz);
-  g.delta = dist - race.r0;
-  if (g.delta <= 0.0) return false;
-  const double s = dr / (dist * rl);
-  g.u_l = Vec3(s * (R + a), s * b, dz / dist);
-  g.u = g.u_l + race.tilt.cross(g.u_l);
-  return true;
-}
-
 // Pocket of a ball: ball centre relative to the pocket centre (orbital basis) and the pocket centre relative
 // to the cage centre. dpsi = psi - (cage angle + 2 pi j / Z).
 struct PocketGeometry {
@@ -140,10 +109,6 @@ inline void pocket_geometry(double rho, double zeta, double dpsi, double Rp, con
   g.dist = g.delta_vec.norm();
 }
 
-// Housing-frame components (x, y, z) in the orbital basis of a ball at angle psi (c = cos psi, s = sin psi).
-inline Vec3 to_orbital(double x, double y, double z, double c, double s) {
-  return Vec3(x * c + y * s, -x * s + y * c, z);
-}
 
 }  // namespace
 

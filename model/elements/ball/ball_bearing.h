@@ -161,6 +161,16 @@ class BallBearingElement final : public ForceElement {
   double pocket_stiffness() const { return k_pocket_; }  ///< N/m^1.5
   double ball_mass() const { return m_ball_; }           ///< kg
   double preload_displacement() const { return zo_eq_; } ///< z_o at the static preload equilibrium (m)
+  double ball_inertia() const { return i_ball_; }        ///< kg m^2, I = m D^2 / 10
+  double pitch_radius() const { return pitch_radius_; }  ///< R_p = d_m / 2 in m
+  /// One groove-curvature-centre circle in its ring's frame (docs/ball-bearing.md, "Unloaded geometry").
+  struct GrooveCircle {
+    double radial = 0.0;    ///< radius of the circle minus R_p (m)
+    double axial = 0.0;     ///< axial position (m); the outer ring's circle moves with z_o
+    double distance = 0.0;  ///< (f - 1/2) D, groove centre to ball centre when just touching (m)
+  };
+  GrooveCircle inner_groove() const { return {inner_dr_, inner_z_, inner_r_}; }
+  GrooveCircle outer_groove() const { return {outer_dr_, outer_z_, outer_r_}; }
 
  protected:
   void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,

@@ -1,0 +1,252 @@
+#include "app/bearing_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/modal_command.h"
+#include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/spec/units.h"
+#include "post/plot.h"
+
+namespace turbodyn::app {
+namespace {
+
+constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
+constexpr double kDeg = 180.0 / M_PI;
+const char* const kDofNames[5] = {"x", "y", "z", "theta_x", "theta_y"};
+
+std::string trim(std::string s) {
+  s.erase(0, s.find_first_not_of(" \t"));
+  s.erase(s.find_last_not_of(" \t") + 1);
+  return s;
+}
+
+nlohmann::json matrix_json(const Matrix5d& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < 5; ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int j = 0; j < 5; ++j) row.push_back(m(i, j));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+const BearingSpec& find_bearing(const MachineSpec& spec, const std::string& name) {
+  const std::string file = spec.source.string();
+  if (name.empty()) {
+    for (const BearingSpec& b : spec.bearings)
+      if (b.type == BearingType::Ball) return b;
+    throw ModelError(file + ": the model has no ball bearing (type = \"ball\"); `turbodyn bearing` analyses ball "
+                     "bearings");
+  }
+  std::string names;
+  for (const BearingSpec& b : spec.bearings) {
+    if (b.name == name) {
+      if (b.type != BearingType::Ball)
+        throw ModelError(file + ": bearings." + name + " is a " + to_string(b.type) +
+                         " bearing; --bearing must name a ball bearing (type = \"ball\")");
+      return b;
+    }
+    names += (names.empty() ? "" : ", ") + b.name;
+  }
+  throw ModelError(file + ": --bearing '" + name + "': no such bearing in the model (it has: " + names + ")");
+}
+
+void write_pictures(const std::string& title, const std::vector<BallBearingEquilibrium>& results,
+                    const std::filesystem::path& dir) {
+  using plot::Series;
+  std::vector<double> rpm;
+  for (const BallBearingEquilibrium& r : results) rpm.push_back(r.speed * kRadPerSToRpm);
+  const auto series = [&](const std::string& label, int i, const std::string& color, Series::Style style) {
+    Series s{label, rpm, {}, style, color, 1.8};
+    for (const BallBearingEquilibrium& r : results) s.y.push_back(r.stiffness(i, i));
+    return s;
+  };
+  plot::LineChart chart;
+  chart.title = "Stiffness of ball bearing " + title + " against speed (quasi-static)";
+  chart.xlabel = "rotor speed [rpm]";
+  chart.ylabel = "stiffness [N/m]";
+  chart.logy = true;
+  chart.series.push_back(series("radial k_xx", 0, "#1f77b4", Series::Style::LinesPoints));
+  chart.series.push_back(series("radial k_yy", 1, "#ff7f0e", Series::Style::Dashed));
+  chart.series.push_back(series("axial k_zz (outer ring on its preload spring)", 2, "#2ca02c", Series::Style::LinesPoints));
+  chart.legend_position = "bottom left";
+  plot::render_png(chart, dir / "stiffness.png");
+
+  plot::LineChart tilt;
+  tilt.title = "Tilt stiffness of ball bearing " + title + " against speed (quasi-static)";
+  tilt.xlabel = "rotor speed [rpm]";
+  tilt.ylabel = "tilt stiffness [N m/rad]";
+  tilt.series.push_back(series("k_theta_x theta_x", 3, "#1f77b4", Series::Style::LinesPoints));
+  tilt.series.push_back(series("k_theta_y theta_y", 4, "#ff7f0e", Series::Style::Dashed));
+  tilt.legend_position = "bottom left";
+  plot::render_png(tilt, dir / "tilt_stiffness.png");
+}
+
+}  // namespace
+
+std::vector<double> parse_load(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  for (std::string p; std::getline(ss, p, ',');) {
+    try {
+      out.push_back(parse_quantity(trim(p), dim::force));
+    } catch (const UnitError& e) {
+      throw ModelError("--load '" + text + "': " + e.what() + " (expected \"Fx,Fy\" or \"Fx,Fy,Fz\" in N)");
+    }
+  }
+  if (out.size() < 2 || out.size() > 3 || (!text.empty() && text.back() == ','))
+    throw ModelError("--load '" + text + "': expected two or three forces \"Fx,Fy\" or \"Fx,Fy,Fz\" (N)");
+  if (out.size() == 2) out.push_back(0.0);
+  return out;
+}
+
+int run_bearing_command(const BearingCommandOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const MachineSpec spec = load_model(options.model_file, options.overrides);
+  const BearingSpec& b = find_bearing(spec, options.bearing);
+  const std::string where = spec.source.string() + ": bearings." + b.name;
+  const std::vector<double> speeds = analysis_speeds(spec, options.speeds, 11);
+  const std::vector<double> load = parse_load(options.load);
+
+  std::unique_ptr<BallBearingElement> element;
+  try {
+    element = std::make_unique<BallBearingElement>(b.name, b.ball, 0, 0.0);
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(where + ": impossible geometry or data: " + e.what());
+  }
+  const BallBearingQuasiStatic qs(*element);
+  std::vector<BallBearingEquilibrium> results;
+  try {
+    results = qs.sweep(speeds, Eigen::Vector3d(load[0], load[1], load[2]));
+  } catch (const QuasiStaticError& e) {
+    throw ModelError(where + " with --load '" + options.load + "': " + e.what());
+  }
+
+  std::filesystem::create_directories(options.output_dir);
+  const BallBearingSpec& s = b.ball;
+  nlohmann::json j;
+  j["turbodyn_version"] = "0.1.0";
+  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
+  nlohmann::json overrides = nlohmann::json::array();
+  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
+  j["overrides"] = overrides;
+  j["bearing"] = {{"name", b.name},
+                  {"n_balls", s.n_balls},
+                  {"ball_diameter_m", s.ball_diameter},
+                  {"pitch_diameter_m", s.pitch_diameter},
+                  {"free_contact_angle_rad", s.contact_angle},
+                  {"side", s.side},
+                  {"preload_n", s.preload},
+                  {"preload_stiffness_n_per_m", s.preload_stiffness},
+                  {"contact_damping_n_s_per_m", s.contact_damping},
+                  {"inner_hertz_constant_n_per_m1_5", element->inner_contact().stiffness},
+                  {"outer_hertz_constant_n_per_m1_5", element->outer_contact().stiffness},
+                  {"in_squeeze_film_damper", b.damper.enabled}};
+  j["assumptions"] = {
+      "quasi-static: balls in force equilibrium in their azimuth planes (Jones 1960; Harris & Kotzalas 2007)",
+      "outer-race control: each ball's orbital speed and spin axis from its own contact angles, its gyroscopic "
+      "moment carried by traction at the outer contact (no gyroscopic slip)",
+      "outer ring held radially at the housing centre (also in a squeeze-film damper), axially on its preload "
+      "spring; inner ring axially held",
+      "no friction other than the gyroscopic traction, no gravity on the balls, no lubricant film",
+      "stiffness: -dF/dq with the balls and the outer ring re-equilibrated; damping: the contact damping d of "
+      "paper Eq. 21 along each loaded contact normal, the balls following as in the static condensation"};
+  j["load_n"] = load;
+  j["dofs"] = {"x", "y", "z", "theta_x", "theta_y"};
+  nlohmann::json points = nlohmann::json::array();
+  for (const BallBearingEquilibrium& r : results) {
+    nlohmann::json balls = nlohmann::json::array();
+    for (const QuasiStaticBall& q : r.balls)
+      balls.push_back({{"azimuth_deg", q.azimuth * kDeg},
+                       {"inner_load_n", q.inner_load},
+                       {"outer_load_n", q.outer_load},
+                       {"inner_contact_angle_deg", q.inner_angle * kDeg},
+                       {"outer_contact_angle_deg", q.outer_angle * kDeg},
+                       {"inner_deflection_m", q.inner_deflection},
+                       {"outer_deflection_m", q.outer_deflection},
+                       {"radial_position_m", q.rho},
+                       {"axial_position_m", q.zeta},
+                       {"orbital_speed_rad_s", q.orbital_speed},
+                       {"gyroscopic_moment_n_m", q.gyroscopic_moment}});
+    nlohmann::json disp;
+    for (int i = 0; i < 5; ++i) disp[kDofNames[i]] = r.displacement[i];
+    points.push_back({{"speed_rad_s", r.speed},
+                      {"speed_rpm", r.speed * kRadPerSToRpm},
+                      {"inner_ring_displacement", disp},
+                      {"outer_ring_axial_m", r.outer_ring_axial},
+                      {"force_on_inner_ring", std::vector<double>(r.shaft_force.data(), r.shaft_force.data() + 5)},
+                      {"cage_speed_rad_s", r.cage_speed},
+                      {"cage_speed_ratio", r.speed != 0.0 ? r.cage_speed / r.speed : 0.0},
+                      {"stiffness", matrix_json(r.stiffness)},
+                      {"damping", matrix_json(r.damping)},
+                      {"newton_iterations", r.iterations},
+                      {"balls", balls}});
+  }
+  j["results"] = points;
+  {
+    std::ofstream out(options.output_dir / "bearing.json");
+    out << std::setw(1) << j << "\n";
+  }
+  {
+    std::ofstream csv(options.output_dir / "bearing.csv");
+    csv << "speed_rad_s,speed_rpm,x_m,y_m,theta_x_rad,theta_y_rad,outer_ring_axial_m,cage_speed_ratio";
+    for (const char* m : {"k", "c"})
+      for (int r = 0; r < 5; ++r)
+        for (int c = 0; c < 5; ++c) csv << ',' << m << '_' << kDofNames[r] << '_' << kDofNames[c];
+    csv << '\n' << std::setprecision(10);
+    for (const BallBearingEquilibrium& r : results) {
+      csv << r.speed << ',' << r.speed * kRadPerSToRpm << ',' << r.displacement[0] << ',' << r.displacement[1] << ','
+          << r.displacement[3] << ',' << r.displacement[4] << ',' << r.outer_ring_axial << ','
+          << (r.speed != 0.0 ? r.cage_speed / r.speed : 0.0);
+      for (const Matrix5d* m : {&r.stiffness, &r.damping})
+        for (int i = 0; i < 5; ++i)
+          for (int k = 0; k < 5; ++k) csv << ',' << (*m)(i, k);
+      csv << '\n';
+    }
+  }
+  {
+    std::ofstream csv(options.output_dir / "bearing_balls.csv");
+    csv << "speed_rpm,ball,azimuth_deg,inner_load_n,outer_load_n,inner_contact_angle_deg,outer_contact_angle_deg,"
+           "orbital_speed_rad_s,gyroscopic_moment_n_m\n"
+        << std::setprecision(10);
+    for (const BallBearingEquilibrium& r : results)
+      for (std::size_t i = 0; i < r.balls.size(); ++i) {
+        const QuasiStaticBall& q = r.balls[i];
+        csv << r.speed * kRadPerSToRpm << ',' << i << ',' << q.azimuth * kDeg << ',' << q.inner_load << ','
+            << q.outer_load << ',' << q.inner_angle * kDeg << ',' << q.outer_angle * kDeg << ',' << q.orbital_speed
+            << ',' << q.gyroscopic_moment << '\n';
+      }
+  }
+
+  std::cout << spec.name << ": ball bearing " << b.name << ", load (" << load[0] << ", " << load[1] << ", " << load[2]
+            << ") N" << (b.damper.enabled ? ", outer ring held at the damper's centre" : "") << "\n";
+  std::cout << "     speed [rpm]  cage/shaft  a_i ball 0  a_o ball 0   Q_max [N]   k_xx [N/m]   k_yy [N/m]  "
+               "k_tilt [N m/rad]\n";
+  for (const BallBearingEquilibrium& r : results) {
+    double qmax = 0.0;
+    for (const QuasiStaticBall& q : r.balls) qmax = std::max({qmax, q.inner_load, q.outer_load});
+    std::cout << std::fixed << std::setw(16) << std::setprecision(0) << r.speed * kRadPerSToRpm << std::setw(12)
+              << std::setprecision(5) << (r.speed != 0.0 ? r.cage_speed / r.speed : 0.0) << std::setw(12)
+              << std::setprecision(2) << r.balls[0].inner_angle * kDeg << std::setw(12) << r.balls[0].outer_angle * kDeg
+              << std::setw(12) << qmax << std::scientific << std::setprecision(4) << std::setw(13)
+              << r.stiffness(0, 0) << std::setw(13) << r.stiffness(1, 1) << std::setw(13) << r.stiffness(3, 3)
+              << "\n";
+  }
+  std::cout << std::defaultfloat;
+  if (options.plots) write_pictures(b.name, results, options.output_dir);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, bearing_balls.csv"
+            << (options.plots ? ", stiffness.png, tilt_stiffness.png" : "") << " (" << std::setprecision(3) << wall
+            << " s)\n";
+  return 0;
+}
+
+}  // namespace turbodyn::app

@@ -1,0 +1,30 @@
+// `turbodyn bearing`: the quasi-static equilibrium of one ball bearing of a model under static loads at rotor
+// speeds, with its stiffness and damping (model/elements/ball/ball_bearing_quasistatic.h; docs/ball-bearing.md).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/io/model_file.h"
+
+namespace turbodyn::app {
+
+struct BearingCommandOptions {
+  std::filesystem::path model_file;
+  std::vector<Override> overrides;
+  std::string bearing;                      ///< "" = the model's first ball bearing
+  std::string speeds;                       ///< "" = 11 speeds over [modal]; "A:B:N" or "A, B, C" with units
+  std::string load = "0, 0";                ///< "Fx,Fy[,Fz]" on the inner ring, units allowed ("100 N")
+  std::filesystem::path output_dir = "out/bearing";
+  bool plots = true;
+};
+
+/// Writes bearing.json, bearing.csv, bearing_balls.csv and (plots) stiffness.png into the output directory.
+/// Throws ModelError for a bad bearing name, option or geometry and for a load without equilibrium.
+int run_bearing_command(const BearingCommandOptions& options);
+
+/// Parses "Fx,Fy" or "Fx,Fy,Fz" (N, units allowed). Throws ModelError naming --load.
+std::vector<double> parse_load(const std::string& text);
+
+}  // namespace turbodyn::app
