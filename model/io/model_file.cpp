@@ -40,12 +40,15 @@ void check_derived(Reader& r, std::string_view key, double value, const Dimensio
 // Vogel equation has a pole at T = -vogel_c and grows without bound above it.
 void check_viscosity(Reader& r, std::string_view key, const OilSpec& oil, double T) {
   if (oil.viscosity > 0.0 || !(T > 0.0)) return;  // a fixed viscosity, or the [oil] temperature: checked in [oil]
-  const double T_used = T;
+  std::ostringstream at, pole;
+  at << T - 273.15 << " degC";
+  pole << "the pole of the oil's Vogel equation ([oil] vogel_c) at " << -oil.vogel_c << " degC";
+  if (T - 273.15 + oil.vogel_c <= 0.0) r.fail(key, at.str() + " lies at or below " + pole.str() + ": no viscosity there");
+  const double eta = oil.viscosity_at(T);
+  if (!std::isfinite(eta)) r.fail(key, "the oil's viscosity at " + at.str() + ", just above " + pole.str() + ", overflows");
   std::ostringstream what;
-  what << "the oil's viscosity at " << T_used - 273.15 << " degC (Vogel equation of [oil], pole at "
-       << -oil.vogel_c << " degC) is " << oil.viscosity_at(T_used) << " Pa*s";
-  if (T_used - 273.15 + oil.vogel_c <= 0.0) r.fail(key, what.str() + ": the temperature lies at or below the pole");
-  check_derived(r, key, oil.viscosity_at(T_used), dim::viscosity, what.str());
+  what << "the oil's viscosity at " << at.str() << " (Vogel equation of [oil])";
+  check_derived(r, key, eta, dim::viscosity, what.str());
 }
 
 // ----------------------------------------------------------------------------------------------- sections
