@@ -3,6 +3,8 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <string>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +12,7 @@
 #include "model/io/model_file.h"
 #include "model/spec/model_spec.h"
 #include "model/films/reynolds.h"
+#include "model/spec/limits.h"
 #include "model/spec/units.h"
 
 namespace turbodyn::app {
@@ -30,7 +33,13 @@ int run_journal_command(const JournalCommandOptions& o) {
   const double D = value("diameter", o.diameter, dim::length);
   const double c = value("clearance", o.clearance, dim::length);
   double L = o.length.empty() ? 0.0 : value("length", o.length, dim::length);
+  if (!std::isfinite(o.ld) || o.ld < 0.0 || o.ld > 100.0)
+    throw ModelError("--ld " + std::to_string(o.ld) + ": the width ratio L/D must lie in (0, 100]");
   if (o.ld > 0.0) L = o.ld * D;
+  for (const auto& [option, v, d] : {std::tuple{"diameter", D, dim::length}, std::tuple{"clearance", c, dim::length},
+                                     std::tuple{"length", L, dim::length}})
+    if (const std::string why = limits::implausible(v, d); !why.empty())
+      throw ModelError(std::string("--") + option + ": " + why);
   if (!(D > 0) || !(c > 0) || !(L > 0))
     throw ModelError("journal: diameter, clearance and length (or --ld) must be positive");
   if (!(o.eccentricity >= 0.0 && o.eccentricity < 1.0))
@@ -40,7 +49,23 @@ int run_journal_command(const JournalCommandOptions& o) {
                                    : value("viscosity", o.viscosity, dim::viscosity);
   const double w = value("speed", o.speed, dim::angular_speed);
   const double w_out = value("outer-speed", o.outer_speed, dim::angular_speed);
-  const double att = value("attitude", o.attitude, dim::angle);
+  // The direction of the eccentricity, reduced to (-pi, pi] so that a huge angle costs nothing later.
+  const double att = std::remainder(value("attitude", o.attitude, dim::angle), 2 * M_PI);
+  if (o.n_circ < 8 || o.n_circ > limits::kMaxFilmCirc || o.n_axial < 4 || o.n_axial > limits::kMaxFilmAxial ||
+      static_cast<long>(o.n_circ) * o.n_axial > limits::kMaxFilmNodes)
+    throw ModelError("--n-circ " + std::to_string(o.n_circ) + " --n-axial " + std::to_string(o.n_axial) +
+                     ": the grid needs 8 to " + std::to_string(limits::kMaxFilmCirc) + " nodes around, 4 to " +
+                     std::to_string(limits::kMaxFilmAxial) + " across and at most " +
+                     std::to_string(limits::kMaxFilmNodes) + " in all");
+  for (const auto& [option, v, d] : {std::tuple{"viscosity", eta, dim::viscosity},
+                                     std::tuple{"speed", w, dim::angular_speed},
+                                     std::tuple{"outer-speed", w_out, dim::angular_speed}})
+    if (const std::string why = limits::implausible(v, d); !why.empty())
+      throw ModelError(std::string("--") + option + (option == std::string("viscosity") && o.viscosity.empty()
+                                                         ? " (from --temperature " + o.temperature + ")"
+                                                         : std::string()) +
+                       ": " + why);
+  if (!(eta > 0.0)) throw ModelError("--viscosity: must be positive");
   FilmGeometry g;
   g.radius = 0.5 * D;
   g.length = L;
@@ -78,9 +103,7 @@ int run_journal_command(const JournalCommandOptions& o) {
   if (W > 0.0) {
     // Load carried = -film force; attitude angle between the load line and the eccentricity vector.
     const double load_angle = std::atan2(-base.fy, -base.fx);
-    double phi = att - load_angle;
-    while (phi > M_PI) phi -= 2 * M_PI;
-    while (phi < -M_PI) phi += 2 * M_PI;
+    const double phi = std::remainder(att - load_angle, 2 * M_PI);
     // Speed of the equivalent journal in a stationary bush (the pressure depends on the sum of the surface speeds).
     const double N = std::abs(w + w_out) / (2 * M_PI);
     const double P = W / (2 * R * L);

@@ -1,5 +1,7 @@
 // The turbodyn command line.
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -204,6 +206,16 @@ int main(int argc, char** argv) {
   } catch (const turbodyn::ModelError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitModelError;
+  } catch (const std::bad_alloc&) {
+    // The limits on model input (docs/model-format.md, "Limits") refuse what is known to be too big; this is the
+    // last line for what slips through.
+    std::cerr << "error: out of memory: the input asks for more memory than this machine has (see the limits in "
+                 "docs/model-format.md)\n";
+    return 1;
+  } catch (const std::length_error&) {
+    std::cerr << "error: out of memory: the input asks for an array larger than the program can allocate (see the "
+                 "limits in docs/model-format.md)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

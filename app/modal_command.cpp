@@ -1,5 +1,6 @@
 #include "app/modal_command.h"
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "post/plot.h"
 #include "model/rotor/rotor.h"
+#include "model/spec/limits.h"
 #include "model/spec/units.h"
 
 namespace turbodyn::app {
@@ -26,11 +28,15 @@ std::string trim(std::string s) {
 }
 
 double speed_value(const std::string& text, const std::string& whole) {
+  double v = 0.0;
   try {
-    return parse_quantity(trim(text), dim::angular_speed);
+    v = parse_quantity(trim(text), dim::angular_speed);
   } catch (const UnitError& e) {
     throw ModelError("--speeds '" + whole + "': " + e.what());
   }
+  if (const std::string why = limits::implausible(v, dim::angular_speed); !why.empty())
+    throw ModelError("--speeds '" + whole + "': " + why);
+  return v;
 }
 
 nlohmann::json complex_list(const Eigen::VectorXcd& v, const Rotor& rotor, Dof d) {
@@ -187,9 +193,12 @@ std::vector<double> parse_speed_list(const std::string& text) {
     if (parts.size() != 3) throw ModelError("--speeds '" + text + "': expected START:END:COUNT");
     const double a = speed_value(parts[0], text), b = speed_value(parts[1], text);
     const std::string count = trim(parts[2]);
-    if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos || std::stoi(count) < 2)
-      throw ModelError("--speeds '" + text + "': COUNT must be a whole number of at least 2");
-    const int n = std::stoi(count);
+    long n = 0;
+    const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
+    if (count.empty() || ec != std::errc() || end != count.data() + count.size() || n < 2 ||
+        n > limits::kMaxModalSpeeds)
+      throw ModelError("--speeds '" + text + "': COUNT must be a whole number from 2 to " +
+                       std::to_string(limits::kMaxModalSpeeds));
     if (!(b > a)) throw ModelError("--speeds '" + text + "': END must be larger than START");
     for (int i = 0; i < n; ++i) out.push_back(a + (b - a) * i / (n - 1));
   } else {
@@ -200,6 +209,8 @@ std::vector<double> parse_speed_list(const std::string& text) {
   }
   for (double s : out)
     if (s < 0) throw ModelError("--speeds '" + text + "': speeds must not be negative");
+  if (out.size() > static_cast<std::size_t>(limits::kMaxModalSpeeds))
+    throw ModelError("--speeds '" + text + "': more than " + std::to_string(limits::kMaxModalSpeeds) + " speeds");
   if (out.empty()) throw ModelError("--speeds is empty");
   return out;
 }

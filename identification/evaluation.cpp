@@ -87,6 +87,11 @@ Evaluator::Evaluator(const IdentifyStudy& study) : study_(study) {
   } catch (const ModelError& e) {
     throw ModelError(study.source.string() + ": the parameters do not apply to the model: " + e.what());
   }
+  std::vector<std::pair<std::string, std::string>> paths;
+  for (std::size_t i = 0; i < study.parameters.size(); ++i)
+    for (const std::string& p : study.parameters[i].paths)
+      paths.emplace_back("parameters[" + std::to_string(i) + "].path", p);
+  studies::check_varied_paths(study, overrides(start), paths);
   if (study.method == Method::Response) {
     for (const BearingSpec& b : spec.bearings)
       if (b.type != BearingType::Linear || b.pedestal_mass > 0.0 || b.damper.enabled)

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "model/io/toml_reader.h"
@@ -123,7 +124,7 @@ FeatureSpec read_feature(Reader& r, const MeasurementSpec& m, Method method) {
   } else {
     f.speeds_hz = speeds_hz(r, "speeds");
     const std::vector<double> range = speeds_hz(r, "speed_range");
-    const long n = r.integer_or("n_speeds", 0, 2);
+    const long n = r.integer_or("n_speeds", 0, 2, limits::kMaxModalSpeeds);
     if (f.speeds_hz.empty()) {
       if (range.empty()) r.fail_missing("speeds", "speeds = [...], or speed_range = [low, high] with n_speeds");
       if (range.size() != 2 || !(range[1] > range[0])) r.fail("speed_range", "expected [low, high] with low < high");
@@ -241,8 +242,8 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
   if (const toml::table* proc = top.table("processing")) {
     Reader r(*proc, "processing", src);
     s.processing.revolutions = r.quantity_or("revolutions", dim::dimensionless, 8.0, Bound::Positive);
-    s.processing.track_points = static_cast<std::size_t>(r.integer_or("track_points", 400, 10));
-    s.processing.segment = static_cast<std::size_t>(r.integer_or("segment", 1024, 8));
+    s.processing.track_points = static_cast<std::size_t>(r.integer_or("track_points", 400, 10, 1000000));
+    s.processing.segment = static_cast<std::size_t>(r.integer_or("segment", 1024, 8, limits::kMaxSpectrogramSegment));
     s.processing.overlap = r.quantity_or("overlap", dim::dimensionless, 0.75, Bound::NonNegative);
     if (s.processing.overlap >= 1.0) r.fail("overlap", "must be below 1");
     const std::string w = r.choice("window", {"hann", "hamming", "blackman", "flattop", "rectangular"}, "hann");
@@ -271,7 +272,7 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
     const std::string loss = r.choice("loss", {"none", "huber", "cauchy", "soft-l1"}, "none");
     o.loss = loss == "huber" ? Loss::Huber : loss == "cauchy" ? Loss::Cauchy : loss == "soft-l1" ? Loss::SoftLOne : Loss::None;
     o.loss_scale = r.quantity_or("loss_scale", dim::dimensionless, 1.0, Bound::Positive);
-    o.max_iterations = static_cast<int>(r.integer_or("max_iterations", 30, 0));
+    o.max_iterations = static_cast<int>(r.integer_or("max_iterations", 30, 0, 1000000));
     o.step = r.quantity_or("step", dim::dimensionless, 1e-3, Bound::Positive);
     o.central = r.choice("differences", {"forward", "central"}, "forward") == "central";
     o.scaling = r.choice("scaling", {"bounds", "start"}, "bounds") == "start" ? Scaling::Start : Scaling::Bounds;

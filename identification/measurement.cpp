@@ -87,6 +87,8 @@ Table read_csv(const std::filesystem::path& path, const std::vector<std::string>
   std::ifstream in(path);
   Table t;
   t.file = path.string();
+  if (std::error_code ec; std::filesystem::is_directory(path, ec))
+    throw ModelError(t.file + ": is a directory, not a measured file");
   if (!in) throw ModelError(t.file + ": cannot open the measured file");
   std::string line;
   std::size_t line_no = 0;
@@ -95,6 +97,8 @@ Table read_csv(const std::filesystem::path& path, const std::vector<std::string>
   std::vector<std::size_t> starts;
   while (std::getline(in, line)) {
     ++line_no;
+    // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name.
+    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     const std::string s = trim(line);
     if (s.empty() || s[0] == '#') continue;
     const std::vector<std::string> f = split_csv(line, starts);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "model/rotor/rotor.h"
@@ -108,7 +109,7 @@ Metric read_metric(Reader& r, double window_min, double window_max) {
   if (s.probe.empty()) r.fail_missing("probe", "a probe name such as \"disk.compressor.x\" or \"bearing.turbine\"");
   s.name = r.text_or("name", s.kind + "(" + s.probe + ")");
   studies::read_metric_window(r, s, "51 um");
-  m.points = static_cast<int>(r.integer_or("points", 200, 3));
+  m.points = static_cast<int>(r.integer_or("points", 200, 3, 1000000));
   if (m.response() && s.speed_max <= 0.0) {
     if (window_max <= 0.0)
       r.fail("speed_window", "a steady-state response metric needs a speed window (here or in [optimize])");
@@ -156,10 +157,19 @@ double bound_value(Reader& r, const std::string& key, const std::string& unit) {
 // Checks the metrics against the base model (probes exist, response metrics have a linear model) and sets their
 // units.
 void resolve_metrics(OptimizationSpec& s) {
-  const MachineSpec machine = load_model(s.model, run_overrides(s, start_design(s), &s.cases.front()));
+  const std::vector<Override> overrides = run_overrides(s, start_design(s), &s.cases.front());
+  const MachineSpec machine = load_model(s.model, overrides);
+  std::vector<std::pair<std::string, std::string>> paths;
+  for (std::size_t i = 0; i < s.variables.size(); ++i)
+    for (const std::string& p : s.variables[i].paths)
+      paths.emplace_back("variables[" + std::to_string(i) + "].path", p);
+  studies::check_varied_paths(s, overrides, paths);
   const std::unique_ptr<RunupModel> model = make_runup_model(machine);
   const std::vector<ProbeChannel>& channels = model->channels();
   const std::vector<std::string> names = studies::channel_names(channels);
+  const nlohmann::json summary = studies::summary_template(machine, *model);
+  if (std::any_of(s.metrics.begin(), s.metrics.end(), [](const Metric& m) { return !m.response(); }))
+    studies::check_speed_window(s, machine.speed);
   for (std::size_t i = 0; i < s.metrics.size(); ++i) {
     Metric& m = s.metrics[i];
     const std::string where = s.source.string() + ": metrics[" + std::to_string(i) + "].probe: ";
@@ -184,6 +194,10 @@ void resolve_metrics(OptimizationSpec& s) {
       const bool ok = m.spec.kind == "max_radius" ? studies::pair_channels(channels, m.spec.probe).first >= 0
                                                   : studies::find_channel(channels, m.spec.probe) >= 0;
       if (!ok) throw ModelError(where + studies::unknown_probe(m.spec.probe, names));
+    } else if (const nlohmann::json* v = studies::summary_node(summary, m.spec.probe);
+               !v || !(v->is_number() || v->is_boolean())) {
+      throw ModelError(where + "the run summary has no number '" + m.spec.probe +
+                       "' (e.g. stats.steps, energy.balance_error_j, t_reached_s; docs/output-format.md)");
     }
     m.unit = studies::metric_unit(m.spec, channels);
   }
@@ -305,12 +319,12 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
       a.has_stopval = true;
       a.stopval = r.quantity("stopval", dim::dimensionless);
     }
-    a.maxeval = static_cast<int>(r.integer_or("maxeval", 0, 1));
+    a.maxeval = static_cast<int>(r.integer_or("maxeval", 0, 1, 10000000));
     a.maxtime = r.quantity_or("maxtime", dim::time, 0.0, Bound::Positive);
     a.initial_step = r.quantity_or("initial_step", dim::dimensionless, 0.0, Bound::Positive);
     a.central_differences = r.choice("gradient", {"forward", "central"}, "forward") == "central";
     a.gradient_step = r.quantity_or("gradient_step", dim::dimensionless, a.gradient_step, Bound::Positive);
-    a.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0));
+    a.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
     a.constraint_tolerance =
         r.quantity_or("constraint_tolerance", dim::dimensionless, a.constraint_tolerance, Bound::NonNegative);
     std::string why;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "model/io/run_summary.h"
 #include "post/signal.h"
 #include "studies/channels.h"
 
@@ -64,36 +65,74 @@ std::string metric_unit(const MetricSpec& m, const std::vector<ProbeChannel>& ch
   return c >= 0 ? channels[c].unit : "";
 }
 
-void check_metrics(const StudySpec& study, const std::vector<ProbeChannel>& channels) {
+const nlohmann::json* summary_node(const nlohmann::json& summary, const std::string& path) {
+  if (!path.empty() && path[0] == '/') {
+    try {
+      const nlohmann::json::json_pointer ptr(path);
+      return summary.contains(ptr) ? &summary.at(ptr) : nullptr;
+    } catch (const nlohmann::json::exception&) {
+      return nullptr;  // not a valid JSON pointer ("/a~2"): no such value
+    }
+  }
+  const nlohmann::json* node = &summary;
+  std::size_t pos = 0;
+  while (pos <= path.size()) {
+    const std::size_t dot = path.find('.', pos);
+    const std::string key = path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
+    if (!node->is_object() || !node->contains(key)) return nullptr;
+    node = &(*node)[key];
+    if (dot == std::string::npos) break;
+    pos = dot + 1;
+  }
+  return node;
+}
+
+namespace {
+
+// The dotted paths of the numbers and booleans in `j` (keys with dots in JSON-pointer form), for suggestions.
+void summary_paths(const nlohmann::json& j, const std::string& dotted, const std::string& pointer,
+                   std::vector<std::string>& out) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items())
+      summary_paths(v, dotted.empty() ? k : dotted + "." + k, pointer + "/" + k, out);
+    return;
+  }
+  if (j.is_number() || j.is_boolean()) out.push_back(pointer.find('.') != std::string::npos ? pointer : dotted);
+}
+
+}  // namespace
+
+nlohmann::json summary_template(const MachineSpec& spec, const RunupModel& model) {
+  RunupResult empty;
+  empty.channels = model.channels();
+  empty.columns.assign(empty.channels.size(), {});
+  return run_summary(spec, model, runup_options(spec), empty, {});
+}
+
+void check_metrics(const StudySpec& study, const std::vector<ProbeChannel>& channels, const nlohmann::json& summary) {
   for (std::size_t i = 0; i < study.metrics.size(); ++i) {
     const MetricSpec& m = study.metrics[i];
-    if (m.kind == "summary") continue;
+    const std::string where = study.source.string() + ": metrics[" + std::to_string(i) + "]";
+    if (m.kind == "summary") {
+      const nlohmann::json* node = summary_node(summary, m.probe);
+      if (node && (node->is_number() || node->is_boolean())) continue;
+      std::vector<std::string> paths;
+      summary_paths(summary, "", "", paths);
+      throw ModelError(where + ".probe: " +
+                       (node ? "'" + m.probe + "' in the run summary is not a number"
+                             : "the run summary has no value '" + m.probe + "'") +
+                       did_you_mean(m.probe, paths, " (e.g. stats.steps, energy.balance_error_j, t_reached_s)"));
+    }
     const bool ok = m.kind == "max_radius" ? pair_channels(channels, m.probe).first >= 0
                                             : find_channel(channels, m.probe) >= 0;
-    if (!ok)
-      throw ModelError(study.source.string() + ": metrics[" + std::to_string(i) + "].probe: " +
-                       unknown_probe(m.probe, channel_names(channels)));
+    if (!ok) throw ModelError(where + ".probe: " + unknown_probe(m.probe, channel_names(channels)));
   }
 }
 
 double evaluate_metric(const MetricSpec& m, const RunupResult& r, const nlohmann::json& summary, double fs) {
   if (m.kind == "summary") {
-    const nlohmann::json* node = &summary;
-    if (!m.probe.empty() && m.probe[0] == '/') {
-      const nlohmann::json::json_pointer ptr(m.probe);
-      if (!summary.contains(ptr)) return kNaN;
-      node = &summary.at(ptr);
-    } else {
-      std::size_t pos = 0;
-      while (pos <= m.probe.size()) {
-        const std::size_t dot = m.probe.find('.', pos);
-        const std::string key = m.probe.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
-        if (!node->is_object() || !node->contains(key)) return kNaN;
-        node = &(*node)[key];
-        if (dot == std::string::npos) break;
-        pos = dot + 1;
-      }
-    }
+    const nlohmann::json* node = summary_node(summary, m.probe);
+    if (!node) return kNaN;
     if (node->is_boolean()) return node->get<bool>() ? 1.0 : 0.0;
     return node->is_number() ? node->get<double>() : kNaN;
   }

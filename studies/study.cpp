@@ -1,7 +1,10 @@
 #include "studies/study.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "model/io/toml_reader.h"
@@ -49,7 +52,7 @@ Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
   if (const toml::node* n = r.get("high")) d.high = take(*n, "high");
   if (const toml::node* n = r.get("mean")) d.mean = take(*n, "mean");
   if (const toml::node* n = r.get("std")) d.std = take(*n, "std");
-  d.n_levels = static_cast<int>(r.integer_or("n_levels", 0, 2));
+  d.n_levels = static_cast<int>(r.integer_or("n_levels", 0, 2, 1000000));
   if (d.kind != Distribution::Kind::Levels) {
     if (dist == "normal") {
       d.kind = Distribution::Kind::Normal;
@@ -100,7 +103,7 @@ StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& fil
   if (model.empty()) r.fail_missing("model", "the base model file");
   s.model = std::filesystem::path(model).is_absolute() ? std::filesystem::path(model) : file.parent_path() / model;
   if (!std::filesystem::exists(s.model)) r.fail("model", "no such file: " + s.model.string());
-  s.threads = static_cast<int>(r.integer_or("threads", 0, 0));
+  s.threads = static_cast<int>(r.integer_or("threads", 0, 0, 4096));
   const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
   if (!window.empty()) {
     if (window.size() != 2 || !(window[1] > window[0])) r.fail("speed_window", "expected [low, high] with low < high");
@@ -113,6 +116,36 @@ StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& fil
       s.fixed.push_back(parse_override(*n.value<std::string>()));
     }
   return s;
+}
+
+void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
+                        const std::vector<std::pair<std::string, std::string>>& key_and_path) {
+  const std::vector<std::string> numeric = numeric_model_keys(study.model, overrides);
+  for (const auto& [key, path] : key_and_path) {
+    if (std::binary_search(numeric.begin(), numeric.end(), path)) continue;
+    const std::string hint = closest_match(path, numeric);
+    throw ModelError(study.source.string() + ": " + key + ": '" + path +
+                     "' is not a number the model " + study.model.filename().string() +
+                     " reads (a study varies numeric values such as lengths, masses, stiffnesses)" +
+                     (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+  }
+}
+
+void check_speed_window(const StudyCommon& study, const SpeedProfile& speed) {
+  if (study.speed_window_min <= 0.0 && study.speed_window_max <= 0.0) return;
+  double lo = std::min(speed.start, speed.end), hi = std::max(speed.start, speed.end);
+  for (double v : speed.speeds) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (study.speed_window_min < hi && (study.speed_window_max <= 0.0 || study.speed_window_max > lo)) return;
+  std::ostringstream os;
+  constexpr double kRpm = 60.0 / (2.0 * M_PI);
+  os << study.source.string() << ": speed_window: [" << study.speed_window_min * kRpm << ", "
+     << study.speed_window_max * kRpm << "] rpm lies outside the speeds of the run of "
+     << study.model.filename().string() << " (" << lo * kRpm << " to " << hi * kRpm
+     << " rpm): every run would stop before its first sample";
+  throw ModelError(os.str());
 }
 
 StudySpec load_study(const std::filesystem::path& file) {
@@ -139,9 +172,9 @@ StudySpec load_study(const std::filesystem::path& file) {
                     : kind == "halton"          ? DesignKind::Halton
                     : kind == "monte-carlo"     ? DesignKind::MonteCarlo
                                                 : DesignKind::Table;
-    const long runs = r.integer_or("runs", 0, 0);
+    const long runs = r.integer_or("runs", 0, 0, 10000000);
     s.design.runs = static_cast<std::size_t>(runs);
-    s.design.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0));
+    s.design.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
     s.design.scramble = r.flag_or("scramble", false);
     if (const toml::array* table = r.array("table")) {
       for (const toml::node& row : *table) {
@@ -174,6 +207,10 @@ StudySpec load_study(const std::filesystem::path& file) {
       if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": metrics[" + std::to_string(i) + "]: expected a table");
       Reader r(*n.as_table(), "metrics[" + std::to_string(i) + "]", src);
       s.metrics.push_back(read_metric(r));
+      for (std::size_t k = 0; k < i; ++k)
+        if (s.metrics[k].name == s.metrics[i].name)
+          r.fail("name", "metrics[" + std::to_string(k) + "] has the name '" + s.metrics[i].name +
+                             "' already (each metric is one column of the results: give it a name = \"...\" of its own)");
     }
   }
   if (s.metrics.empty()) top.fail("metrics", "missing: at least one [[metrics]] entry (kind, probe)");

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/io/model_file.h"
@@ -48,6 +49,16 @@ struct StudyCommon {
   std::vector<Override> fixed;   ///< applied to every run before the run's own overrides
 };
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file);
+
+/// Checks the paths a study varies against its base model (loaded with `overrides`): each must be a number the
+/// model file reads (model_file.h: numeric_model_keys), not a name or a choice. Each path comes with the key that
+/// gave it ("parameters[0].path"); throws ModelError "STUDY: KEY: ..." with a suggestion.
+void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
+                        const std::vector<std::pair<std::string, std::string>>& key_and_path);
+
+/// Checks that the study's speed_window overlaps the speeds the base model's run passes through (else every run
+/// would end at once, without a sample).
+void check_speed_window(const StudyCommon& study, const SpeedProfile& speed);
 
 struct StudySpec : StudyCommon {
   std::vector<std::string> parameter_units;///< unit each parameter is written and sampled in ("" = SI)

@@ -1,5 +1,8 @@
 #include "studies/study_keys.h"
 
+#include <cmath>
+#include <string>
+
 namespace turbodyn::studies {
 
 using input::Bound;
@@ -7,7 +10,11 @@ using input::Reader;
 
 UnitValue node_value(const toml::node& n, const std::string& context, const std::string& example) {
   if (n.is_integer()) return {static_cast<double>(*n.value<int64_t>()), ""};
-  if (n.is_floating_point()) return {*n.value<double>(), ""};
+  if (n.is_floating_point()) {
+    const double v = *n.value<double>();
+    if (!std::isfinite(v)) throw ModelError(context + ": value is not finite (" + std::to_string(v) + ")");
+    return {v, ""};
+  }
   if (n.is_string()) return split_value(*n.value<std::string>(), context);
   throw ModelError(context + ": expected a number or a string such as \"" + example + "\"");
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 
@@ -88,8 +89,15 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
 
   // Check the study against the model once, before any run: overrides apply, probes exist.
   {
-    const MachineSpec spec = load_model(study.model, run_overrides(study, design, shard.empty() ? 0 : shard[0]));
-    check_metrics(study, make_runup_model(spec)->channels());
+    const std::vector<Override> overrides = run_overrides(study, design, shard.empty() ? 0 : shard[0]);
+    const MachineSpec spec = load_model(study.model, overrides);
+    std::vector<std::pair<std::string, std::string>> paths;
+    for (std::size_t p = 0; p < design.paths.size(); ++p)
+      paths.emplace_back("parameters[" + std::to_string(p) + "].path", design.paths[p]);
+    check_varied_paths(study, overrides, paths);
+    check_speed_window(study, spec.speed);
+    const std::unique_ptr<RunupModel> model = make_runup_model(spec);
+    check_metrics(study, model->channels(), summary_template(spec, *model));
   }
 
   std::filesystem::create_directories(options.output_dir);

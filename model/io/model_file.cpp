@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,37 @@ namespace turbodyn {
 namespace {
 
 using namespace input;
+
+// ----------------------------------------------------------------------------------------------- checks
+
+// A film grid of n_circ x n_axial nodes within limits::kMaxFilmNodes (each key is range-checked on its own).
+void check_film_grid(Reader& r, long n_circ, long n_axial) {
+  if (n_circ * n_axial > limits::kMaxFilmNodes)
+    r.fail("n_circ", "a film grid of " + std::to_string(n_circ) + " x " + std::to_string(n_axial) + " = " +
+                         std::to_string(n_circ * n_axial) + " nodes is more than the limit of " +
+                         std::to_string(limits::kMaxFilmNodes) + " (docs/model-format.md, Limits)");
+}
+
+// A quantity the loader derives from several keys (a disk's mass from its geometry, the viscosity at a film's
+// temperature) is finite and plausible too; the message names the derivation and blames `key`.
+void check_derived(Reader& r, std::string_view key, double value, const Dimension& d, const std::string& what) {
+  if (const std::string why = limits::implausible(value, d); !why.empty()) r.fail(key, what + ": " + why);
+}
+
+// The oil's viscosity at a film temperature `T` (K; 0 = the [oil] temperature) must be finite and plausible: the
+// Vogel equation has a pole at T = -vogel_c and grows without bound above it.
+void check_viscosity(Reader& r, std::string_view key, const OilSpec& oil, double T) {
+  if (oil.viscosity > 0.0 || !(T > 0.0)) return;  // a fixed viscosity, or the [oil] temperature: checked in [oil]
+  std::ostringstream at, pole;
+  at << T - 273.15 << " degC";
+  pole << "the pole of the oil's Vogel equation ([oil] vogel_c) at " << -oil.vogel_c << " degC";
+  if (T - 273.15 + oil.vogel_c <= 0.0) r.fail(key, at.str() + " lies at or below " + pole.str() + ": no viscosity there");
+  const double eta = oil.viscosity_at(T);
+  if (!std::isfinite(eta)) r.fail(key, "the oil's viscosity at " + at.str() + ", just above " + pole.str() + ", overflows");
+  std::ostringstream what;
+  what << "the oil's viscosity at " << at.str() << " (Vogel equation of [oil])";
+  check_derived(r, key, eta, dim::viscosity, what.str());
+}
 
 // ----------------------------------------------------------------------------------------------- sections
 
@@ -66,6 +98,10 @@ void read_disk(Reader& r, const MachineSpec& spec, DiskSpec& d) {
     d.mass = rho * M_PI * w * (dout * dout - din * din) / 4.0;
     d.polar_inertia = d.mass * (dout * dout + din * din) / 8.0;
     d.diametral_inertia = d.polar_inertia / 2.0 + d.mass * w * w / 12.0;
+    const std::string from = "width, outer_diameter, inner_diameter and the density of '" + mat + "' give ";
+    check_derived(r, "outer_diameter", d.mass, dim::mass, from + "a mass of " + std::to_string(d.mass) + " kg");
+    check_derived(r, "outer_diameter", d.polar_inertia, dim::inertia, from + "a polar inertia");
+    check_derived(r, "outer_diameter", d.diametral_inertia, dim::inertia, from + "a diametral inertia");
   }
   d.unbalance = r.quantity_or("unbalance", dim::unbalance, 0.0, Bound::NonNegative);
   d.unbalance_phase = r.quantity_or("unbalance_phase", dim::angle, 0.0);
@@ -121,7 +157,7 @@ Enum read_choice(Reader& r, std::string_view key, const std::vector<std::string>
 // Keys shared by the single-film specs (JournalBearingSpec, DamperSpec); `width` names the film's length in
 // messages.
 template <class Film>
-void read_film(Reader& r, Film& f, const std::string& width) {
+void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width) {
   f.diameter = r.quantity("diameter", dim::length, Bound::Positive);
   f.length = r.quantity("length", dim::length, Bound::Positive);
   f.clearance = r.quantity("clearance", dim::length, Bound::Positive);
@@ -129,9 +165,11 @@ void read_film(Reader& r, Film& f, const std::string& width) {
     r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
   f.cavitation =
       read_choice<Cavitation>(r, "cavitation", {"gumbel", "mass-conserving", "none"}, to_string(f.cavitation));
-  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
-  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
+  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
+  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
+  check_film_grid(r, f.n_circ, f.n_axial);
   f.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  check_viscosity(r, "oil_temperature", oil, f.oil_temperature);
   f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
   f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
@@ -143,11 +181,11 @@ void read_film(Reader& r, Film& f, const std::string& width) {
                          "supply_pressure > 0");
 }
 
-void read_journal_bearing(Reader& r, BearingSpec& b) { read_film(r, b.journal, "bearing length"); }
+void read_journal_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) { read_film(r, oil, b.journal, "bearing length"); }
 
-void read_damper(Reader& r, DamperSpec& d, bool needs_ring_mass) {
+void read_damper(Reader& r, const OilSpec& oil, DamperSpec& d, bool needs_ring_mass) {
   d.enabled = true;
-  read_film(r, d, "land width");
+  read_film(r, oil, d, "land width");
   if (needs_ring_mass)
     d.ring_mass = r.quantity("ring_mass", dim::mass, Bound::Positive);
   else if (r.has("ring_mass"))
@@ -164,7 +202,7 @@ void read_damper(Reader& r, DamperSpec& d, bool needs_ring_mass) {
   r.finish();
 }
 
-void read_floating_ring(Reader& r, BearingSpec& b) {
+void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   FloatingRingSpec& f = b.ring;
   f.inner_diameter = r.quantity("inner_diameter", dim::length, Bound::Positive);
   f.inner_length = r.quantity("inner_length", dim::length, Bound::Positive);
@@ -182,18 +220,20 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
   f.ring_tilt = r.flag_or("ring_tilt", f.ring_tilt);
   f.cavitation =
       read_choice<Cavitation>(r, "cavitation", {"gumbel", "mass-conserving", "none"}, to_string(f.cavitation));
-  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8));
-  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4));
+  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
+  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
+  check_film_grid(r, f.n_circ, f.n_axial);
   f.inner_oil_temperature = r.quantity_or("inner_oil_temperature", dim::temperature, 0.0, Bound::Positive);
   f.outer_oil_temperature = r.quantity_or("outer_oil_temperature", dim::temperature, 0.0, Bound::Positive);
+  check_viscosity(r, "inner_oil_temperature", oil, f.inner_oil_temperature);
+  check_viscosity(r, "outer_oil_temperature", oil, f.outer_oil_temperature);
   f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
   f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
   if (f.feed_hole_diameter >= f.outer_length) r.fail("feed_hole_diameter", "must be smaller than outer_length");
   if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
     r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
-  f.drill_holes = static_cast<int>(r.integer_or("drill_holes", f.drill_holes, 0));
-  if (f.drill_holes > 8) r.fail("drill_holes", "at most 8 drill holes");
+  f.drill_holes = static_cast<int>(r.integer_or("drill_holes", f.drill_holes, 0, limits::kMaxDrillHoles));
   f.drill_hole_diameter = r.quantity_or("drill_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.drill_hole_angle = r.quantity_or("drill_hole_angle", dim::angle, f.drill_hole_angle);
   f.drill_hole_centrifugal = r.flag_or("drill_hole_centrifugal", f.drill_hole_centrifugal);
@@ -211,13 +251,13 @@ void read_floating_ring(Reader& r, BearingSpec& b) {
 
 void read_ball_bearing(Reader& r, BearingSpec& b) {
   BallBearingSpec& s = b.ball;
-  s.n_balls = static_cast<int>(r.integer_or("n_balls", s.n_balls, 3));
+  s.n_balls = static_cast<int>(r.integer_or("n_balls", s.n_balls, 3, limits::kMaxBalls));
   s.ball_diameter = r.quantity_or("ball_diameter", dim::length, s.ball_diameter, Bound::Positive);
   s.pitch_diameter = r.quantity_or("pitch_diameter", dim::length, s.pitch_diameter, Bound::Positive);
   s.inner_groove_ratio = r.quantity_or("inner_groove_ratio", dim::dimensionless, s.inner_groove_ratio, Bound::Positive);
   s.outer_groove_ratio = r.quantity_or("outer_groove_ratio", dim::dimensionless, s.outer_groove_ratio, Bound::Positive);
   s.contact_angle = r.quantity_or("contact_angle", dim::angle, s.contact_angle, Bound::NonNegative);
-  const long side = r.integer_or("side", s.side, -1);
+  const long side = r.integer_or("side", s.side, -1, 1);
   if (side != 1 && side != -1) r.fail("side", "must be 1 or -1 (the side of the outer contact, see the manual)");
   s.side = static_cast<int>(side);
   s.ball_youngs_modulus = r.quantity_or("ball_modulus", dim::pressure, s.ball_youngs_modulus, Bound::Positive);
@@ -253,19 +293,19 @@ void read_ball_bearing(Reader& r, BearingSpec& b) {
   if (!s.IsValid(&why)) r.fail("type", "ball bearing: " + why);
 }
 
-void read_bearing(Reader& r, BearingSpec& b) {
+void read_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   b.type = read_choice<BearingType>(r, "type", {"linear", "journal", "floating-ring", "ball"}, "");
   b.z = r.quantity("z", dim::length);
   switch (b.type) {
     case BearingType::Linear: read_linear_bearing(r, b); break;
-    case BearingType::Journal: read_journal_bearing(r, b); break;
-    case BearingType::FloatingRing: read_floating_ring(r, b); break;
+    case BearingType::Journal: read_journal_bearing(r, oil, b); break;
+    case BearingType::FloatingRing: read_floating_ring(r, oil, b); break;
     case BearingType::Ball: read_ball_bearing(r, b); break;
   }
   if (b.type == BearingType::Linear || b.type == BearingType::Ball) {
     if (const toml::table* damper = r.table("damper")) {
       Reader d(*damper, r.key_path("damper"), r.sources());
-      read_damper(d, b.damper, b.type == BearingType::Linear);
+      read_damper(d, oil, b.damper, b.type == BearingType::Linear);
     }
   }
   if (b.type == BearingType::Ball && b.damper.enabled && b.ball.outer_ring_mode == OuterRingMode::Spring)
@@ -327,8 +367,8 @@ void read_mesh(Reader& r, MeshSpec& m) {
 void read_modal(Reader& r, ModalSpec& m) {
   m.speed_min = r.quantity_or("speed_min", dim::angular_speed, m.speed_min, Bound::NonNegative);
   m.speed_max = r.quantity_or("speed_max", dim::angular_speed, m.speed_max, Bound::NonNegative);
-  m.n_speeds = static_cast<int>(r.integer_or("n_speeds", m.n_speeds, 2));
-  m.n_modes = static_cast<int>(r.integer_or("n_modes", m.n_modes, 1));
+  m.n_speeds = static_cast<int>(r.integer_or("n_speeds", m.n_speeds, 2, limits::kMaxModalSpeeds));
+  m.n_modes = static_cast<int>(r.integer_or("n_modes", m.n_modes, 1, limits::kMaxModes));
   if (r.has("orders")) m.orders = r.quantity_list("orders", dim::dimensionless, Bound::Positive);
   m.frequency_max = r.quantity_or("frequency_max", dim::frequency, m.frequency_max, Bound::NonNegative);
   m.mode_shape_speeds = r.quantity_list("mode_shape_speeds", dim::angular_speed, Bound::NonNegative);
@@ -383,6 +423,17 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     }
     s.z_start = z;
     z += s.length;
+    {
+      const Material& m = spec.materials.at(s.material);
+      const double mass = m.density * M_PI / 4.0 *
+                          (s.outer_diameter * s.outer_diameter - s.inner_diameter * s.inner_diameter) * s.length;
+      check_derived(r, "outer_diameter", mass, dim::mass, "the section's mass (from length, diameters, density)");
+      const double I = M_PI / 64.0 * (std::pow(s.outer_diameter, 4) - std::pow(s.inner_diameter, 4));
+      check_derived(r, "outer_diameter", m.youngs_modulus * I, dim::moment * dim::length,
+                    "the section's bending stiffness E*I");
+    }
+    if (const std::string why = limits::implausible(z, dim::length); !why.empty())
+      r.fail("length", "the shaft up to this section is " + why);
     r.finish();
     spec.shaft.push_back(s);
   }
@@ -396,9 +447,23 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     }
   };
 
-  if (const toml::table* mesh = top.table("mesh")) {
+  const toml::table* mesh = top.table("mesh");
+  if (mesh) {
     Reader r(*mesh, "mesh", src);
     read_mesh(r, spec.mesh);
+  }
+  {
+    // The rotor's matrices are dense (4 DOF per node): refuse a mesh beyond the limit before allocating it.
+    double elements = 0.0;
+    for (const ShaftSection& s : spec.shaft) elements += std::ceil(s.length / spec.mesh.max_element_length);
+    if (elements > static_cast<double>(limits::kMaxShaftElements)) {
+      std::ostringstream os;
+      os << "the shaft of " << length << " m in elements of at most " << spec.mesh.max_element_length
+         << " m needs about " << elements << " elements, more than the limit of " << limits::kMaxShaftElements
+         << " (docs/model-format.md, Limits); choose a larger mesh.max_element_length";
+      if (mesh) Reader(*mesh, "mesh", src).fail("max_element_length", os.str());
+      top.fail("shaft", os.str());
+    }
   }
   if (const toml::table* damping = top.table("damping")) {
     Reader r(*damping, "damping", src);
@@ -419,20 +484,7 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
       spec.disks.push_back(d);
     }
   }
-  if (const toml::table* bearings = top.table("bearings")) {
-    for (auto&& [k, v] : *bearings) {
-      const std::string key(k.str());
-      if (!v.is_table())
-        throw ModelError(where(v, src, file) + ": bearings." + key + ": expected a table [bearings." + key +
-                         "]");
-      Reader r(*v.as_table(), "bearings." + key, src);
-      BearingSpec b;
-      b.name = key;
-      read_bearing(r, b);
-      check_on_shaft(r, b.z, "bearing '" + key + "'");
-      spec.bearings.push_back(b);
-    }
-  }
+  // [oil] before the bearings: their film temperatures are checked against its viscosity law.
   if (const toml::table* oil = top.table("oil")) {
     Reader r(*oil, "oil", src);
     OilSpec& o = spec.oil;
@@ -446,7 +498,22 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
       if (r.has(key) && r.get(key)->is_string() && r.get(key)->value<std::string>()->find("degC") != std::string::npos)
         r.fail(key, "is a temperature difference: write it in K (or as a plain number)");
     if (o.temperature - 273.15 + o.vogel_c <= 0.0) r.fail("temperature", "lies below the Vogel pole T = -C");
+    check_viscosity(r, "temperature", o, o.temperature);
     r.finish();
+  }
+  if (const toml::table* bearings = top.table("bearings")) {
+    for (auto&& [k, v] : *bearings) {
+      const std::string key(k.str());
+      if (!v.is_table())
+        throw ModelError(where(v, src, file) + ": bearings." + key + ": expected a table [bearings." + key +
+                         "]");
+      Reader r(*v.as_table(), "bearings." + key, src);
+      BearingSpec b;
+      b.name = key;
+      read_bearing(r, spec.oil, b);
+      check_on_shaft(r, b.z, "bearing '" + key + "'");
+      spec.bearings.push_back(b);
+    }
   }
   if (const toml::table* speed = top.table("speed")) {
     Reader r(*speed, "speed", src);
@@ -462,8 +529,8 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
         read_choice<AtolScaling>(r, "atol_scaling", {"uniform", "typical"}, to_string(spec.solver.atol_scaling));
     spec.solver.max_step = r.quantity_or("max_step", dim::time, spec.solver.max_step, Bound::NonNegative);
     spec.solver.static_start = r.flag_or("static_start", spec.solver.static_start);
-    spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1);
-    spec.solver.max_order = static_cast<int>(r.integer_or("max_order", spec.solver.max_order, 1));
+    spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1, limits::kMaxSteps);
+    spec.solver.max_order = static_cast<int>(r.integer_or("max_order", spec.solver.max_order, 1, limits::kMaxBdfOrder));
     if (spec.solver.max_order > 5) r.fail("max_order", "BDF orders go from 1 to 5");
     if (const toml::node* n = r.get("reduction_cutoff"); n && n->is_string() && *n->value<std::string>() == "auto")
       spec.solver.reduction_cutoff = -1.0;
@@ -478,7 +545,7 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     OutputSpec& o = spec.output;
     o.sample_rate = r.quantity_or("sample_rate", dim::frequency, o.sample_rate, Bound::Positive);
     o.csv = r.flag_or("csv", o.csv);
-    o.spectrogram_segment = static_cast<int>(r.integer_or("spectrogram_segment", o.spectrogram_segment, 8));
+    o.spectrogram_segment = static_cast<int>(r.integer_or("spectrogram_segment", o.spectrogram_segment, 8, limits::kMaxSpectrogramSegment));
     o.spectrogram_overlap = r.quantity_or("spectrogram_overlap", dim::dimensionless, o.spectrogram_overlap,
                                           Bound::NonNegative);
     if (o.spectrogram_overlap >= 1.0) r.fail("spectrogram_overlap", "must be below 1");
@@ -506,16 +573,23 @@ MachineSpec load_parsed(toml::table root, const std::string& source_name, const 
 }  // namespace
 
 MachineSpec load_model(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ModelError(file.string() + ": cannot open the model file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_model_from_string(text.str(), file.string(), overrides);
+  return load_model_from_string(input::read_text_file(file, "model file"), file.string(), overrides);
 }
 
 MachineSpec load_model_from_string(const std::string& toml_text, const std::string& source_name,
                                    const std::vector<Override>& overrides) {
   return load_parsed(input::parse_toml(toml_text, source_name), source_name, overrides);
+}
+
+std::vector<std::string> numeric_model_keys(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  std::vector<std::string> keys;
+  {
+    input::NumericKeyRecording recording(keys);
+    (void)load_model(file, overrides);
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
 }
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {

@@ -30,6 +30,11 @@ MachineSpec load_model_from_string(const std::string& toml_text, const std::stri
 /// docs/model-format.md documents them all. Throws ModelError if a model does not load.
 std::vector<std::string> accepted_model_keys(const std::filesystem::path& examples_dir);
 
+/// The key paths the loader reads as numbers from `file` with `overrides` applied, in --set syntax
+/// ("shaft[2].length", "bearings.compressor.kxx", "bearings.turbine.damper.clearance"), present in the file or not:
+/// the keys a study, an optimisation or an identification may vary. Throws ModelError if the model does not load.
+std::vector<std::string> numeric_model_keys(const std::filesystem::path& file, const std::vector<Override>& overrides);
+
 /// Levenshtein distance (for "did you mean" suggestions).
 std::size_t edit_distance(const std::string& a, const std::string& b);
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include <toml++/toml.h>
 
 #include "model/spec/errors.h"
+#include "model/spec/limits.h"
 #include "model/spec/units.h"
 
 namespace turbodyn::input {
@@ -34,8 +36,11 @@ inline toml::table parse_toml(const std::string& text, const std::string& source
   }
 }
 
-/// Reads the whole file (a ModelError "FILE: cannot open the WHAT" if it cannot).
+/// Reads the whole file (a ModelError "FILE: cannot open the WHAT" if it cannot, "FILE: is a directory" for one).
 inline std::string read_text_file(const std::filesystem::path& file, const std::string& what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw ModelError(file.string() + ": is a directory, not a " + what);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw ModelError(file.string() + ": cannot open the " + what);
   std::ostringstream text;
@@ -86,6 +91,23 @@ enum class Bound { Any, Positive, NonNegative };
 // documentation names every key the loader accepts (model_file.h: accepted_model_keys). Off unless a KeyRecording
 // is alive on this thread; it costs one pointer test per key read, and keys are read only while loading.
 inline thread_local std::vector<std::string>* key_record = nullptr;
+
+// Same for the keys read as numbers (quantities, lists of them, whole numbers): the keys a study may vary
+// (model_file.h: numeric_model_keys).
+inline thread_local std::vector<std::string>* numeric_key_record = nullptr;
+
+class NumericKeyRecording {
+ public:
+  explicit NumericKeyRecording(std::vector<std::string>& out) : previous_(numeric_key_record) {
+    numeric_key_record = &out;
+  }
+  ~NumericKeyRecording() { numeric_key_record = previous_; }
+  NumericKeyRecording(const NumericKeyRecording&) = delete;
+  NumericKeyRecording& operator=(const NumericKeyRecording&) = delete;
+
+ private:
+  std::vector<std::string>* previous_;
+};
 
 class KeyRecording {
  public:
@@ -142,16 +164,19 @@ class Reader {
   }
 
   double quantity(std::string_view key, const Dimension& d, Bound bound = Bound::Any) {
+    record_numeric(key);
     const toml::node* n = get(key);
     if (!n) fail_missing(key, "expected " + describe(d));
     return convert(key, *n, d, bound);
   }
   double quantity_or(std::string_view key, const Dimension& d, double fallback, Bound bound = Bound::Any) {
+    record_numeric(key);
     const toml::node* n = get(key);
     return n ? convert(key, *n, d, bound) : fallback;
   }
   // An array of quantities (a single value is taken as a list of one).
   std::vector<double> quantity_list(std::string_view key, const Dimension& d, Bound bound = Bound::Any) {
+    record_numeric(key);
     std::vector<double> out;
     const toml::node* n = get(key);
     if (!n) return out;
@@ -184,13 +209,18 @@ class Reader {
     if (!n->is_boolean()) fail(key, "expected true or false, got " + describe_node(*n));
     return *n->value<bool>();
   }
-  long integer_or(std::string_view key, long fallback, long minimum) {
+  // A whole number read as 64 bits and checked against [minimum, maximum], the range of what uses it (so a
+  // value at or above 2^31 is refused, never cut to 32 bits).
+  long integer_or(std::string_view key, long fallback, long minimum, long maximum) {
+    record_numeric(key);
     const toml::node* n = get(key);
     if (!n) return fallback;
     if (!n->is_integer()) fail(key, "expected a whole number, got " + describe_node(*n));
-    const long v = static_cast<long>(*n->value<int64_t>());
-    if (v < minimum) fail(key, "must be at least " + std::to_string(minimum) + ", got " + std::to_string(v));
-    return v;
+    const std::int64_t v = *n->value<std::int64_t>();
+    if (v < minimum || v > maximum)
+      fail(key, "must be a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum) +
+                    ", got " + std::to_string(v));
+    return static_cast<long>(v);
   }
   const toml::table* table(std::string_view key) {
     const toml::node* n = get(key);
@@ -203,6 +233,10 @@ class Reader {
     if (!n) return nullptr;
     if (!n->is_array()) fail(key, "expected an array, got " + describe_node(*n));
     return n->as_array();
+  }
+
+  void record_numeric(std::string_view key) const {
+    if (numeric_key_record) numeric_key_record->push_back(key_path(key));
   }
 
   // Every key of the table must have been asked for.
@@ -242,8 +276,8 @@ class Reader {
                        " (a number in SI units or a string such as \"" + example_for(d) + "\"), got " +
                        describe_node(n));
     }
-    if (!std::isfinite(v))
-      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": value is not finite");
+    if (const std::string why = limits::implausible(v, d); !why.empty())
+      throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": " + why);
     if (bound == Bound::Positive && !(v > 0.0))
       throw ModelError(where(n, sources_, location(key)) + ": " + key_path(key) + ": must be positive, got " +
                        describe_node(n));

@@ -59,7 +59,11 @@ Eigen::VectorXd balance(Eigen::MatrixXd& A) {
   const Eigen::Index n = A.rows();
   Eigen::VectorXd s = Eigen::VectorXd::Ones(n);
   constexpr double kRadix = 2.0, kConverged = 0.95;
-  for (bool changed = true; changed;) {
+  // A few sweeps suffice for any matrix of a plausible rotor; the cap keeps absurd magnitudes (which the model
+  // loader refuses, docs/model-format.md "Limits") from cycling for ever.
+  constexpr int kMaxSweeps = 200;
+  int sweeps = 0;
+  for (bool changed = true; changed && sweeps < kMaxSweeps; ++sweeps) {
     changed = false;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double c = A.col(i).norm(), r = A.row(i).norm();
@@ -89,9 +93,7 @@ Eigen::VectorXd balance(Eigen::MatrixXd& A) {
   return s;
 }
 
-}  // namespace
-
-ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options) {
+ModalResult modes_at(const Rotor& rotor, double speed, const ModalOptions& options) {
   const int n = rotor.n_dof;
   Eigen::MatrixXd K = rotor.K, C = rotor.D;
   rotor.add_bearings(speed, K, C);
@@ -116,6 +118,7 @@ ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions&
   A.topRightCorner(n, n).setIdentity();
   A.bottomLeftCorner(n, n) = -llt.solve(K);
   A.bottomRightCorner(n, n) = -llt.solve(Cg);
+  if (!A.allFinite()) throw std::runtime_error("the rotor's matrices are not finite (check masses and stiffnesses)");
   // Rotations, displacements and velocities differ by many orders of magnitude in A; without balancing the
   // low eigenvalues lose all accuracy (errors ~ eps * ||A||).
   const Eigen::VectorXd scale = balance(A);
@@ -173,6 +176,40 @@ ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions&
     std::stable_sort(result.modes.begin(), result.modes.end(),
                      [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
     if (static_cast<int>(result.modes.size()) > options.n_modes) result.modes.resize(options.n_modes);
+  }
+  return result;
+}
+
+}  // namespace
+
+ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options) {
+  ModalResult result = modes_at(rotor, speed, options);
+  if (speed != 0.0 || options.frame != Frame::Inertial || result.modes.empty() || rotor.G.isZero(0.0)) return result;
+  // At standstill the forward and backward whirl of an axisymmetric rotor have one frequency, and any combination
+  // of the two circular orbits is a mode: the eigen-solver's pick, and so its label, is arbitrary (both members of
+  // a pair could come out "backward"). Name each mode by its limit at a small speed, where the gyroscopic terms
+  // split the pair: the shape and whirl of that limit, the frequency and damping at standstill. The small speed is
+  // a 1e-4 fraction of the lowest lateral frequency, far above the eigen-solver's rounding, far below any change
+  // of the frequencies that matters.
+  constexpr double kSmallSpeedFraction = 1e-4;
+  double lowest = 0.0;
+  for (const Mode& m : result.modes)
+    if (m.whirl != Whirl::Torsional && m.frequency > 0.0) {
+      lowest = 2.0 * M_PI * m.frequency;
+      break;
+    }
+  if (!(lowest > 0.0)) return result;
+  const ModalResult limit = modes_at(rotor, kSmallSpeedFraction * lowest, options);
+  if (limit.modes.size() != result.modes.size()) return result;
+  constexpr double kSameMode = 1e-3;  // relative frequency difference within which limit and standstill mode match
+  for (std::size_t i = 0; i < result.modes.size(); ++i) {
+    Mode& m = result.modes[i];
+    const Mode& l = limit.modes[i];
+    if (m.whirl == Whirl::Torsional || l.whirl == Whirl::Torsional) continue;
+    if (std::abs(l.frequency - m.frequency) > kSameMode * m.frequency) continue;
+    m.whirl = l.whirl;
+    m.node_whirl = l.node_whirl;
+    m.shape = l.shape;
   }
   return result;
 }

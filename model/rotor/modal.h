@@ -42,8 +42,10 @@ struct ModalOptions {
   bool torsion = false;           ///< also list the free-free torsional modes (independent of speed)
 };
 
-/// Modes of the rotor at spin speed `speed` (rad/s). Throws std::runtime_error when the rotor cannot be analysed
-/// (e.g. the rotating frame with anisotropic bearings).
+/// Modes of the rotor at spin speed `speed` (rad/s). At standstill (inertial frame) the modes of a degenerate
+/// forward/backward pair are given as their limit at a small speed (shape and whirl; frequency and damping at 0), so
+/// each pair has one forward and one backward member. Throws std::runtime_error when the rotor cannot be analysed
+/// (e.g. the rotating frame with anisotropic bearings, or matrices that are not finite).
 ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options = {});
 
 /// Whirl direction of a mode shape at each node and overall.

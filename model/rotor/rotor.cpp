@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "model/spec/errors.h"
+#include "model/spec/limits.h"
 
 namespace turbodyn {
 namespace {
@@ -115,6 +116,13 @@ Rotor build_rotor(const MachineSpec& spec) {
   std::vector<double> unique;
   for (double z : keys)
     if (unique.empty() || z - unique.back() > kNodeMergeTolerance) unique.push_back(z);
+  double elements = 0.0;
+  for (std::size_t i = 1; i < unique.size(); ++i)
+    elements += std::max(1.0, std::ceil((unique[i] - unique[i - 1]) / spec.mesh.max_element_length - 1e-9));
+  if (!(elements <= static_cast<double>(limits::kMaxShaftElements)))
+    throw ModelError(spec.source.string() + ": mesh.max_element_length: the mesh would have about " +
+                     std::to_string(elements) + " elements, more than the limit of " +
+                     std::to_string(limits::kMaxShaftElements));
   r.node_z.push_back(unique.front());
   for (std::size_t i = 1; i < unique.size(); ++i) {
     const double span = unique[i] - unique[i - 1];

@@ -189,6 +189,74 @@ EOF2
     [ $? -eq 2 ] || fail "damper accepted: $(cat "$out/sfd.log")"
     grep -q "squeeze-film dampers are nonlinear" "$out/sfd.log" || fail "message: $(cat "$out/sfd.log")"
     ;;
+  modal_bad_input)
+    # Issue 20: no crash (2^31 speeds), no endless loop (a speed of 1e308 rad/s), no raw "stoi".
+    expect_refused() {  # expect_refused PATTERN COMMAND...: exit 2 within 20 s and a message matching PATTERN
+      local pattern=$1; shift
+      timeout 20 "$@" > "$out/log" 2>&1
+      local rc=$?
+      [ $rc -eq 2 ] || fail "exit $rc, expected 2 for: $* -- $(cat "$out/log")"
+      grep -q -- "$pattern" "$out/log" || fail "message for: $* -- $(cat "$out/log")"
+      ! grep -q -e "stoi" -e "bad_alloc" -e "_M_default_append" "$out/log" || fail "raw message: $(cat "$out/log")"
+    }
+    model="$src/examples/reference_linear.toml"
+    expect_refused "--set modal.n_speeds=2147483648: modal.n_speeds: must be a whole number from 2 to" \
+      "$exe" modal "$model" --set modal.n_speeds=2147483648 -o "$out/m" --no-plots
+    expect_refused "--speeds '0:1e308:3': 1e+308 rad/s is implausibly large" \
+      "$exe" modal "$model" --speeds 0:1e308:3 -o "$out/m" --no-plots
+    expect_refused "COUNT must be a whole number from 2 to 100000" \
+      "$exe" modal "$model" --speeds "0:100 Hz:99999999999999999999" -o "$out/m" --no-plots
+    expect_refused "bearings.left.kxx: 1e+306 N/m is implausibly large" \
+      "$exe" modal "$src/examples/friswell_5_9_1.toml" --set "bearings.left.kxx=1e+306 N/m" -o "$out/m" --no-plots
+    ;;
+  check_bad_input)
+    # Issue 20: a tiny mesh is refused with its element count (it took 2 GB, then "std::bad_alloc"); a
+    # directory is not a model file; NaN and infinity never reach the summary.
+    timeout 20 "$exe" check "$src/examples/reference_linear.toml" --set "mesh.max_element_length=1e-9 m" > "$out/log" 2>&1
+    [ $? -eq 2 ] || fail "tiny mesh: $(cat "$out/log")"
+    grep -q "mesh.max_element_length: the shaft of 0.14 m in elements of at most 1e-09 m needs about 1.4e+08 elements" \
+      "$out/log" || fail "tiny mesh message: $(cat "$out/log")"
+    "$exe" check "$src/examples" > "$out/log" 2>&1
+    [ $? -eq 2 ] && grep -q "examples: is a directory, not a model file" "$out/log" || fail "directory: $(cat "$out/log")"
+    for set in "shaft[0].length=1e308" "shaft[0].outer_diameter=1e-299 mm" "materials.steel.rho=1.8e308"; do
+      "$exe" check "$src/examples/reference_linear.toml" --set "$set" > "$out/log" 2>&1
+      [ $? -eq 2 ] || fail "$set accepted: $(cat "$out/log")"
+      grep -q -i -e "nan" -e "inf" "$out/log" && fail "$set: $(cat "$out/log")"
+      grep -q -F -- "--set ${set%%=*}" "$out/log" || fail "$set: the message does not name the override: $(cat "$out/log")"
+    done
+    ;;
+  journal_bad_input)
+    # Issue 20: a huge attitude angle ran for ever; a bad grid gave the film solver's raw message.
+    timeout 10 "$exe" journal --ld 0.7 --attitude 1e308 > "$out/log" 2>&1 || fail "attitude 1e308: exit $?: $(cat "$out/log")"
+    grep -q '"attitude_angle_deg"' "$out/log" || fail "no result: $(cat "$out/log")"
+    "$exe" journal --ld 1 --n-circ -5 > "$out/log" 2>&1
+    [ $? -eq 2 ] && grep -q -- "--n-circ -5 --n-axial" "$out/log" || fail "grid: $(cat "$out/log")"
+    ! grep -q "FilmSolver" "$out/log" || fail "raw message: $(cat "$out/log")"
+    ;;
+  sweep_bad_study)
+    # Issue 20: studies that ran and gave nothing useful are refused before the first run, naming the key.
+    study="$src/examples/study_reference_linear.toml"
+    variant() {  # variant NAME SED-SCRIPT: the example study with an edit, its model given by absolute path
+      sed -e "s|^model = .*|model = \"$src/examples/reference_linear.toml\"|" -e "$2" "$study" > "$out/$1.toml"
+    }
+    refused() {  # refused NAME PATTERN
+      timeout 60 "$exe" sweep "$out/$1.toml" -o "$out/$1" --no-plots > "$out/$1.log" 2>&1
+      local rc=$?
+      [ $rc -eq 2 ] || fail "$1: exit $rc, expected 2: $(cat "$out/$1.log")"
+      grep -q -- "$2" "$out/$1.log" || fail "$1: message: $(cat "$out/$1.log")"
+      [ ! -f "$out/$1/runs.jsonl" ] || [ "$(wc -l < "$out/$1/runs.jsonl")" -le 1 ] || fail "$1: runs were made"
+    }
+    variant name 's|^path = "disks.turbine.unbalance"|path = "name"|'
+    refused name "parameters\[0\].path: 'name' is not a number the model reference_linear.toml reads"
+    variant summary 's|^probe = "stats.steps"|probe = "stats.stepz"|'
+    refused summary "metrics\[4\].probe: the run summary has no value 'stats.stepz'; did you mean 'stats.steps'?"
+    variant duplicate 's|^name = "steps"|name = "peak_1x_turbine"|'
+    refused duplicate "metrics\[4\].name: metrics\[2\] has the name 'peak_1x_turbine' already"
+    variant window 's|^speed_window = .*|speed_window = ["200000 rpm", "300000 rpm"]|'
+    refused window "speed_window: \[200000, 300000\] rpm lies outside the speeds of the run"
+    variant nan 's|^high = "870 mg\*mm"|high = nan|'
+    refused nan "parameters\[0\].high: value is not finite"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS ($case)"

@@ -33,6 +33,21 @@ case $case in
     grep -q "bounds.toml:19:7: variables\[0\].low: the lower bound 95 um must be below the upper bound 90 um" "$out/log2" \
       || fail "message: $(cat "$out/log2")"
     ;;
+  bad_values)
+    # Issue 20: a NaN bound ran; a variable that is not a number of the model changed nothing.
+    sed 's/^upper = "1 mm"/upper = nan/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/nan.toml"
+    "$exe" optimize "$out/nan.toml" -o "$out/opt" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -eq 2 ] || fail "upper = nan: exit $rc, expected 2: $(cat "$out/log")"
+    grep -q "nan.toml:38:9: constraints\[0\].upper: value is not finite" "$out/log" || fail "message: $(cat "$out/log")"
+    sed 's/^low = "35 um"/low = nan/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/nanlow.toml"
+    "$exe" optimize "$out/nanlow.toml" -o "$out/opt" > "$out/log" 2>&1
+    [ $? -eq 2 ] && grep -q "variables\[0\].low: value is not finite" "$out/log" || fail "low = nan: $(cat "$out/log")"
+    sed 's/^paths = .*/paths = ["name"]/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/path.toml"
+    "$exe" optimize "$out/path.toml" -o "$out/opt" > "$out/log" 2>&1
+    [ $? -eq 2 ] && grep -q "variables\[0\].path: 'name' is not a number" "$out/log" \
+      || fail "path: $(cat "$out/log")"
+    ;;
   restart)
     # The same optimisation twice: the second invocation takes every evaluation from evaluations.jsonl.
     study="$src/tests/data/optim/jeffcott_study.toml"

@@ -391,6 +391,19 @@ TEST(Identify, MeasuredFileWithMissingColumnNamesTheColumnAndListsThePresentOnes
   EXPECT_NE(e.find("m.csv: no column 'x' (sensor x); the file has: 'time' 'speed' 'z'"), std::string::npos) << e;
 }
 
+TEST(Identify, MeasuredFileWithAByteOrderMarkReads) {
+  // Issue 20: a spreadsheet's UTF-8 byte-order mark made the first column "\xEF\xBB\xBFtime": "no column 'time'".
+  const auto dir = scratch("bom");
+  write(dir / "m.csv", "\xEF\xBB\xBFtime [s],speed [rpm],x [um]\n" + good_rows(40));
+  EXPECT_EQ(error_of(bench_spec(dir / "m.csv")), "(no error)");
+}
+
+TEST(Identify, MeasuredFileThatIsADirectoryIsNamedSo) {
+  const auto dir = scratch("dir");
+  std::filesystem::create_directories(dir / "m.csv");
+  EXPECT_NE(error_of(bench_spec(dir / "m.csv")).find("m.csv: is a directory, not a measured file"), std::string::npos);
+}
+
 TEST(Identify, MeasuredFileWithNonMonotonicTimeNamesLineAndColumn) {
   const auto dir = scratch("bad_time");
   write(dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(20) + "0.0185,3020,0.1\n" + good_rows(40, 21));

@@ -1,6 +1,7 @@
 // Model files: values, units, overrides, and the errors a new user meets.
 #include "model/io/model_file.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gmock/gmock.h>
@@ -116,7 +117,7 @@ TEST(ModelFile, FloatingRingDrillHolesAndMassConservingFilms) {
                            parse_override("bearings.compressor.drill_holes=0"),
                            parse_override("bearings.compressor.drill_hole_diameter=0")}),
               HasSubstr("drill_holes through the ring"));
-  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.drill_holes=9")}), HasSubstr("at most 8"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.drill_holes=9")}), HasSubstr("from 0 to 8"));
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.drill_hole_diameter=8 mm")}),
               HasSubstr("smaller than inner_length"));
 }
@@ -167,6 +168,98 @@ TEST(ModelFile, DidYouMean) {
   EXPECT_EQ(closest_match("outer_diamter", {"length", "outer_diameter", "inner_diameter"}), "outer_diameter");
   EXPECT_EQ(closest_match("zzzzzz", {"length", "outer_diameter"}), "");
   EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+}
+
+// ----------------------------------------------------------------------------------------------- limits
+// Issue 20: nonsense input ends in a located error naming the key, never in a crash, a hang or a huge allocation
+// (docs/model-format.md, "Limits").
+
+TEST(ModelFileLimits, IntegersAreReadAs64BitAndRangeChecked) {
+  // 2^31 once became -2^31 (a SIGSEGV in `modal`), and 4294967304 = 2^32 + 8 ran as 8 balls.
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("modal.n_speeds=2147483648")}),
+              AllOf(HasSubstr("--set modal.n_speeds=2147483648"), HasSubstr("modal.n_speeds"),
+                    HasSubstr("from 2 to 100000"), HasSubstr("got 2147483648")));
+  EXPECT_THAT(error_of(example("reference_ball.toml"), {parse_override("bearings.compressor.n_balls=4294967304")}),
+              AllOf(HasSubstr("bearings.compressor.n_balls"), HasSubstr("got 4294967304")));
+  EXPECT_THAT(error_of(example("reference_journal.toml"), {parse_override("bearings.compressor.n_circ=2147483648")}),
+              AllOf(HasSubstr("bearings.compressor.n_circ"), HasSubstr("from 8 to")));
+  EXPECT_THAT(error_of(example("reference_journal.toml"), {parse_override("bearings.compressor.n_circ=2048"),
+                                                           parse_override("bearings.compressor.n_axial=512")}),
+              AllOf(HasSubstr("bearings.compressor.n_circ"), HasSubstr("2048 x 512")));
+  EXPECT_THAT(error_of(example("reference_floating_ring.toml"),
+                       {parse_override("bearings.compressor.drill_holes=4294967300")}),
+              AllOf(HasSubstr("bearings.compressor.drill_holes"), HasSubstr("from 0 to 8")));
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.max_order=4294967297")}),
+              AllOf(HasSubstr("solver.max_order"), HasSubstr("from 1 to 5")));
+}
+
+TEST(ModelFileLimits, ImplausibleMagnitudesAreRefusedWithTheKey) {
+  // Each of these once ran: an endless loop in the eigen-solver's balancing, or "shaft length inf mm".
+  const std::string f = example("friswell_5_9_1.toml");
+  EXPECT_THAT(error_of(f, {parse_override("bearings.left.kxx=1e+306 N/m")}),
+              AllOf(HasSubstr("--set bearings.left.kxx"), HasSubstr("implausibly large"), HasSubstr("N/m")));
+  EXPECT_THAT(error_of(f, {parse_override("materials.steel.rho=7.81e-297 kg/m^3")}),
+              AllOf(HasSubstr("materials.steel.rho"), HasSubstr("implausibly small")));
+  const std::string r = example("reference_linear.toml");
+  EXPECT_THAT(error_of(r, {parse_override("shaft[0].length=1e308")}),
+              AllOf(HasSubstr("shaft[0].length"), HasSubstr("implausibly large")));
+  EXPECT_THAT(error_of(r, {parse_override("shaft[0].outer_diameter=1e-299 mm")}),
+              AllOf(HasSubstr("shaft[0].outer_diameter"), HasSubstr("implausibly small")));
+  EXPECT_THAT(error_of(r, {parse_override("materials.steel.rho=1.8e308")}), HasSubstr("materials.steel.rho"));
+  EXPECT_THAT(error_of(r, {parse_override("shaft[0].length=1e302 mm")}), HasSubstr("shaft[0].length"));
+}
+
+TEST(ModelFileLimits, DerivedQuantitiesAreChecked) {
+  // Each value plausible, their product not: a disk of 10 km diameter at 100 000 kg/m^3 weighs 7e13 kg.
+  EXPECT_THAT(error_of(example("friswell_5_9_1.toml"), {parse_override("materials.steel.rho=1e5"),
+                                                         parse_override("disks.disk1.outer_diameter=1e4"),
+                                                         parse_override("disks.disk1.width=1e3")}),
+              AllOf(HasSubstr("disks.disk1.outer_diameter"), HasSubstr("mass")));
+}
+
+TEST(ModelFileLimits, MeshElementCountIsRefusedUpFront) {
+  // "1e-9 m" took 2 GB before std::bad_alloc; <= 1e-12 m was silently ignored (an int overflow).
+  for (const char* h : {"1e-9 m", "100 um"})
+    EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override(std::string("mesh.max_element_length=") + h)}),
+                AllOf(HasSubstr("mesh.max_element_length"), HasSubstr("elements, more than the limit of 1000")))
+        << h;
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("mesh.max_element_length=1e-13 m")}),
+              AllOf(HasSubstr("mesh.max_element_length"), HasSubstr("implausibly small")));
+  EXPECT_EQ(error_of(example("reference_linear.toml"), {parse_override("mesh.max_element_length=1 mm")}), "");
+}
+
+TEST(ModelFileLimits, OilTemperatureAtTheViscosityPoleIsRefusedAtLoadTime) {
+  // -70.56 degC is the pole of the default Vogel fit: `check` passed and `run` failed.
+  for (const char* t : {"-70.56 degC", "-71 degC", "-70.5 degC"})
+    EXPECT_THAT(error_of(example("reference_journal.toml"),
+                         {parse_override(std::string("bearings.compressor.oil_temperature=") + t)}),
+                AllOf(HasSubstr("bearings.compressor.oil_temperature"), HasSubstr("viscosity")))
+        << t;
+  EXPECT_THAT(error_of(example("reference_journal.toml"), {parse_override("oil.temperature=-70.56 degC")}),
+              HasSubstr("oil.temperature"));
+  EXPECT_EQ(error_of(example("reference_journal.toml"), {parse_override("bearings.compressor.oil_temperature=40 degC")}), "");
+}
+
+TEST(ModelFileLimits, ADirectoryIsNotAModelFile) {
+  EXPECT_THAT(error_of(source_dir() + "/examples"), AllOf(HasSubstr("examples"), HasSubstr("is a directory")));
+}
+
+TEST(ModelFileLimits, EveryExampleIsWithinTheLimits) {
+  for (const char* f : {"reference_linear.toml", "reference_journal.toml", "reference_ball.toml",
+                        "reference_ball_sfd.toml", "reference_damper.toml", "reference_floating_ring.toml",
+                        "friswell_5_9_1.toml", "bench_rotor_journal.toml", "rigid_rotor_oil_whirl.toml"})
+    EXPECT_EQ(error_of(example(f)), "") << f;
+}
+
+TEST(ModelFileLimits, NumericKeysAreTheKeysAStudyMayVary) {
+  const std::vector<std::string> keys = numeric_model_keys(example("reference_linear.toml"), {});
+  auto has = [&](const std::string& k) { return std::binary_search(keys.begin(), keys.end(), k); };
+  EXPECT_TRUE(has("bearings.compressor.k"));
+  EXPECT_TRUE(has("shaft[0].outer_diameter"));
+  EXPECT_TRUE(has("disks.turbine.unbalance"));
+  EXPECT_FALSE(has("name"));
+  EXPECT_FALSE(has("shaft[0].material"));
+  EXPECT_FALSE(has("bearings.compressor.type"));
 }
 
 }  // namespace

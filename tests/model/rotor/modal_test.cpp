@@ -35,6 +35,23 @@ TEST(Modal, GyroscopicSplittingHasForwardAboveBackward) {
   EXPECT_GT(forward[0], still.modes[0].frequency);
 }
 
+TEST(Modal, StandstillPairsAreNamedByTheirLimitAtASmallSpeed) {
+  // Issue 20: at 0 rpm both members of the reference rotor's 644 Hz pair came out "backward" (the eigen-solver's
+  // arbitrary pick in a degenerate pair). Each pair is now one forward and one backward whirl, as just above 0.
+  const Rotor rotor = load_rotor("reference_linear.toml");
+  const ModalResult still = modal_analysis(rotor, 0.0, {8, Frame::Inertial});
+  ASSERT_EQ(still.modes.size(), 8u);
+  for (std::size_t i = 0; i + 1 < still.modes.size(); i += 2) {
+    const Mode& a = still.modes[i];
+    const Mode& b = still.modes[i + 1];
+    ASSERT_NEAR(a.frequency, b.frequency, 1e-6 * a.frequency) << "pair " << i / 2;
+    EXPECT_TRUE((a.whirl == Whirl::Forward && b.whirl == Whirl::Backward) ||
+                (a.whirl == Whirl::Backward && b.whirl == Whirl::Forward))
+        << a.frequency << " Hz: " << to_string(a.whirl) << ", " << to_string(b.whirl);
+    EXPECT_EQ(classify_whirl(rotor, a.shape), a.whirl);  // the shape given is the one named
+  }
+}
+
 TEST(Modal, RotatingFrameIsTheInertialSolutionSeenFromTheShaft) {
   // Exact kinematics: a forward whirl at f seen from the shaft spinning at F has frequency |f - F|, a backward whirl
   // f + F. This checks the spin-softening and Coriolis matrices of paper Eq. (9) against the inertial model.
