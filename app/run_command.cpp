@@ -15,6 +15,7 @@
 #include "post/plot.h"
 #include "model/io/run_summary.h"
 #include "model/engine/integrator.h"
+#include "model/engine/remaining_time.h"
 #include "post/run_pictures.h"
 #include "model/io/timeseries_file.h"
 
@@ -148,9 +149,11 @@ int run_run_command(const RunCommandOptions& options) {
   ro.sink = [&](double t, const double* v) { writer.append(t, v); };
   const bool tty = isatty(STDERR_FILENO);
   const double t_end = model->speed().duration();
+  // The time left from the cost so far against the rotor speed and the ramp still to go (remaining_time.h).
+  RemainingTimeEstimate remaining(model->speed(), ro.t_start, t_end);
   ro.progress = [&](double t, double speed, double wall) {
     const double frac = t / t_end;
-    const double eta = frac > 0 ? wall * (1 - frac) / frac : 0.0;
+    const double eta = remaining.update(t, wall);
     std::ostringstream os;
     os << "t = " << std::fixed << std::setprecision(3) << t << " s (" << std::setprecision(0) << 100 * frac
        << " %), " << std::llround(speed * kRadPerSToRpm) << " rpm, wall " << format_duration(wall) << ", left ~"

@@ -124,6 +124,8 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
     const ProbeChannel& ch = r.channels[c];
     if (ch.kind == ProbeChannel::Kind::Speed || ch.kind == ProbeChannel::Kind::Angle) continue;
+    // Powers and losses (W) are read as time series, not as vibration: no spectrogram (they stay in the file).
+    if (ch.unit == "W") continue;
     // Spectrogram against rotor speed (paper Figs. 4-6), with the 1x and 0.5x order lines.
     std::optional<plot::Heatmap> hm = run_spectrogram(out, r, c, !ascending);
     if (!hm) {
