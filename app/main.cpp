@@ -94,6 +94,10 @@ int main(int argc, char** argv) {
   run->add_option("MODEL", run_options.model_file, "Model file (TOML)")->required();
   run->add_option("-o,--output", run_options.output_dir, "Output directory")->capture_default_str();
   run->add_flag("!--no-plots", run_options.plots, "Do not draw PNG pictures");
+  run->add_option("-j,--threads", run_options.threads,
+                  "Threads for the bearings of one right-hand side (at most one per bearing; same results)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   add_sets(run);
 
   turbodyn::app::PlotCommandOptions plot_options;

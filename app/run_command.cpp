@@ -140,6 +140,7 @@ int run_run_command(const RunCommandOptions& options) {
 
   RunupOptions ro = runup_options(spec);
   ro.cancel = &g_interrupted;
+  ro.threads = options.threads;
 
   std::vector<Channel> channels;
   for (const ProbeChannel& c : model->channels()) channels.push_back({c.name, c.unit, c.description});

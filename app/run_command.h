@@ -13,6 +13,7 @@ struct RunCommandOptions {
   std::vector<Override> overrides;
   std::filesystem::path output_dir = "out/run";
   bool plots = true;
+  int threads = 1;  ///< threads for the bearings of one right-hand side (RunupOptions::threads)
 };
 
 /// Runs the run-up and writes timeseries.h5 (and .csv), summary.json and PNG pictures into the output directory.

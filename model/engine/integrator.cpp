@@ -147,7 +147,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   result.channels = model.channels();
   result.columns.assign(result.channels.size(), {});
 
-  auto ws = model.make_workspace();
+  auto ws = model.make_workspace(options.threads);
   const int ny = model.n_states();
   const double t0 = options.t_start;
   const double t_end = options.t_end > 0.0 ? options.t_end : model.speed().duration();

@@ -20,6 +20,9 @@ struct RunupOptions {
   double t_start = 0.0;        ///< s
   double t_end = 0.0;          ///< s, 0 = end of the speed profile
   bool stability_limit_detection = true;  ///< BDF: lower the order when higher orders turn unstable
+  /// Threads for the force elements of one right-hand side (RunupModel::make_workspace); the results do not
+  /// depend on it. 1 in parameter studies, which already run one simulation per core.
+  int threads = 1;
   /// Called about twice a second of wall time.
   std::function<void(double t, double speed, double wall_seconds)> progress;
   /// Called with every output sample (time, channel values); e.g. to stream into a file.

@@ -126,8 +126,10 @@ RunupWorkspace::Element::Element(const ForceElement& e, int n) {
   u.setZero(d);
 }
 
-RunupWorkspacePtr RunupModel::make_workspace() const {
+RunupWorkspacePtr RunupModel::make_workspace(int threads) const {
   RunupWorkspacePtr ws(new RunupWorkspace);
+  if (threads > 1 && elements_.size() > 1)
+    ws->team = std::make_unique<ElementTeam>(std::min(threads, static_cast<int>(elements_.size())));
   const int n = n_coordinates_, m = n_element_states_;
   ws->f.setZero(n);
   ws->tmp.setZero(n);
@@ -184,19 +186,43 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
     unbalance_power += fx * disk_rows_[k].x.dot(v) + fy * disk_rows_[k].y.dot(v);
   }
 
+  // The elements one by one, or side by side on the workspace's team; their results are added up in element
+  // order below, so the numbers do not depend on the thread count.
+  struct Task {
+    const RunupModel* model;
+    const SpinState* s;
+    const double* y;
+    double* ydot;
+    RunupWorkspace* ws;
+  } task{this, &s, y, ydot, &ws};
+  const auto evaluate = [](void* context, int k) {
+    const Task& c = *static_cast<const Task*>(context);
+    const ForceElement& e = *c.model->elements_[k];
+    RunupWorkspace::Element& we = c.ws->elements[k];
+    c.model->Gather(e, c.y, c.y + c.model->n_coordinates_, *c.ws, k);
+    we.f.setZero();
+    const double* z = c.y + c.model->state_offsets_[k];
+    e.calc_and_add_forces(*c.s, we.q.data(), we.v.data(), z, *we.workspace, we.f.data(),
+                          c.ydot + c.model->state_offsets_[k]);
+    if (c.ws->energy) {
+      we.dissipation = e.dissipated_power(*c.s, we.q.data(), we.v.data(), z, *we.workspace);
+      we.drive = e.drive_power(*c.s, we.q.data(), we.v.data(), z, *we.workspace);
+    }
+  };
+  const int n_elements = static_cast<int>(elements_.size());
+  if (ws.team && n_elements > 1) {
+    ws.team->run(n_elements, evaluate, &task);
+  } else {
+    for (int k = 0; k < n_elements; ++k) evaluate(&task, k);
+  }
   double element_dissipation = 0.0, drive_power = 0.0;
   for (std::size_t k = 0; k < elements_.size(); ++k) {
-    const ForceElement& e = *elements_[k];
-    RunupWorkspace::Element& we = ws.elements[k];
-    Gather(e, y, y + n, ws, static_cast<int>(k));
-    we.f.setZero();
-    const double* z = y + state_offsets_[k];
-    e.calc_and_add_forces(s, we.q.data(), we.v.data(), z, *we.workspace, we.f.data(), ydot + state_offsets_[k]);
+    const RunupWorkspace::Element& we = ws.elements[k];
     ++ws.element_calls;
     f.noalias() += element_rows_[k].transpose() * we.f;
     if (ws.energy) {
-      element_dissipation += e.dissipated_power(s, we.q.data(), we.v.data(), z, *we.workspace);
-      drive_power += e.drive_power(s, we.q.data(), we.v.data(), z, *we.workspace);
+      element_dissipation += we.dissipation;
+      drive_power += we.drive;
     }
   }
 
@@ -262,26 +288,33 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
   ws.Gq.setZero();
   ws.Gv.setZero();
   ws.Gz.setZero();
-  for (std::size_t k = 0; k < elements_.size(); ++k) {
-    const ForceElement& e = *elements_[k];
+  // Each element's own Jacobian, one by one or side by side on the workspace's team; assembled in element order.
+  struct Task {
+    const RunupModel* model;
+    const SpinState* s;
+    const double* y;
+    RunupWorkspace* ws;
+  } task{this, &s, y, &ws};
+  const auto differentiate = [](void* context, int k) {
+    const Task& c = *static_cast<const Task*>(context);
+    const ForceElement& e = *c.model->elements_[k];
     const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
-    const int zoff = state_offsets_[k];
-    RunupWorkspace::Element& we = ws.elements[k];
+    const int zoff = c.model->state_offsets_[k];
+    RunupWorkspace::Element& we = c.ws->elements[k];
     Eigen::MatrixXd& J = we.jacobian;
     J.setZero();
-    Gather(e, y, y + n, ws, static_cast<int>(k));
+    c.model->Gather(e, c.y, c.y + c.model->n_coordinates_, *c.ws, k);
     if (e.has_jacobian()) {
-      e.add_jacobian(s, we.q.data(), we.v.data(), y + zoff, *we.workspace, J.data());
-      ws.element_calls += e.jacobian_evaluations();
+      e.add_jacobian(*c.s, we.q.data(), we.v.data(), c.y + zoff, *we.workspace, J.data());
+      we.calls = e.jacobian_evaluations();
     } else {
       // Forward differences in the element's own inputs: 2d + m evaluations of the element alone.
       Eigen::VectorXd& in = we.fd_in;
-      in << we.q, we.v, Eigen::Map<const Eigen::VectorXd>(y + zoff, m);
+      in << we.q, we.v, Eigen::Map<const Eigen::VectorXd>(c.y + zoff, m);
       auto eval = [&](Eigen::VectorXd& out) {
         out.setZero();
-        e.calc_and_add_forces(s, in.data(), in.data() + d, in.data() + 2 * d, *we.workspace, out.data(),
+        e.calc_and_add_forces(*c.s, in.data(), in.data() + d, in.data() + 2 * d, *we.workspace, out.data(),
                               out.data() + d);
-        ++ws.element_calls;
       };
       eval(we.fd_out0);
       for (int j = 0; j < 2 * d + m; ++j) {
@@ -292,7 +325,22 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
         in(j) = saved;
         J.col(j) = (we.fd_out1 - we.fd_out0) / h;
       }
+      we.calls = 1 + 2 * d + m;
     }
+  };
+  const int n_elements = static_cast<int>(elements_.size());
+  if (ws.team && n_elements > 1) {
+    ws.team->run(n_elements, differentiate, &task);
+  } else {
+    for (int k = 0; k < n_elements; ++k) differentiate(&task, k);
+  }
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const ForceElement& e = *elements_[k];
+    const int d = static_cast<int>(e.dofs().size()), m = e.n_states();
+    const int zoff = state_offsets_[k];
+    RunupWorkspace::Element& we = ws.elements[k];
+    const Eigen::MatrixXd& J = we.jacobian;
+    ws.element_calls += we.calls;
     const Eigen::MatrixXd& Rk = element_rows_[k];
     const int zs = zoff - 2 * n;  // offset among the element states
     ws.Fq.noalias() += Rk.transpose() * J.block(0, 0, d, d) * Rk;

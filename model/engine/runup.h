@@ -72,7 +72,9 @@ class RunupModel {
   int state_offset(int element) const { return state_offsets_[element]; }  ///< into y
   const std::vector<ProbeChannel>& channels() const { return channels_; }
 
-  RunupWorkspacePtr make_workspace() const;
+  /// threads > 1: the force elements of one right-hand side and Jacobian are evaluated side by side on up to
+  /// that many threads (one per element at most); the results are the same as with one.
+  RunupWorkspacePtr make_workspace(int threads = 1) const;
   SpinState spin(double t) const;
 
   /// y' = F(t, y). Allocation-free.

@@ -9,6 +9,7 @@
 
 #include "model/elements/force_element.h"
 #include "model/engine/block_arrow_lu.h"
+#include "model/engine/element_team.h"
 
 namespace turbodyn {
 
@@ -29,6 +30,8 @@ struct RunupWorkspace {
     BlockArrowLU lu;
     Eigen::MatrixXd Y, T, JY, RJY;
     Eigen::VectorXd w, w0, u;
+    double dissipation = 0.0, drive = 0.0;  // powers of the last right-hand side (W)
+    long calls = 0;                         // element evaluations of the last Jacobian
   };
 
   Eigen::VectorXd f;    // generalised force (n)
@@ -44,6 +47,7 @@ struct RunupWorkspace {
   SpinState jac_spin;
   long rhs_calls = 0, element_calls = 0, jacobian_evaluations = 0, factorisations = 0;
   bool energy = true;  // accumulate the energy-balance states
+  std::unique_ptr<ElementTeam> team;  // null: the elements one after the other
 };
 
 }  // namespace turbodyn

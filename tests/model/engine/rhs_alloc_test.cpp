@@ -51,6 +51,24 @@ TEST(RhsAllocation, NoHeapAllocationInTheRightHandSide) {
     }
     EXPECT_EQ(testing::allocation_count() - before_newton, 0) << "Newton solve, " << c.label;
   }
+  // With the bearings side by side on two threads (ElementTeam), the right-hand side and the Jacobian allocate
+  // nothing either, and give the same numbers as one thread.
+  {
+    const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_floating_ring.toml");
+    const auto model = make_runup_model(spec);
+    auto ws1 = model->make_workspace(1), ws2 = model->make_workspace(2);
+    std::vector<double> y(model->n_states(), 1e-6), ydot1(model->n_states()), ydot2(model->n_states());
+    model->Rhs(0.5, y.data(), ydot2.data(), *ws2);  // warm-up
+    model->Jacobian(0.5, y.data(), *ws2);
+    const long before_team = testing::allocation_count();
+    for (int i = 0; i < 20; ++i) model->Rhs(0.5 + 1e-4 * i, y.data(), ydot2.data(), *ws2);
+    model->Jacobian(0.5, y.data(), *ws2);
+    EXPECT_EQ(testing::allocation_count() - before_team, 0) << "two threads";
+    model->Rhs(0.5, y.data(), ydot1.data(), *ws1);
+    model->Rhs(0.5, y.data(), ydot2.data(), *ws2);
+    EXPECT_EQ(ydot1, ydot2);
+    EXPECT_EQ(model->JacobianMatrix(0.5, y.data(), *ws1), model->JacobianMatrix(0.5, y.data(), *ws2));
+  }
   // The counter works: a vector allocates.
   const long before = testing::allocation_count();
   std::vector<double> v(10);
