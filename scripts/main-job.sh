@@ -10,6 +10,6 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 build/app/turbodyn modal examples/reference_linear.toml -o out/reference/modal
-build/app/turbodyn run examples/reference_floating_ring.toml -o out/reference/runup
+build/app/turbodyn run examples/reference_floating_ring.toml -j "$(nproc)" -o out/reference/runup
 echo "main job: pictures in out/reference/runup (spectrogram_*.png, order1x_*.png, orbits_*.png) and"
 echo "          out/reference/modal (campbell.png, modes_*.png); numbers in summary.json and modal.json"
