@@ -12,6 +12,7 @@
 
 #include "app/modal_command.h"
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/io/output_file.h"
 #include "model/spec/units.h"
 #include "post/plot.h"
 
@@ -192,11 +193,13 @@ int run_bearing_command(const BearingCommandOptions& options) {
   }
   j["results"] = points;
   {
-    std::ofstream out(options.output_dir / "bearing.json");
-    out << std::setw(1) << j << "\n";
+    OutputFile out(options.output_dir / "bearing.json");
+    out.stream() << std::setw(1) << j << "\n";
+    out.commit();
   }
   {
-    std::ofstream csv(options.output_dir / "bearing.csv");
+    OutputFile file(options.output_dir / "bearing.csv");
+    std::ostream& csv = file.stream();
     csv << "speed_rad_s,speed_rpm,x_m,y_m,theta_x_rad,theta_y_rad,outer_ring_axial_m,cage_speed_ratio";
     for (const char* m : {"k", "c"})
       for (int r = 0; r < 5; ++r)
@@ -211,9 +214,11 @@ int run_bearing_command(const BearingCommandOptions& options) {
           for (int k = 0; k < 5; ++k) csv << ',' << (*m)(i, k);
       csv << '\n';
     }
+    file.commit();
   }
   {
-    std::ofstream csv(options.output_dir / "bearing_balls.csv");
+    OutputFile file(options.output_dir / "bearing_balls.csv");
+    std::ostream& csv = file.stream();
     csv << "speed_rpm,ball,azimuth_deg,inner_load_n,outer_load_n,inner_contact_angle_deg,outer_contact_angle_deg,"
            "orbital_speed_rad_s,gyroscopic_moment_n_m\n"
         << std::setprecision(10);
@@ -224,6 +229,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
             << q.outer_load << ',' << q.inner_angle * kDeg << ',' << q.outer_angle * kDeg << ',' << q.orbital_speed
             << ',' << q.gyroscopic_moment << '\n';
       }
+    file.commit();
   }
 
   std::cout << spec.name << ": ball bearing " << b.name << ", load (" << load[0] << ", " << load[1] << ", " << load[2]

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/io/output_file.h"
 #include "post/plot.h"
 #include "model/rotor/rotor.h"
 #include "model/spec/limits.h"
@@ -305,16 +306,19 @@ int run_modal_command(const ModalCommandOptions& options) {
   }
   j["mode_shapes"] = shape_json;
   {
-    std::ofstream out(options.output_dir / "modal.json");
-    out << std::setw(1) << j << "\n";
+    OutputFile out(options.output_dir / "modal.json");
+    out.stream() << std::setw(1) << j << "\n";
+    out.commit();
   }
   {
-    std::ofstream csv(options.output_dir / "campbell.csv");
+    OutputFile file(options.output_dir / "campbell.csv");
+    std::ostream& csv = file.stream();
     csv << "speed_rad_s,speed_rpm,mode,frequency_hz,damping_ratio,whirl\n" << std::setprecision(10);
     for (const ModalResult& r : campbell.points)
       for (std::size_t i = 0; i < r.modes.size(); ++i)
         csv << r.speed << ',' << r.speed * kRadPerSToRpm << ',' << i + 1 << ',' << r.modes[i].frequency << ','
             << r.modes[i].damping_ratio << ',' << to_string(r.modes[i].whirl) << '\n';
+    file.commit();
   }
 
   std::cout << spec.name << ": " << rotor.node_z.size() << " nodes, " << rotor.n_dof << " DOF, rotor mass "

@@ -16,6 +16,7 @@
 
 #include "post/plot.h"
 #include "model/engine/integrator.h"
+#include "model/io/output_file.h"
 #include "model/io/overrides.h"
 #include "post/run_pictures.h"
 #include "optim/optimizer.h"
@@ -213,7 +214,11 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
   std::signal(SIGINT, previous);
   result["files"] = written;
   result["warnings"] = warnings;
-  std::ofstream(dir / "result.json") << std::setw(1) << result << "\n";
+  {
+    OutputFile out(dir / "result.json");
+    out.stream() << std::setw(1) << result << "\n";
+    out.commit();
+  }
 
   std::cout << spec.name << ": " << r.nlopt_result << " (" << r.reason << ") after " << r.history.size()
             << (r.history.size() == 1 ? " evaluation (" : " evaluations (") << r.new_evaluations << " run, "

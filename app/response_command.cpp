@@ -10,6 +10,7 @@
 #include "app/modal_command.h"
 #include "post/plot.h"
 #include "model/rotor/response.h"
+#include "model/io/output_file.h"
 #include "model/rotor/rotor.h"
 
 namespace turbodyn::app {
@@ -47,7 +48,8 @@ int run_response_command(const ResponseCommandOptions& options) {
     }
   }
   {
-    std::ofstream csv(options.output_dir / "response.csv");
+    OutputFile file(options.output_dir / "response.csv");
+    std::ostream& csv = file.stream();
     csv << std::setprecision(12);
     for (std::size_t c = 0; c < names.size(); ++c) csv << (c ? "," : "") << names[c];
     csv << "\n";
@@ -55,13 +57,15 @@ int run_response_command(const ResponseCommandOptions& options) {
       for (std::size_t c = 0; c < names.size(); ++c) csv << (c ? "," : "") << cols[c][i];
       csv << "\n";
     }
+    file.commit();
   }
   nlohmann::json j;
   j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
   for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
   {
-    std::ofstream out(options.output_dir / "response.json");
-    out << std::setw(1) << j << "\n";
+    OutputFile out(options.output_dir / "response.json");
+    out.stream() << std::setw(1) << j << "\n";
+    out.commit();
   }
   if (options.plots) {
     plot::LineChart chart;

@@ -14,6 +14,7 @@
 
 #include "post/plot.h"
 #include "model/io/run_summary.h"
+#include "model/io/output_file.h"
 #include "model/engine/integrator.h"
 #include "model/engine/remaining_time.h"
 #include "post/run_pictures.h"
@@ -121,8 +122,9 @@ int run_plot_command(const PlotCommandOptions& options) {
   for (const Override& o : options.overrides) plot_overrides.push_back(o.path + "=" + o.value);
   j["plot_overrides"] = plot_overrides;  // the pictures were drawn with these on top of `overrides`
   {
-    std::ofstream out(summary_file);
-    out << std::setw(1) << j << "\n";
+    OutputFile out(summary_file);
+    out.stream() << std::setw(1) << j << "\n";
+    out.commit();
   }
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   std::cout << "Redrew " << pictures.size() << " pictures of " << options.run_dir.string()
@@ -193,8 +195,9 @@ int run_run_command(const RunCommandOptions& options) {
   j["spectrogram_maxima"] = spectral;
   j["warnings"] = warnings;
   {
-    std::ofstream out(options.output_dir / "summary.json");
-    out << std::setw(1) << j << "\n";
+    OutputFile out(options.output_dir / "summary.json");
+    out.stream() << std::setw(1) << j << "\n";
+    out.commit();
   }
 
   std::cout << spec.name << ": " << (r.complete ? "complete" : "INCOMPLETE") << ", " << r.stats.steps << " steps, "

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "model/io/output_file.h"
 #include "post/plot.h"
 #include "post/run_pictures.h"
 #include "post/signal.h"
@@ -154,13 +155,15 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
   std::filesystem::create_directories(dir);
   std::vector<std::string> files;
   {
-    std::ofstream out(dir / "estimates.json");
-    out << std::setw(2) << estimates_json(study, r) << "\n";
+    OutputFile out(dir / "estimates.json");
+    out.stream() << std::setw(2) << estimates_json(study, r) << "\n";
+    out.commit();
     files.push_back("estimates.json");
   }
   {
-    std::ofstream out(dir / "ceres_summary.txt");
-    out << r.full_report;
+    OutputFile out(dir / "ceres_summary.txt");
+    out.stream() << r.full_report;
+    out.commit();
     files.push_back("ceres_summary.txt");
   }
   {

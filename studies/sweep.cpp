@@ -15,6 +15,7 @@
 #include "post/plot.h"
 #include "post/run_pictures.h"
 #include "model/engine/integrator.h"
+#include "model/io/output_file.h"
 #include "studies/metrics.h"
 #include "studies/parallel.h"
 #include "studies/run_log.h"
@@ -230,8 +231,9 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   }
   j["sensitivity"] = sens;
   {
-    std::ofstream out(dir / "results.json");
-    out << std::setw(1) << j << "\n";
+    OutputFile out(dir / "results.json");
+    out.stream() << std::setw(1) << j << "\n";
+    out.commit();
     files.push_back("results.json");
   }
   if (!plots || runs.empty()) return files;

@@ -189,6 +189,16 @@ EOF2
     [ $? -eq 2 ] || fail "damper accepted: $(cat "$out/sfd.log")"
     grep -q "squeeze-film dampers are nonlinear" "$out/sfd.log" || fail "message: $(cat "$out/sfd.log")"
     ;;
+  failed_write)
+    # Issue 20: a result file that cannot be written (here a directory is in its place) is an error naming it,
+    # with a non-zero exit and no "Wrote" line.
+    mkdir -p "$out/modal.json"
+    "$exe" modal "$src/examples/reference_linear.toml" --no-plots -o "$out" > "$out/log" 2>&1
+    rc=$?
+    [ $rc -ne 0 ] || fail "exit 0 with modal.json a directory: $(cat "$out/log")"
+    grep -q "cannot write .*modal.json" "$out/log" || fail "message: $(cat "$out/log")"
+    ! grep -q "Wrote" "$out/log" || fail "claims to have written: $(cat "$out/log")"
+    ;;
   modal_bad_input)
     # Issue 20: no crash (2^31 speeds), no endless loop (a speed of 1e308 rad/s), no raw "stoi".
     expect_refused() {  # expect_refused PATTERN COMMAND...: exit 2 within 20 s and a message matching PATTERN
