@@ -192,11 +192,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
                       {"balls", balls}});
   }
   j["results"] = points;
-  {
-    OutputFile out(options.output_dir / "bearing.json");
-    out.stream() << std::setw(1) << j << "\n";
-    out.commit();
-  }
+  write_output_file(options.output_dir / "bearing.json", j.dump(1) + "\n");
   {
     OutputFile file(options.output_dir / "bearing.csv");
     std::ostream& csv = file.stream();

@@ -305,11 +305,7 @@ int run_modal_command(const ModalCommandOptions& options) {
     shape_json.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
   }
   j["mode_shapes"] = shape_json;
-  {
-    OutputFile out(options.output_dir / "modal.json");
-    out.stream() << std::setw(1) << j << "\n";
-    out.commit();
-  }
+  write_output_file(options.output_dir / "modal.json", j.dump(1) + "\n");
   {
     OutputFile file(options.output_dir / "campbell.csv");
     std::ostream& csv = file.stream();

@@ -214,11 +214,7 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
   std::signal(SIGINT, previous);
   result["files"] = written;
   result["warnings"] = warnings;
-  {
-    OutputFile out(dir / "result.json");
-    out.stream() << std::setw(1) << result << "\n";
-    out.commit();
-  }
+  write_output_file(dir / "result.json", result.dump(1) + "\n");
 
   std::cout << spec.name << ": " << r.nlopt_result << " (" << r.reason << ") after " << r.history.size()
             << (r.history.size() == 1 ? " evaluation (" : " evaluations (") << r.new_evaluations << " run, "

@@ -62,11 +62,7 @@ int run_response_command(const ResponseCommandOptions& options) {
   nlohmann::json j;
   j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
   for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
-  {
-    OutputFile out(options.output_dir / "response.json");
-    out.stream() << std::setw(1) << j << "\n";
-    out.commit();
-  }
+  write_output_file(options.output_dir / "response.json", j.dump(1) + "\n");
   if (options.plots) {
     plot::LineChart chart;
     chart.title = "Steady-state unbalance response: " + spec.name;

@@ -121,11 +121,7 @@ int run_plot_command(const PlotCommandOptions& options) {
   nlohmann::json plot_overrides = nlohmann::json::array();
   for (const Override& o : options.overrides) plot_overrides.push_back(o.path + "=" + o.value);
   j["plot_overrides"] = plot_overrides;  // the pictures were drawn with these on top of `overrides`
-  {
-    OutputFile out(summary_file);
-    out.stream() << std::setw(1) << j << "\n";
-    out.commit();
-  }
+  write_output_file(summary_file, j.dump(1) + "\n");
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   std::cout << "Redrew " << pictures.size() << " pictures of " << options.run_dir.string()
             << (r.complete ? "" : " (the run is incomplete)") << "\n";
@@ -194,11 +190,7 @@ int run_run_command(const RunCommandOptions& options) {
   j["pictures"] = pictures;
   j["spectrogram_maxima"] = spectral;
   j["warnings"] = warnings;
-  {
-    OutputFile out(options.output_dir / "summary.json");
-    out.stream() << std::setw(1) << j << "\n";
-    out.commit();
-  }
+  write_output_file(options.output_dir / "summary.json", j.dump(1) + "\n");
 
   std::cout << spec.name << ": " << (r.complete ? "complete" : "INCOMPLETE") << ", " << r.stats.steps << " steps, "
             << r.stats.rhs_calls << " rhs calls, wall " << format_duration(r.stats.wall_time) << "\n";

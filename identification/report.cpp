@@ -155,15 +155,11 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
   std::filesystem::create_directories(dir);
   std::vector<std::string> files;
   {
-    OutputFile out(dir / "estimates.json");
-    out.stream() << std::setw(2) << estimates_json(study, r) << "\n";
-    out.commit();
+    write_output_file(dir / "estimates.json", estimates_json(study, r).dump(2) + "\n");
     files.push_back("estimates.json");
   }
   {
-    OutputFile out(dir / "ceres_summary.txt");
-    out.stream() << r.full_report;
-    out.commit();
+    write_output_file(dir / "ceres_summary.txt", r.full_report);
     files.push_back("ceres_summary.txt");
   }
   {

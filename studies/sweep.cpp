@@ -231,9 +231,7 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   }
   j["sensitivity"] = sens;
   {
-    OutputFile out(dir / "results.json");
-    out.stream() << std::setw(1) << j << "\n";
-    out.commit();
+    write_output_file(dir / "results.json", j.dump(1) + "\n");
     files.push_back("results.json");
   }
   if (!plots || runs.empty()) return files;

@@ -209,12 +209,7 @@ void RunupModel::Rhs(double t, const double* y, double* ydot, RunupWorkspace& ws
       we.drive = e.drive_power(*c.s, we.q.data(), we.v.data(), z, *we.workspace);
     }
   };
-  const int n_elements = static_cast<int>(elements_.size());
-  if (ws.team && n_elements > 1) {
-    ws.team->run(n_elements, evaluate, &task);
-  } else {
-    for (int k = 0; k < n_elements; ++k) evaluate(&task, k);
-  }
+  ws.for_each_element(static_cast<int>(elements_.size()), evaluate, &task);
   double element_dissipation = 0.0, drive_power = 0.0;
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const RunupWorkspace::Element& we = ws.elements[k];
@@ -328,12 +323,7 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
       we.calls = 1 + 2 * d + m;
     }
   };
-  const int n_elements = static_cast<int>(elements_.size());
-  if (ws.team && n_elements > 1) {
-    ws.team->run(n_elements, differentiate, &task);
-  } else {
-    for (int k = 0; k < n_elements; ++k) differentiate(&task, k);
-  }
+  ws.for_each_element(static_cast<int>(elements_.size()), differentiate, &task);
   for (std::size_t k = 0; k < elements_.size(); ++k) {
     const ForceElement& e = *elements_[k];
     const int d = static_cast<int>(e.dofs().size()), m = e.n_states();

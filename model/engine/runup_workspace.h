@@ -48,6 +48,15 @@ struct RunupWorkspace {
   long rhs_calls = 0, element_calls = 0, jacobian_evaluations = 0, factorisations = 0;
   bool energy = true;  // accumulate the energy-balance states
   std::unique_ptr<ElementTeam> team;  // null: the elements one after the other
+
+  /// fn(context, k) for the n elements: side by side on the team, else one after the other.
+  void for_each_element(int n, void (*fn)(void*, int), void* context) {
+    if (team) {
+      team->run(n, fn, context);
+    } else {
+      for (int k = 0; k < n; ++k) fn(context, k);
+    }
+  }
 };
 
 }  // namespace turbodyn
