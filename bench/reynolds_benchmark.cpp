@@ -20,12 +20,13 @@
 #include <Eigen/SparseLU>
 
 #include "model/films/reynolds.h"
+#include "model/spec/constants.h"
 
 namespace {
 
 using namespace turbodyn::reynolds;
+using turbodyn::kPi;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kEta = 0.0108, kR = 0.005, kL = 0.007, kC = 15e-6;
 constexpr double kOmega = 100000.0 * 2.0 * kPi / 60.0;
 constexpr double kStep = 2.0 * kPi / 1440.0;  // eccentricity angle advanced per call

@@ -104,15 +104,6 @@ FeatureTrack empty_track(const FeatureSpec& fs) {
 
 }  // namespace
 
-std::string to_string(FeatureKind k) {
-  switch (k) {
-    case FeatureKind::Order1x: return "order1x";
-    case FeatureKind::Subsync: return "subsync";
-    case FeatureKind::Resonance: return "resonance";
-  }
-  return "";
-}
-
 SpectraSet spectra_from_record(const Record& r, const ProcessingSpec& p) {
   SpectraSet s;
   const signal::StftOptions so = p.stft();

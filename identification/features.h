@@ -17,14 +17,17 @@
 #include <vector>
 
 #include "identification/measurement.h"
+#include "model/spec/enum_names.h"
 #include "post/signal.h"
 
 namespace turbodyn::identification {
 
 enum class FeatureKind { Order1x, Subsync, Resonance };
 
-/// "order1x", "subsync", "resonance".
-std::string to_string(FeatureKind k);
+/// The names in study files.
+inline constexpr EnumName<FeatureKind> kFeatureKinds[] = {
+    {FeatureKind::Order1x, "order1x"}, {FeatureKind::Subsync, "subsync"}, {FeatureKind::Resonance, "resonance"}};
+inline std::string to_string(FeatureKind k) { return name_of(kFeatureKinds, k); }
 
 struct FeatureSpec {
   std::string name;                 ///< used in features.csv and picture names

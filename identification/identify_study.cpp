@@ -76,8 +76,7 @@ void read_measurement_table(Reader& r, const std::filesystem::path& study_file, 
     sp.name = s.text_or("name", sp.column.column);
     sp.probe = s.text_or("probe", "");
     if (sp.probe.empty()) s.fail_missing("probe", "the model probe at the sensor's position, e.g. \"disk.compressor.x\"");
-    const std::string q = s.choice("quantity", {"displacement", "acceleration", "force"}, "displacement");
-    sp.quantity = q == "acceleration" ? Quantity::Acceleration : q == "force" ? Quantity::Force : Quantity::Displacement;
+    sp.quantity = s.enumeration("quantity", kQuantities, Quantity::Displacement);
     sp.column.unit = unit_key(s, "unit", dimension_of(sp.quantity));
     for (const SensorSpec& other : m.sensors)
       if (other.name == sp.name) s.fail("name", "a sensor named '" + sp.name + "' exists already");
@@ -95,9 +94,8 @@ std::vector<double> speeds_hz(Reader& r, const std::string& key) {
 
 FeatureSpec read_feature(Reader& r, const MeasurementSpec& m, Method method) {
   FeatureSpec f;
-  const std::string kind = r.choice("kind", {"order1x", "subsync", "resonance"}, "");
-  if (kind.empty()) r.fail_missing("kind", "order1x, subsync or resonance");
-  f.kind = kind == "subsync" ? FeatureKind::Subsync : kind == "resonance" ? FeatureKind::Resonance : FeatureKind::Order1x;
+  if (!r.has("kind")) r.fail_missing("kind", "order1x, subsync or resonance");
+  f.kind = r.enumeration("kind", kFeatureKinds, FeatureKind::Order1x);
   const std::string sensor = r.text_or("sensor", m.sensors.size() == 1 ? m.sensors[0].name : "");
   if (sensor.empty()) r.fail_missing("sensor", "the name of a [[measurement.sensors]] entry");
   std::vector<std::string> names;
@@ -110,7 +108,7 @@ FeatureSpec read_feature(Reader& r, const MeasurementSpec& m, Method method) {
     }
   }
   if (!found) r.fail("sensor", "no sensor named '" + sensor + "'" + studies::did_you_mean(sensor, names));
-  f.name = r.text_or("name", kind + "_" + sensor);
+  f.name = r.text_or("name", to_string(f.kind) + "_" + sensor);
   const Dimension d = dimension_of(m.sensors[f.sensor].quantity);
   f.weight = r.quantity_or("weight", dim::dimensionless, 1.0, Bound::Positive);
   f.amplitude_scale = sensor_quantity(r, "scale", d);
@@ -199,27 +197,20 @@ ParameterSpec read_parameter(Reader& r) {
   return p;
 }
 
+constexpr EnumName<Loss> kLosses[] = {
+    {Loss::None, "none"}, {Loss::Huber, "huber"}, {Loss::Cauchy, "cauchy"}, {Loss::SoftLOne, "soft-l1"}};
+
 }  // namespace
 
-std::string to_string(Loss l) {
-  switch (l) {
-    case Loss::None: return "none";
-    case Loss::Huber: return "huber";
-    case Loss::Cauchy: return "cauchy";
-    case Loss::SoftLOne: return "soft-l1";
-  }
-  return "";
-}
+std::string to_string(Loss l) { return name_of(kLosses, l); }
 
 IdentifyStudy load_identify_study(const std::filesystem::path& file) {
-  const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
-  const Sources src{file.string(), {}};
+  const input::TomlFile in(file, "study file");
+  const Sources& src = in.sources();
   IdentifyStudy s;
-  Reader top(root, "", src);
-  const toml::table* id = top.table("identify");
-  if (!id) top.fail("identify", "missing: an [identify] table with at least model = \"...\"");
+  Reader top(in.root(), "", src);
   {
-    Reader r(*id, "identify", src);
+    Reader r = top.required_table("identify", "an [identify] table with at least model = \"...\"");
     static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
     s.method = r.choice("method", {"runup", "response"}, "runup") == "response" ? Method::Response : Method::Runup;
     s.speed_from_measurement = r.choice("speed", {"model", "measured"}, "model") == "measured";
@@ -227,10 +218,8 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
       r.fail("speed", "\"measured\" drives run-ups; the steady-state response (method = \"response\") has none");
     r.finish();
   }
-  const toml::table* meas = top.table("measurement");
-  if (!meas) top.fail("measurement", "missing: a [measurement] table (file, columns, [[measurement.sensors]])");
   {
-    Reader r(*meas, "measurement", src);
+    Reader r = top.required_table("measurement", "a [measurement] table (file, columns, [[measurement.sensors]])");
     read_measurement_table(r, file, s.measurement);
   }
   if (s.speed_from_measurement && s.measurement.format != MeasurementFormat::TimeSeries)
@@ -250,27 +239,15 @@ IdentifyStudy load_identify_study(const std::filesystem::path& file) {
     s.processing.window = signal::window_from_string(w);
     r.finish();
   }
-  const toml::array* features = top.array("features");
-  if (!features || features->empty()) top.fail("features", "missing: at least one [[features]] entry (kind, sensor)");
-  for (std::size_t i = 0; i < features->size(); ++i) {
-    const toml::node& n = (*features)[i];
-    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": features[" + std::to_string(i) + "]: expected a table");
-    Reader r(*n.as_table(), "features[" + std::to_string(i) + "]", src);
+  top.required_tables("features", "at least one [[features]] entry (kind, sensor)", [&](Reader& r, std::size_t) {
     s.features.push_back(read_feature(r, s.measurement, s.method));
-  }
-  const toml::array* params = top.array("parameters");
-  if (!params || params->empty()) top.fail("parameters", "missing: at least one [[parameters]] entry (path, start, lower, upper)");
-  for (std::size_t i = 0; i < params->size(); ++i) {
-    const toml::node& n = (*params)[i];
-    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": parameters[" + std::to_string(i) + "]: expected a table");
-    Reader r(*n.as_table(), "parameters[" + std::to_string(i) + "]", src);
-    s.parameters.push_back(read_parameter(r));
-  }
+  });
+  top.required_tables("parameters", "at least one [[parameters]] entry (path, start, lower, upper)",
+                      [&](Reader& r, std::size_t) { s.parameters.push_back(read_parameter(r)); });
   if (const toml::table* solver = top.table("solver")) {
     Reader r(*solver, "solver", src);
     SolverSpec& o = s.solver;
-    const std::string loss = r.choice("loss", {"none", "huber", "cauchy", "soft-l1"}, "none");
-    o.loss = loss == "huber" ? Loss::Huber : loss == "cauchy" ? Loss::Cauchy : loss == "soft-l1" ? Loss::SoftLOne : Loss::None;
+    o.loss = r.enumeration("loss", kLosses, Loss::None);
     o.loss_scale = r.quantity_or("loss_scale", dim::dimensionless, 1.0, Bound::Positive);
     o.max_iterations = static_cast<int>(r.integer_or("max_iterations", 30, 0, 1000000));
     o.step = r.quantity_or("step", dim::dimensionless, 1e-3, Bound::Positive);

@@ -290,15 +290,6 @@ void from_tacho(const Table& t, const MeasurementSpec& spec, const std::vector<d
 
 }  // namespace
 
-std::string to_string(Quantity q) {
-  switch (q) {
-    case Quantity::Displacement: return "displacement";
-    case Quantity::Acceleration: return "acceleration";
-    case Quantity::Force: return "force";
-  }
-  return "";
-}
-
 Dimension dimension_of(Quantity q) {
   switch (q) {
     case Quantity::Displacement: return dim::length;

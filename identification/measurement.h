@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "model/spec/enum_names.h"
 #include "model/spec/units.h"
 
 namespace turbodyn::identification {
@@ -19,8 +20,10 @@ namespace turbodyn::identification {
 /// What a sensor measures; it selects the unit dimension and what is done to the model's displacement.
 enum class Quantity { Displacement, Acceleration, Force };
 
-/// "displacement", "acceleration", "force".
-std::string to_string(Quantity q);
+/// The names in study files.
+inline constexpr EnumName<Quantity> kQuantities[] = {
+    {Quantity::Displacement, "displacement"}, {Quantity::Acceleration, "acceleration"}, {Quantity::Force, "force"}};
+inline std::string to_string(Quantity q) { return name_of(kQuantities, q); }
 /// The dimension of a sensor's values (m, m/s^2, N).
 Dimension dimension_of(Quantity q);
 

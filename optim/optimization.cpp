@@ -13,6 +13,7 @@
 #include "studies/metrics.h"
 #include "studies/study_keys.h"
 #include "studies/table.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::optim {
 namespace {
@@ -21,7 +22,6 @@ using input::Bound;
 using input::Reader;
 using input::Sources;
 
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
 
 struct AlgorithmInfo {
   const char* name;
@@ -283,14 +283,12 @@ std::vector<Override> run_overrides(const OptimizationSpec& spec, const std::vec
 }
 
 OptimizationSpec load_optimization(const std::filesystem::path& file) {
-  const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
-  const Sources src{file.string(), {}};
+  const input::TomlFile in(file, "study file");
+  const Sources& src = in.sources();
   OptimizationSpec s;
-  Reader top(root, "", src);
-  const toml::table* opt = top.table("optimize");
-  if (!opt) top.fail("optimize", "missing: an [optimize] table with at least model = \"...\"");
+  Reader top(in.root(), "", src);
   {
-    Reader r(*opt, "optimize", src);
+    Reader r = top.required_table("optimize", "an [optimize] table with at least model = \"...\"");
     static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
     if (const toml::array* probes = r.array("spectrograms"))
       for (const toml::node& n : *probes) {
@@ -300,10 +298,8 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
     s.final_runs = r.choice("final_runs", {"full", "window", "none"}, "full");
     r.finish();
   }
-  const toml::table* alg = top.table("algorithm");
-  if (!alg) top.fail("algorithm", "missing: an [algorithm] table with name = \"cobyla\" (or another) and stopping criteria");
   {
-    Reader r(*alg, "algorithm", src);
+    Reader r = top.required_table("algorithm", "an [algorithm] table with name = \"cobyla\" (or another) and stopping criteria");
     AlgorithmOptions& a = s.algorithm;
     a.name = r.choice("name", algorithm_names(), "");
     if (a.name.empty()) r.fail_missing("name", "one of cobyla, bobyqa, sbplx, direct-l, crs2, isres, mlsl, mma, slsqp");
@@ -331,54 +327,34 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
     if (!a.IsValid(&why)) r.fail_table(why);
     r.finish();
   }
-  const toml::array* vars = top.array("variables");
-  if (!vars || vars->empty()) top.fail("variables", "missing: at least one [[variables]] entry (path, low, high)");
-  for (std::size_t i = 0; i < vars->size(); ++i) {
-    const toml::node& n = (*vars)[i];
-    const std::string path = "variables[" + std::to_string(i) + "]";
-    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
-    Reader r(*n.as_table(), path, src);
+  top.required_tables("variables", "at least one [[variables]] entry (path, low, high)", [&](Reader& r, std::size_t) {
     s.variables.push_back(read_variable(r));
     for (std::size_t j = 0; j + 1 < s.variables.size(); ++j)
       for (const std::string& p : s.variables.back().paths)
         if (std::find(s.variables[j].paths.begin(), s.variables[j].paths.end(), p) != s.variables[j].paths.end())
           r.fail(r.has("paths") ? "paths" : "path", "'" + p + "' is already set by variables[" + std::to_string(j) + "]");
-  }
-  if (const toml::array* cases = top.array("cases")) {
-    for (std::size_t i = 0; i < cases->size(); ++i) {
-      const toml::node& n = (*cases)[i];
-      const std::string path = "cases[" + std::to_string(i) + "]";
-      if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
-      Reader r(*n.as_table(), path, src);
-      OperatingCase c;
-      c.name = r.text_or("name", "case " + std::to_string(i));
-      c.weight = r.quantity_or("weight", dim::dimensionless, 1.0, Bound::Positive);
-      if (const toml::array* set = r.array("set"))
-        for (const toml::node& o : *set) {
-          if (!o.is_string()) r.fail("set", "expected strings \"PATH=VALUE\"");
-          c.overrides.push_back(parse_override(*o.value<std::string>()));
-        }
-      r.finish();
-      s.cases.push_back(c);
-    }
-  }
+  });
+  top.each_table("cases", [&](Reader& r, std::size_t i) {
+    OperatingCase c;
+    c.name = r.text_or("name", "case " + std::to_string(i));
+    c.weight = r.quantity_or("weight", dim::dimensionless, 1.0, Bound::Positive);
+    if (const toml::array* set = r.array("set"))
+      for (const toml::node& o : *set) {
+        if (!o.is_string()) r.fail("set", "expected strings \"PATH=VALUE\"");
+        c.overrides.push_back(parse_override(*o.value<std::string>()));
+      }
+    r.finish();
+    s.cases.push_back(c);
+  });
   if (s.cases.empty()) s.cases.push_back({"nominal", 1.0, {}});
-  const toml::array* metrics = top.array("metrics");
-  if (!metrics || metrics->empty()) top.fail("metrics", "missing: at least one [[metrics]] entry (kind, probe)");
-  for (std::size_t i = 0; i < metrics->size(); ++i) {
-    const toml::node& n = (*metrics)[i];
-    const std::string path = "metrics[" + std::to_string(i) + "]";
-    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
-    Reader r(*n.as_table(), path, src);
+  top.required_tables("metrics", "at least one [[metrics]] entry (kind, probe)", [&](Reader& r, std::size_t) {
     s.metrics.push_back(read_metric(r, s.speed_window_min, s.speed_window_max));
     for (std::size_t j = 0; j + 1 < s.metrics.size(); ++j)
       if (s.metrics[j].spec.name == s.metrics.back().spec.name)
         r.fail("name", "the name '" + s.metrics[j].spec.name + "' is already used by metrics[" + std::to_string(j) + "]");
-  }
-  const toml::table* objective = top.table("objective");
-  if (!objective) top.fail("objective", "missing: an [objective] table with metric = \"...\" (minimised)");
+  });
   {
-    Reader r(*objective, "objective", src);
+    Reader r = top.required_table("objective", "an [objective] table with metric = \"...\" (minimised)");
     s.objective.cases = r.choice("cases", {"max", "weighted"}, "max") == "max" ? CaseAggregate::Max
                                                                                 : CaseAggregate::Weighted;
     if (r.has("metric")) s.objective.terms.push_back({metric_index(r, "metric", s.metrics), 1.0});
@@ -398,42 +374,32 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
       r.fail_missing("metric", "the metric to minimise, or terms = [{metric = \"...\", weight = 1.0}, ...]");
     r.finish();
   }
-  struct PendingBound {
-    const toml::table* table;
-    std::string path, key;
-  };
-  std::vector<PendingBound> pending;
-  if (const toml::array* cons = top.array("constraints")) {
-    for (std::size_t i = 0; i < cons->size(); ++i) {
-      const toml::node& n = (*cons)[i];
-      const std::string path = "constraints[" + std::to_string(i) + "]";
-      if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
-      Reader r(*n.as_table(), path, src);
-      Constraint c;
-      c.metric = metric_index(r, "metric", s.metrics);
-      c.name = r.text_or("name", s.metrics[c.metric].spec.name);
-      const bool upper = r.has("upper"), lower = r.has("lower");
-      if (!upper && !lower)
-        r.fail_table("a constraint needs a bound: upper = \"...\" (metric <= upper) or lower = \"...\" (metric >= lower)");
-      if (upper && lower) r.fail("lower", "give either upper or lower (write two constraints for a band)");
-      c.upper = upper;
-      r.finish();
-      s.constraints.push_back(c);
-      pending.push_back({n.as_table(), path, upper ? "upper" : "lower"});
-    }
-  }
+  std::vector<std::string> pending_bound_keys;  // "upper" or "lower" per constraint, read once the units are known
+  top.each_table("constraints", [&](Reader& r, std::size_t) {
+    Constraint c;
+    c.metric = metric_index(r, "metric", s.metrics);
+    c.name = r.text_or("name", s.metrics[c.metric].spec.name);
+    const bool upper = r.has("upper"), lower = r.has("lower");
+    if (!upper && !lower)
+      r.fail_table("a constraint needs a bound: upper = \"...\" (metric <= upper) or lower = \"...\" (metric >= lower)");
+    if (upper && lower) r.fail("lower", "give either upper or lower (write two constraints for a band)");
+    c.upper = upper;
+    r.finish();
+    s.constraints.push_back(c);
+    pending_bound_keys.push_back(upper ? "upper" : "lower");
+  });
   if (!s.constraints.empty() && !supports_constraints(s.algorithm.name) && is_global(s.algorithm.name)) {
-    Reader r(*alg, "algorithm", src);
+    Reader r = top.required_table("algorithm", "");
     r.fail("name", s.algorithm.name + " handles bound constraints only, not the study's [[constraints]]; use isres "
                    "(global) or cobyla, mma, slsqp (local), or bobyqa/sbplx (wrapped in NLopt's augmented Lagrangian, "
                    "AUGLAG)");
   }
   top.finish();
   resolve_metrics(s);
-  for (std::size_t i = 0; i < s.constraints.size(); ++i) {
-    Reader r(*pending[i].table, pending[i].path, src);
-    s.constraints[i].bound = bound_value(r, pending[i].key, s.metrics[s.constraints[i].metric].unit);
-  }
+  Reader again(in.root(), "", src);
+  again.each_table("constraints", [&](Reader& r, std::size_t i) {
+    s.constraints[i].bound = bound_value(r, pending_bound_keys[i], s.metrics[s.constraints[i].metric].unit);
+  });
   return s;
 }
 

@@ -4,11 +4,11 @@
 #include <stdexcept>
 
 #include "model/rotor/response.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::optim {
 namespace {
 
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
 constexpr double kGoldenTolerance = 1e-10;  // relative speed tolerance of the refined peak
 
 // Which quantity of the steady response a probe names.

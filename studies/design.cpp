@@ -87,19 +87,13 @@ void validate(const Distribution& d, const std::string& subject, bool full_facto
           fail(subject + ": level " + std::to_string(i) + " is not finite (" + fmt(d.levels[i]) + ")");
       return;
     case Distribution::Kind::Uniform:
-      require_finite(d.low, "low", subject);
-      require_finite(d.high, "high", subject);
-      if (!(d.low < d.high))
-        fail(subject + ": Uniform needs low < high, got low >= high (low = " + fmt(d.low) + ", high = " +
-             fmt(d.high) + ")");
-      need_levels();
-      return;
     case Distribution::Kind::LogUniform:
       require_finite(d.low, "low", subject);
       require_finite(d.high, "high", subject);
-      if (!(d.low > 0)) fail(subject + ": LogUniform needs low > 0 (got low = " + fmt(d.low) + ")");
+      if (d.kind == Distribution::Kind::LogUniform && !(d.low > 0))
+        fail(subject + ": LogUniform needs low > 0 (got low = " + fmt(d.low) + ")");
       if (!(d.low < d.high))
-        fail(subject + ": LogUniform needs low < high, got low >= high (low = " + fmt(d.low) + ", high = " +
+        fail(subject + ": " + kind + " needs low < high, got low >= high (low = " + fmt(d.low) + ", high = " +
              fmt(d.high) + ")");
       need_levels();
       return;

@@ -10,6 +10,7 @@
 #include "model/io/toml_reader.h"
 #include "studies/study_keys.h"
 #include "studies/table.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::studies {
 namespace {
@@ -140,7 +141,7 @@ void check_speed_window(const StudyCommon& study, const SpeedProfile& speed) {
   }
   if (study.speed_window_min < hi && (study.speed_window_max <= 0.0 || study.speed_window_max > lo)) return;
   std::ostringstream os;
-  constexpr double kRpm = 60.0 / (2.0 * M_PI);
+  constexpr double kRpm = kRadPerSToRpm;
   os << study.source.string() << ": speed_window: [" << study.speed_window_min * kRpm << ", "
      << study.speed_window_max * kRpm << "] rpm lies outside the speeds of the run of "
      << study.model.filename().string() << " (" << lo * kRpm << " to " << hi * kRpm
@@ -149,29 +150,21 @@ void check_speed_window(const StudyCommon& study, const SpeedProfile& speed) {
 }
 
 StudySpec load_study(const std::filesystem::path& file) {
-  const toml::table root = input::parse_toml(input::read_text_file(file, "study file"), file.string());
-  const Sources src{file.string(), {}};
+  const input::TomlFile in(file, "study file");
   StudySpec s;
-  Reader top(root, "", src);
-  const toml::table* study = top.table("study");
-  if (!study) top.fail("study", "missing: a [study] table with at least model = \"...\"");
+  Reader top(in.root(), "", in.sources());
   {
-    Reader r(*study, "study", src);
+    Reader r = top.required_table("study", "a [study] table with at least model = \"...\"");
     static_cast<StudyCommon&>(s) = read_study_common(r, file);
     r.finish();
   }
-  const toml::table* design = top.table("design");
-  if (!design) top.fail("design", "missing: a [design] table with kind = \"...\"");
   {
-    Reader r(*design, "design", src);
-    const std::string kind = r.choice(
-        "kind", {"full-factorial", "latin-hypercube", "sobol", "halton", "monte-carlo", "table"}, "full-factorial");
-    s.design.kind = kind == "full-factorial"    ? DesignKind::FullFactorial
-                    : kind == "latin-hypercube" ? DesignKind::LatinHypercube
-                    : kind == "sobol"           ? DesignKind::Sobol
-                    : kind == "halton"          ? DesignKind::Halton
-                    : kind == "monte-carlo"     ? DesignKind::MonteCarlo
-                                                : DesignKind::Table;
+    Reader r = top.required_table("design", "a [design] table with kind = \"...\"");
+    static constexpr EnumName<DesignKind> kKinds[] = {
+        {DesignKind::FullFactorial, "full-factorial"}, {DesignKind::LatinHypercube, "latin-hypercube"},
+        {DesignKind::Sobol, "sobol"},                   {DesignKind::Halton, "halton"},
+        {DesignKind::MonteCarlo, "monte-carlo"},        {DesignKind::Table, "table"}};
+    s.design.kind = r.enumeration("kind", kKinds, DesignKind::FullFactorial);
     const long runs = r.integer_or("runs", 0, 0, 10000000);
     s.design.runs = static_cast<std::size_t>(runs);
     s.design.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
@@ -189,31 +182,19 @@ StudySpec load_study(const std::filesystem::path& file) {
     if (s.design.kind == DesignKind::Table && s.design.table.empty()) r.fail("table", "missing: the rows of the table");
     r.finish();
   }
-  const toml::array* params = top.array("parameters");
-  if (!params || params->empty()) top.fail("parameters", "missing: at least one [[parameters]] entry (path = ...)");
-  for (std::size_t i = 0; i < params->size(); ++i) {
-    const toml::node& n = (*params)[i];
-    const std::string path = "parameters[" + std::to_string(i) + "]";
-    if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": " + path + ": expected a table");
-    Reader r(*n.as_table(), path, src);
+  top.required_tables("parameters", "at least one [[parameters]] entry (path = ...)", [&](Reader& r, std::size_t) {
     std::string unit;
     Parameter p = read_parameter(r, s.design.kind, unit);
     s.design.parameters.push_back(p);
     s.parameter_units.push_back(unit);
-  }
-  if (const toml::array* metrics = top.array("metrics")) {
-    for (std::size_t i = 0; i < metrics->size(); ++i) {
-      const toml::node& n = (*metrics)[i];
-      if (!n.is_table()) throw ModelError(input::where(n, src, file.string()) + ": metrics[" + std::to_string(i) + "]: expected a table");
-      Reader r(*n.as_table(), "metrics[" + std::to_string(i) + "]", src);
-      s.metrics.push_back(read_metric(r));
-      for (std::size_t k = 0; k < i; ++k)
-        if (s.metrics[k].name == s.metrics[i].name)
-          r.fail("name", "metrics[" + std::to_string(k) + "] has the name '" + s.metrics[i].name +
-                             "' already (each metric is one column of the results: give it a name = \"...\" of its own)");
-    }
-  }
-  if (s.metrics.empty()) top.fail("metrics", "missing: at least one [[metrics]] entry (kind, probe)");
+  });
+  top.required_tables("metrics", "at least one [[metrics]] entry (kind, probe)", [&](Reader& r, std::size_t i) {
+    s.metrics.push_back(read_metric(r));
+    for (std::size_t k = 0; k < i; ++k)
+      if (s.metrics[k].name == s.metrics[i].name)
+        r.fail("name", "metrics[" + std::to_string(k) + "] has the name '" + s.metrics[i].name +
+                           "' already (each metric is one column of the results: give it a name = \"...\" of its own)");
+  });
   top.finish();
   try {
     (void)make_design(s.design);

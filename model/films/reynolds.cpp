@@ -8,12 +8,12 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include "model/spec/constants.h"
 
 namespace turbodyn::reynolds {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 
 bool finite_state(const FilmState& s) {
@@ -241,6 +241,16 @@ struct FilmSolver::Impl {
 
   // ---- per-call set-up -------------------------------------------------------------------------------------------
 
+  // Fills the half j >= j_first of each full-grid field (n x nz) with its mirror image about mid-width.
+  template <class... Fields>
+  void mirror_axially(int j_first, Fields&... fields) const {
+    for (int i = 0; i < n; ++i)
+      for (int j = j_first; j < nz; ++j) {
+        const int k = i * nz + j, km = i * nz + (nz - 1 - j);
+        ((fields[k] = fields[km]), ...);
+      }
+  }
+
   bool symmetric_values() const {
     for (int k : dir_nodes) {
       const int i = k / nz, j = k % nz;
@@ -283,15 +293,8 @@ struct FilmSolver::Impl {
       }
     }
     if (sym) {
+      mirror_axially(jn, hN, hE, aE, cE, sq);
       for (int i = 0; i < n; ++i) {
-        for (int j = jn; j < nz; ++j) {
-          const int k = i * nz + j, km = i * nz + (nz - 1 - j);
-          hN[k] = hN[km];
-          hE[k] = hE[km];
-          aE[k] = aE[km];
-          cE[k] = cE[km];
-          sq[k] = sq[km];
-        }
         for (int jf = jfn; jf < nzf; ++jf) {
           hF[i * nzf + jf] = hF[i * nzf + nz - jf];
           aF[i * nzf + jf] = aF[i * nzf + nz - jf];
@@ -912,15 +915,7 @@ struct FilmSolver::Impl {
         cav[k] = cr[kr];
         ff[k] = jfo ? thr[kr] : (cr[kr] != kFull ? 0.0 : 1.0);
       }
-    if (sym)
-      for (int i = 0; i < n; ++i)
-        for (int j = m; j < nz; ++j) {
-          const int k = i * nz + j, km = i * nz + (nz - 1 - j);
-          p[k] = p[km];
-          theta[k] = theta[km];
-          cav[k] = cav[km];
-          ff[k] = ff[km];
-        }
+    if (sym) mirror_axially(m, p, theta, cav, ff);
     int nfallback = 0;
     for (int k = 0; k < n * nz; ++k) {
       ncav += cav[k] != kFull;

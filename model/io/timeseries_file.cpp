@@ -243,6 +243,13 @@ struct Hdf5TimeSeriesWriter::Impl {
   void write_and_flush();
   herr_t close_all() noexcept;
   [[noreturn]] void throw_unusable(const char* call) const;
+  // Before set_attribute: the file is usable and `name` is not empty and not one the writer keeps for itself.
+  void check_attribute_name(const std::string& name) const {
+    if (!open || !failure.empty()) throw_unusable("set_attribute()");
+    if (name.empty()) throw TimeSeriesError(context + ": attribute names must not be empty");
+    if (name == kCompleteAttribute || name == kSoftwareAttribute)
+      throw TimeSeriesError(context + ": attribute name '" + name + "' is reserved");
+  }
 };
 
 void Hdf5TimeSeriesWriter::Impl::create_dataset(hid_t location, const char* name, const std::string& unit,
@@ -408,20 +415,14 @@ void Hdf5TimeSeriesWriter::flush() {
 
 void Hdf5TimeSeriesWriter::set_attribute(const std::string& name, const std::string& value) {
   Impl& m = *impl_;
-  if (!m.open || !m.failure.empty()) m.throw_unusable("set_attribute()");
-  if (name.empty()) throw TimeSeriesError(m.context + ": attribute names must not be empty");
-  if (name == kCompleteAttribute || name == kSoftwareAttribute)
-    throw TimeSeriesError(m.context + ": attribute name '" + name + "' is reserved");
+  m.check_attribute_name(name);
   QuietHdf5 quiet;
   write_string_attribute(m.file.get(), name, value, m.context);
 }
 
 void Hdf5TimeSeriesWriter::set_attribute(const std::string& name, double value) {
   Impl& m = *impl_;
-  if (!m.open || !m.failure.empty()) m.throw_unusable("set_attribute()");
-  if (name.empty()) throw TimeSeriesError(m.context + ": attribute names must not be empty");
-  if (name == kCompleteAttribute || name == kSoftwareAttribute)
-    throw TimeSeriesError(m.context + ": attribute name '" + name + "' is reserved");
+  m.check_attribute_name(name);
   QuietHdf5 quiet;
   write_number_attribute(m.file.get(), name, value, m.context);
 }

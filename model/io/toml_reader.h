@@ -16,6 +16,7 @@
 
 #include <toml++/toml.h>
 
+#include "model/spec/enum_names.h"
 #include "model/spec/errors.h"
 #include "model/spec/limits.h"
 #include "model/spec/units.h"
@@ -87,6 +88,22 @@ inline std::string describe_node(const toml::node& n) {
 
 enum class Bound { Any, Positive, NonNegative };
 
+// A TOML file read whole, with a Reader over its top level (tree and sources live as long as this object).
+class TomlFile {
+ public:
+  /// `what` names the kind of file in the "cannot open" message ("study file").
+  TomlFile(const std::filesystem::path& file, const std::string& what)
+      : root_(parse_toml(read_text_file(file, what), file.string())), sources_{file.string(), {}} {}
+  TomlFile(const TomlFile&) = delete;
+  TomlFile& operator=(const TomlFile&) = delete;
+  const toml::table& root() const { return root_; }
+  const Sources& sources() const { return sources_; }
+
+ private:
+  toml::table root_;
+  Sources sources_;
+};
+
 // Optional record of the key path of every key a Reader asks for (present or not), for the test that the
 // documentation names every key the loader accepts (model_file.h: accepted_model_keys). Off unless a KeyRecording
 // is alive on this thread; it costs one pointer test per key read, and keys are read only while loading.
@@ -96,28 +113,27 @@ inline thread_local std::vector<std::string>* key_record = nullptr;
 // (model_file.h: numeric_model_keys).
 inline thread_local std::vector<std::string>* numeric_key_record = nullptr;
 
-class NumericKeyRecording {
+// While alive, points one of the record slots above at `out` (and restores the previous target after).
+class Recording {
  public:
-  explicit NumericKeyRecording(std::vector<std::string>& out) : previous_(numeric_key_record) {
-    numeric_key_record = &out;
+  Recording(std::vector<std::string>*& slot, std::vector<std::string>& out) : slot_(slot), previous_(slot) {
+    slot_ = &out;
   }
-  ~NumericKeyRecording() { numeric_key_record = previous_; }
-  NumericKeyRecording(const NumericKeyRecording&) = delete;
-  NumericKeyRecording& operator=(const NumericKeyRecording&) = delete;
+  ~Recording() { slot_ = previous_; }
+  Recording(const Recording&) = delete;
+  Recording& operator=(const Recording&) = delete;
 
  private:
+  std::vector<std::string>*& slot_;
   std::vector<std::string>* previous_;
 };
 
-class KeyRecording {
- public:
-  explicit KeyRecording(std::vector<std::string>& out) : previous_(key_record) { key_record = &out; }
-  ~KeyRecording() { key_record = previous_; }
-  KeyRecording(const KeyRecording&) = delete;
-  KeyRecording& operator=(const KeyRecording&) = delete;
+struct KeyRecording : Recording {
+  explicit KeyRecording(std::vector<std::string>& out) : Recording(key_record, out) {}
+};
 
- private:
-  std::vector<std::string>* previous_;
+struct NumericKeyRecording : Recording {
+  explicit NumericKeyRecording(std::vector<std::string>& out) : Recording(numeric_key_record, out) {}
 };
 
 // Reads the keys of one table, remembers which keys the program knows, and rejects all others in finish().
@@ -203,6 +219,13 @@ class Reader {
     fail(key, "unknown value '" + value + "' (expected one of " + list + ")" +
                   (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
   }
+  // The enum value named by a string key, one of the names in `names` (enum_names.h); `fallback` when absent.
+  template <class Enum, std::size_t N>
+  Enum enumeration(std::string_view key, const EnumName<Enum> (&names)[N], Enum fallback) {
+    Enum value = fallback;
+    value_of(names, choice(key, names_of(names), name_of(names, fallback)), value);
+    return value;
+  }
   bool flag_or(std::string_view key, bool fallback) {
     const toml::node* n = get(key);
     if (!n) return fallback;
@@ -233,6 +256,36 @@ class Reader {
     if (!n) return nullptr;
     if (!n->is_array()) fail(key, "expected an array, got " + describe_node(*n));
     return n->as_array();
+  }
+
+  // Calls f(reader, i) for each entry of the array of tables `key` ([[key]] in TOML), whose reader has the path
+  // "key[i]"; an entry that is not a table is an error. Returns the number of entries, 0 when the key is absent.
+  template <class F>
+  std::size_t each_table(std::string_view key, F&& f) {
+    const toml::array* entries = array(key);
+    if (!entries) return 0;
+    for (std::size_t i = 0; i < entries->size(); ++i) {
+      const toml::node& n = (*entries)[i];
+      const std::string entry_path = key_path(key) + "[" + std::to_string(i) + "]";
+      if (!n.is_table()) throw ModelError(where(n, sources_, sources_.file) + ": " + entry_path + ": expected a table");
+      Reader r(*n.as_table(), entry_path, sources_);
+      f(r, i);
+    }
+    return entries->size();
+  }
+
+  // A Reader of the table `key` ([key]), which must be there: `what` says what it holds, for the message.
+  Reader required_table(std::string_view key, const std::string& what) {
+    const toml::table* t = table(key);
+    if (!t) fail(key, "missing: " + what);
+    return Reader(*t, key_path(key), sources_);
+  }
+  // each_table for an array of tables that needs at least one entry (`what` says what one holds).
+  template <class F>
+  std::size_t required_tables(std::string_view key, const std::string& what, F&& f) {
+    const toml::array* entries = array(key);
+    if (!entries || entries->empty()) fail(key, "missing: " + what);
+    return each_table(key, f);
   }
 
   void record_numeric(std::string_view key) const {

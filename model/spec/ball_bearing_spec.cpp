@@ -3,11 +3,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "model/spec/constants.h"
+
 namespace turbodyn {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 template <typename T>
 bool fail(std::string* error, const char* field, const char* rule, T value) {
@@ -38,31 +38,47 @@ bool BallBearingSpec::IsValid(std::string* error) const {
   if (!(contact_angle >= 0.0 && contact_angle < 0.5 * kPi))
     return fail(error, "contact_angle", "in [0, pi/2) rad", contact_angle);
   if (side != 1 && side != -1) return fail(error, "side", "+1 or -1", side);
-  if (!positive(ball_youngs_modulus)) return fail(error, "ball_youngs_modulus", "> 0", ball_youngs_modulus);
-  if (!poisson(ball_poisson_ratio)) return fail(error, "ball_poisson_ratio", "in (-1, 0.5)", ball_poisson_ratio);
-  if (!positive(ball_density)) return fail(error, "ball_density", "> 0", ball_density);
-  if (!positive(ring_youngs_modulus)) return fail(error, "ring_youngs_modulus", "> 0", ring_youngs_modulus);
-  if (!poisson(ring_poisson_ratio)) return fail(error, "ring_poisson_ratio", "in (-1, 0.5)", ring_poisson_ratio);
-  if (!positive(cage_mass)) return fail(error, "cage_mass", "> 0", cage_mass);
-  if (!non_negative(cage_polar_inertia)) return fail(error, "cage_polar_inertia", ">= 0", cage_polar_inertia);
-  if (!non_negative(cage_diametral_inertia))
-    return fail(error, "cage_diametral_inertia", ">= 0", cage_diametral_inertia);
+  // The material and damping constants: each a finite number in its range.
+  enum class Rule { Positive, NonNegative, PoissonRatio };
+  struct Check {
+    const char* field;
+    double value;
+    Rule rule;
+  };
+  const Check checks[] = {
+      {"ball_youngs_modulus", ball_youngs_modulus, Rule::Positive},
+      {"ball_poisson_ratio", ball_poisson_ratio, Rule::PoissonRatio},
+      {"ball_density", ball_density, Rule::Positive},
+      {"ring_youngs_modulus", ring_youngs_modulus, Rule::Positive},
+      {"ring_poisson_ratio", ring_poisson_ratio, Rule::PoissonRatio},
+      {"cage_mass", cage_mass, Rule::Positive},
+      {"cage_polar_inertia", cage_polar_inertia, Rule::NonNegative},
+      {"cage_diametral_inertia", cage_diametral_inertia, Rule::NonNegative},
+      {"cage_youngs_modulus", cage_youngs_modulus, Rule::Positive},
+      {"cage_poisson_ratio", cage_poisson_ratio, Rule::PoissonRatio},
+      {"pocket_damping", pocket_damping, Rule::NonNegative},
+      {"contact_damping", contact_damping, Rule::NonNegative},
+      {"friction_static", friction_static, Rule::NonNegative},
+      {"friction_sliding", friction_sliding, Rule::NonNegative},
+      {"friction_v1", friction_v1, Rule::Positive},
+      {"friction_v2", friction_v2, Rule::Positive},
+      {"preload", preload, Rule::NonNegative},
+      {"preload_stiffness", preload_stiffness, Rule::NonNegative},
+      {"outer_ring_mass", outer_ring_mass, Rule::Positive},
+      {"outer_ring_damping", outer_ring_damping, Rule::NonNegative},
+  };
+  for (const Check& c : checks) {
+    const bool ok = c.rule == Rule::Positive      ? positive(c.value)
+                    : c.rule == Rule::NonNegative ? non_negative(c.value)
+                                                  : poisson(c.value);
+    if (!ok)
+      return fail(error, c.field, c.rule == Rule::Positive ? "> 0" : c.rule == Rule::NonNegative ? ">= 0" : "in (-1, 0.5)",
+                  c.value);
+  }
   if (!positive(pocket_clearance) || pocket_clearance >= 0.5 * ball_diameter)
     return fail(error, "pocket_clearance", "> 0 and < ball_diameter / 2", pocket_clearance);
-  if (!positive(cage_youngs_modulus)) return fail(error, "cage_youngs_modulus", "> 0", cage_youngs_modulus);
-  if (!poisson(cage_poisson_ratio)) return fail(error, "cage_poisson_ratio", "in (-1, 0.5)", cage_poisson_ratio);
-  if (!non_negative(pocket_damping)) return fail(error, "pocket_damping", ">= 0", pocket_damping);
-  if (!non_negative(contact_damping)) return fail(error, "contact_damping", ">= 0", contact_damping);
-  if (!non_negative(friction_static)) return fail(error, "friction_static", ">= 0", friction_static);
-  if (!non_negative(friction_sliding)) return fail(error, "friction_sliding", ">= 0", friction_sliding);
-  if (!positive(friction_v1)) return fail(error, "friction_v1", "> 0", friction_v1);
-  if (!positive(friction_v2)) return fail(error, "friction_v2", "> 0", friction_v2);
-  if (!non_negative(preload)) return fail(error, "preload", ">= 0", preload);
-  if (!non_negative(preload_stiffness)) return fail(error, "preload_stiffness", ">= 0", preload_stiffness);
-  if (!positive(outer_ring_mass)) return fail(error, "outer_ring_mass", "> 0", outer_ring_mass);
   if (outer_ring_mode == OuterRingMode::Spring && !positive(outer_ring_stiffness))
     return fail(error, "outer_ring_stiffness", "> 0 for the spring outer-ring mode", outer_ring_stiffness);
-  if (!non_negative(outer_ring_damping)) return fail(error, "outer_ring_damping", ">= 0", outer_ring_damping);
   return true;
 }
 

@@ -2,45 +2,27 @@
 
 #include <utility>
 
+#include "model/spec/enum_names.h"
+
 namespace turbodyn {
 
 namespace {
 
 // Each enum's model-file names in one table, so that to_string and from_string cannot disagree.
-template <class Enum>
-using Name = std::pair<Enum, std::string_view>;
-
-constexpr Name<Cavitation> kCavitations[] = {
+constexpr EnumName<Cavitation> kCavitations[] = {
     {Cavitation::None, "none"}, {Cavitation::Gumbel, "gumbel"}, {Cavitation::MassConserving, "mass-conserving"}};
-constexpr Name<BearingType> kBearingTypes[] = {{BearingType::Linear, "linear"},
+constexpr EnumName<BearingType> kBearingTypes[] = {{BearingType::Linear, "linear"},
                                                {BearingType::Journal, "journal"},
                                                {BearingType::FloatingRing, "floating-ring"},
                                                {BearingType::Ball, "ball"}};
-constexpr Name<Integrator> kIntegrators[] = {
+constexpr EnumName<Integrator> kIntegrators[] = {
     {Integrator::Auto, "auto"}, {Integrator::CvodeBdf, "cvode-bdf"}, {Integrator::ArkodeErk, "arkode-erk"}};
-constexpr Name<AtolScaling> kAtolScalings[] = {{AtolScaling::Uniform, "uniform"}, {AtolScaling::Typical, "typical"}};
-constexpr Name<SpectrogramWindow> kWindows[] = {{SpectrogramWindow::Hann, "hann"},
+constexpr EnumName<AtolScaling> kAtolScalings[] = {{AtolScaling::Uniform, "uniform"}, {AtolScaling::Typical, "typical"}};
+constexpr EnumName<SpectrogramWindow> kWindows[] = {{SpectrogramWindow::Hann, "hann"},
                                                 {SpectrogramWindow::Hamming, "hamming"},
                                                 {SpectrogramWindow::Blackman, "blackman"},
                                                 {SpectrogramWindow::FlatTop, "flattop"},
                                                 {SpectrogramWindow::Rectangular, "rectangular"}};
-
-template <class Enum, std::size_t N>
-std::string name_of(const Name<Enum> (&names)[N], Enum value) {
-  for (const auto& [v, name] : names)
-    if (v == value) return std::string(name);
-  return "unknown";
-}
-
-template <class Enum, std::size_t N>
-bool value_of(const Name<Enum> (&names)[N], std::string_view name, Enum& value) {
-  for (const auto& [v, n] : names)
-    if (n == name) {
-      value = v;
-      return true;
-    }
-  return false;
-}
 
 }  // namespace
 

@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "model/films/reynolds.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::reynolds::testing {
 
-inline constexpr double kPi = 3.14159265358979323846;
 
 // The Raimondi-Boyd example bearing: D = 50 mm, c = 50 um, 20 mPa s, 30 rev/s (any consistent set gives the same
 // dimensionless numbers).

@@ -9,18 +9,14 @@
 #include <Eigen/Geometry>
 
 #include "model/elements/ball/race_geometry.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn {
 
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-using ball_detail::Race;
-using ball_detail::RaceGeometry;
-using ball_detail::race_geometry;
-using ball_detail::to_orbital;
-
-constexpr double kPi = 3.14159265358979323846;
+using namespace ball_detail;
 
 }  // namespace
 

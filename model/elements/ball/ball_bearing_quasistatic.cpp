@@ -9,19 +9,14 @@
 
 #include "model/elements/ball/race_geometry.h"
 #include "model/spec/errors.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn {
 
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-using ball_detail::Race;
-using ball_detail::RaceGeometry;
-using ball_detail::race_geometry;
-using ball_detail::to_orbital;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * kPi);
+using namespace ball_detail;
 
 // Newton on the balls: converged when the largest force residual is below kForceTolerance times the bearing's
 // force scale (preload, load, centrifugal force); a residual of 1e-10 of it leaves the finite-difference
