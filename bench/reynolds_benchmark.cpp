@@ -65,11 +65,16 @@ FilmState state(int c, double angle) {
   return s;
 }
 
-void Film(benchmark::State& st) {
-  const int c = static_cast<int>(st.range(0));
+// The film solver of benchmark case st.range(0) with the cavitation model st.range(1).
+FilmSolver solver_of(const benchmark::State& st) {
   SolverOptions o;
   o.cavitation = static_cast<Cavitation>(st.range(1));
-  FilmSolver solver(geometry(c), kEta, o);
+  return FilmSolver(geometry(static_cast<int>(st.range(0))), kEta, o);
+}
+
+void Film(benchmark::State& st) {
+  const int c = static_cast<int>(st.range(0));
+  FilmSolver solver = solver_of(st);
   FilmResult r;
   double angle = 0.0;
   for (int k = 0; k < 200; ++k) solver.solve(state(c, angle += kStep), r);  // warm up, as in a running integration
@@ -108,9 +113,7 @@ void SparseLuBaseline(benchmark::State& st) {
 // Cold start (no warm-start state) for comparison.
 void FilmCold(benchmark::State& st) {
   const int c = static_cast<int>(st.range(0));
-  SolverOptions o;
-  o.cavitation = static_cast<Cavitation>(st.range(1));
-  FilmSolver solver(geometry(c), kEta, o);
+  FilmSolver solver = solver_of(st);
   FilmResult r;
   double angle = 0.0;
   for (auto _ : st) {

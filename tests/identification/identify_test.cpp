@@ -19,6 +19,7 @@
 #include "model/engine/integrator.h"
 #include "model/io/timeseries_file.h"
 #include "studies/channels.h"
+#include "tests/support/temp_dir.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -30,10 +31,14 @@ constexpr double kSigmas = 3.0;
 std::filesystem::path source(const std::string& rel) { return std::filesystem::path(TURBODYN_SOURCE_DIR) / rel; }
 
 std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("turbodyn_identify_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return turbodyn::testing::fresh_temp_dir("identify_test_" + name);
+}
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 void write(const std::filesystem::path& file, const std::string& text) {
@@ -63,60 +68,8 @@ std::filesystem::path jeffcott_study(const std::filesystem::path& dir) {
         << 1e6 * std::abs(std::abs(r.q(y)) + noise(rng)) << '\n';
   }
   write(dir / "jeffcott_spectra.csv", csv.str());
-  const std::string study = R"([identify]
-model = ")" + source("tests/data/identification/jeffcott.toml").string() + R"("
-method = "response"
-
-[measurement]
-file = "jeffcott_spectra.csv"
-format = "spectra"
-speed = "speed"
-frequency = "frequency"
-
-[[measurement.sensors]]
-column = "x"
-probe = "disk.mid.x"
-
-[[measurement.sensors]]
-column = "y"
-probe = "disk.mid.y"
-
-[[features]]
-kind = "order1x"
-sensor = "x"
-phase = false
-speed_range = ["1000 rpm", "6000 rpm"]
-n_speeds = 101
-scale = "1 um"
-
-[[features]]
-kind = "order1x"
-sensor = "y"
-phase = false
-speed_range = ["1000 rpm", "6000 rpm"]
-n_speeds = 101
-scale = "1 um"
-
-[[parameters]]
-name = "k"
-path = ["bearings.left.k", "bearings.right.k"]
-start = "3e5 N/m"
-lower = "5e4 N/m"
-upper = "1e6 N/m"
-true = "2e5 N/m"
-
-[[parameters]]
-name = "c"
-path = ["bearings.left.c", "bearings.right.c"]
-start = "100 N*s/m"
-lower = "10 N*s/m"
-upper = "1000 N*s/m"
-true = "200 N*s/m"
-
-[solver]
-function_tolerance = 1e-10
-parameter_tolerance = 1e-10
-)";
+  const std::string study = "[identify]\nmodel = \"" + source("tests/data/identification/jeffcott.toml").string() +
+                            "\"\n" + read_text(source("tests/data/identification/jeffcott_study_keys.toml"));
   write(dir / "study.toml", study);
   return dir / "study.toml";
 }
@@ -384,18 +337,22 @@ std::string error_of(const MeasurementSpec& m) {
   return "(no error)";
 }
 
+// The error of loading the bench study with the measured file `file` written with `text` first.
+std::string error_reading(const std::filesystem::path& file, const std::string& text) {
+  write(file, text);
+  return error_of(bench_spec(file));
+}
+
 TEST(Identify, MeasuredFileWithMissingColumnNamesTheColumnAndListsThePresentOnes) {
   const auto dir = scratch("bad_missing");
-  write(dir / "m.csv", "time [s],speed [rpm],z [um]\n" + good_rows(40));
-  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  const std::string e = error_reading(dir / "m.csv", "time [s],speed [rpm],z [um]\n" + good_rows(40));
   EXPECT_NE(e.find("m.csv: no column 'x' (sensor x); the file has: 'time' 'speed' 'z'"), std::string::npos) << e;
 }
 
 TEST(Identify, MeasuredFileWithAByteOrderMarkReads) {
   // Issue 20: a spreadsheet's UTF-8 byte-order mark made the first column "\xEF\xBB\xBFtime": "no column 'time'".
   const auto dir = scratch("bom");
-  write(dir / "m.csv", "\xEF\xBB\xBFtime [s],speed [rpm],x [um]\n" + good_rows(40));
-  EXPECT_EQ(error_of(bench_spec(dir / "m.csv")), "(no error)");
+  EXPECT_EQ(error_reading(dir / "m.csv", "\xEF\xBB\xBFtime [s],speed [rpm],x [um]\n" + good_rows(40)), "(no error)");
 }
 
 TEST(Identify, MeasuredFileThatIsADirectoryIsNamedSo) {
@@ -406,8 +363,8 @@ TEST(Identify, MeasuredFileThatIsADirectoryIsNamedSo) {
 
 TEST(Identify, MeasuredFileWithNonMonotonicTimeNamesLineAndColumn) {
   const auto dir = scratch("bad_time");
-  write(dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(20) + "0.0185,3020,0.1\n" + good_rows(40, 21));
-  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  const std::string e = error_reading(
+      dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(20) + "0.0185,3020,0.1\n" + good_rows(40, 21));
   // Line 22 = header + 20 rows + the bad one.
   EXPECT_NE(e.find("m.csv:22:1: column 'time': time does not increase (0.0185 s after 0.019 s on line 21)"),
             std::string::npos)
@@ -416,23 +373,21 @@ TEST(Identify, MeasuredFileWithNonMonotonicTimeNamesLineAndColumn) {
 
 TEST(Identify, MeasuredFileWithNaNNamesLineFieldAndColumn) {
   const auto dir = scratch("bad_nan");
-  write(dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(10) + "0.010,3010,NaN\n" + good_rows(40, 11));
-  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  const std::string e = error_reading(
+      dir / "m.csv", "time [s],speed [rpm],x [um]\n" + good_rows(10) + "0.010,3010,NaN\n" + good_rows(40, 11));
   EXPECT_NE(e.find("m.csv:12:12: column 'x': 'NaN' is not a finite number"), std::string::npos) << e;
-  write(dir / "m2.csv", "time [s],speed [rpm],x [um]\n" + good_rows(10) + "0.010,,0.5\n" + good_rows(40, 11));
-  const std::string e2 = error_of(bench_spec(dir / "m2.csv"));
+  const std::string e2 = error_reading(
+      dir / "m2.csv", "time [s],speed [rpm],x [um]\n" + good_rows(10) + "0.010,,0.5\n" + good_rows(40, 11));
   EXPECT_NE(e2.find("m2.csv:12:7: column 'speed': empty field is not a finite number"), std::string::npos) << e2;
 }
 
 TEST(Identify, MeasuredFileWithUnknownUnitNamesColumnAndSuggests) {
   const auto dir = scratch("bad_unit");
-  write(dir / "m.csv", "time [s],speed [rpm],x [mum]\n" + good_rows(40));
-  const std::string e = error_of(bench_spec(dir / "m.csv"));
+  const std::string e = error_reading(dir / "m.csv", "time [s],speed [rpm],x [mum]\n" + good_rows(40));
   EXPECT_NE(e.find("m.csv: column 'x' (sensor x): unit 'mum' in the file's header:"), std::string::npos) << e;
   EXPECT_NE(e.find("mum"), std::string::npos) << e;
   // A unit of the wrong kind (a speed where a displacement is expected) is refused too.
-  write(dir / "m2.csv", "time [s],speed [rpm],x [rpm]\n" + good_rows(40));
-  const std::string e2 = error_of(bench_spec(dir / "m2.csv"));
+  const std::string e2 = error_reading(dir / "m2.csv", "time [s],speed [rpm],x [rpm]\n" + good_rows(40));
   EXPECT_NE(e2.find("column 'x' (sensor x): unit 'rpm'"), std::string::npos) << e2;
 }
 

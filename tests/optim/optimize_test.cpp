@@ -14,6 +14,7 @@
 #include "model/io/overrides.h"
 #include "optim/evaluation_log.h"
 #include "tests/support/test_support.h"
+#include "tests/support/temp_dir.h"
 
 namespace turbodyn::optim {
 namespace {
@@ -21,12 +22,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::filesystem::path temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("turbodyn_optim_test_" + name);
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path temp_dir(const std::string& name) { return turbodyn::testing::fresh_temp_dir("optim_test_" + name); }
 
 // ------------------------------------------------------------------------------------------ analytic problems
 

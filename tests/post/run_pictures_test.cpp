@@ -1,6 +1,7 @@
 // The pictures of a run: spectrogram heat maps (columns, rows, scaling, the peak), the spectrogram of a run's
 // channel against speed or time, and the files draw_run_pictures writes for a synthetic run-up.
 #include "post/run_pictures.h"
+#include "tests/support/temp_dir.h"
 
 #include <cmath>
 #include <filesystem>
@@ -109,9 +110,7 @@ TEST(RunPictures, RunSpectrogramFollowsTheRotorSpeed) {
 
 TEST(RunPictures, DrawsSpectrogramsOrderTracksAndOrbits) {
   if (!plot::gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
-  const fs::path dir = fs::temp_directory_path() / "turbodyn_run_pictures_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = turbodyn::testing::fresh_temp_dir("run_pictures_test");
   MachineSpec spec;
   spec.output = output();
   std::vector<std::string> written, warnings;

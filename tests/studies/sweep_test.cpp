@@ -8,18 +8,14 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/test_support.h"
+#include "tests/support/temp_dir.h"
 
 namespace turbodyn::studies {
 namespace {
 
 using ::testing::HasSubstr;
 
-std::filesystem::path temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("turbodyn_sweep_test_" + name);
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path temp_dir(const std::string& name) { return turbodyn::testing::fresh_temp_dir("sweep_test_" + name); }
 
 // A study file next to the examples (so that model = "..." resolves), written for the test.
 std::filesystem::path write_study(const std::string& name, const std::string& body) {
@@ -38,20 +34,20 @@ speed_window = ["0 rpm", "40000 rpm"]
 fixed = ["output.sample_rate=5 kHz", "disks.compressor.unbalance=0"]
 )";
 
+// A study of the cheap runs with one parameter and one metric, the maximum of `probe`: `design` and `parameter`
+// are the keys of its [design] table and of its [[parameters]] entry.
+std::string one_parameter_study(const std::string& design, const std::string& parameter, const std::string& probe) {
+  return std::string(kCheap) + "[design]\n" + design + "\n[[parameters]]\n" + parameter +
+         "\n[[metrics]]\nkind = \"max\"\nprobe = \"" + probe + "\"\n";
+}
+
 TEST(Sweep, ResponseIsLinearInTheUnbalance) {
   // A linear rotor: every response scales exactly with the single unbalance (superposition), so max |x| / U is
   // the same for every level.
-  const auto f = write_study("linear", std::string(kCheap) + R"(
-[design]
-kind = "full-factorial"
-[[parameters]]
-path = "disks.turbine.unbalance"
-levels = ["100 mg*mm", "300 mg*mm", "900 mg*mm"]
-[[metrics]]
-name = "max_x"
-kind = "max"
-probe = "disk.turbine.x"
-)");
+  const auto f = write_study("linear", one_parameter_study("kind = \"full-factorial\"",
+                                                           "path = \"disks.turbine.unbalance\"\n"
+                                                           "levels = [\"100 mg*mm\", \"300 mg*mm\", \"900 mg*mm\"]",
+                                                           "disk.turbine.x"));
   const StudySpec s = load_study(f);
   SweepOptions o;
   o.output_dir = temp_dir("linear_out");
@@ -103,16 +99,10 @@ TEST(Sweep, ResultsDoNotDependOnTheThreadCount) {
 }
 
 TEST(Sweep, AFailingRunIsRecordedAndTheStudyGoesOn) {
-  const StudySpec s = load_study(write_study("failing", std::string(kCheap) + R"(
-[design]
-kind = "full-factorial"
-[[parameters]]
-path = "bearings.compressor.k"
-levels = ["3e7 N/m", "-1e7 N/m", "2e7 N/m"]
-[[metrics]]
-kind = "max"
-probe = "disk.compressor.x"
-)"));
+  const StudySpec s = load_study(write_study(
+      "failing", one_parameter_study("kind = \"full-factorial\"",
+                                     "path = \"bearings.compressor.k\"\nlevels = [\"3e7 N/m\", \"-1e7 N/m\", \"2e7 N/m\"]",
+                                     "disk.compressor.x")));
   SweepOptions o;
   o.output_dir = temp_dir("failing_out");
   const SweepResult r = run_sweep(s, o);
@@ -196,40 +186,17 @@ TEST(StudyFile, ClearErrors) {
 kind = "latin-hypercub"
 runs = 4
 )"), HasSubstr("did you mean 'latin-hypercube'"));
-  EXPECT_THAT(error_of(std::string(kCheap) + R"(
-[design]
-kind = "latin-hypercube"
-[[parameters]]
-path = "disks.turbine.unbalance"
-low = "1 mg*mm"
-high = "2 mg*mm"
-[[metrics]]
-kind = "max"
-probe = "disk.turbine.x"
-)"), HasSubstr("design.runs"));
-  EXPECT_THAT(error_of(std::string(kCheap) + R"(
-[design]
-kind = "full-factorial"
-[[parameters]]
-path = "disks.turbine.unbalance"
-low = "1 mg*mm"
-high = "2 g*mm"
-n_levels = 2
-[[metrics]]
-kind = "max"
-probe = "disk.turbine.x"
-)"), HasSubstr("one unit"));
+  const std::string unbalance = "path = \"disks.turbine.unbalance\"\n";
+  EXPECT_THAT(error_of(one_parameter_study("kind = \"latin-hypercube\"", unbalance + "low = \"1 mg*mm\"\nhigh = \"2 mg*mm\"",
+                                           "disk.turbine.x")),
+              HasSubstr("design.runs"));
+  EXPECT_THAT(error_of(one_parameter_study("kind = \"full-factorial\"",
+                                           unbalance + "low = \"1 mg*mm\"\nhigh = \"2 g*mm\"\nn_levels = 2",
+                                           "disk.turbine.x")),
+              HasSubstr("one unit"));
   // A probe the model does not have is found before any run starts.
-  const StudySpec s = load_study(write_study("probe", std::string(kCheap) + R"(
-[design]
-kind = "full-factorial"
-[[parameters]]
-path = "disks.turbine.unbalance"
-levels = ["1 mg*mm"]
-[[metrics]]
-kind = "max"
-probe = "disk.turbine.z"
-)"));
+  const StudySpec s = load_study(write_study(
+      "probe", one_parameter_study("kind = \"full-factorial\"", unbalance + "levels = [\"1 mg*mm\"]", "disk.turbine.z")));
   SweepOptions o;
   o.output_dir = temp_dir("probe_out");
   try {

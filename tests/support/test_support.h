@@ -42,6 +42,13 @@ inline FloatingRingSpec reference_ring() {
   return f;
 }
 
+/// Isoviscous oil of `viscosity` (Pa s).
+inline OilSpec oil_of_viscosity(double viscosity) {
+  OilSpec oil;
+  oil.viscosity = viscosity;
+  return oil;
+}
+
 /// A plain journal bearing of L/D = 1/4, close to the short-bearing limit.
 inline JournalBearingSpec short_bearing_spec() {
   JournalBearingSpec j;

@@ -16,8 +16,7 @@ TEST(JournalBearing, EccentricJournalAgainstTheShortBearingForces) {
   // Ocvirk short-bearing forces (docs/references.md §2) with the element's mapping of the shaft DOFs: a
   // journal displaced in +x and spinning about +z is pushed back (-x) and sideways in the direction of rotation
   // (+y), the cross-coupled force that drives oil whirl.
-  OilSpec oil;
-  oil.viscosity = 0.0108;
+  const OilSpec oil = testing::oil_of_viscosity(0.0108);
   const JournalBearingSpec j = short_bearing_spec();
   const JournalBearingElement e("test", j, oil, 0);
   auto ws = e.make_workspace();

@@ -16,8 +16,7 @@ TEST(JournalBearing, TiltedJournalFeelsARestoringMoment) {
   // theta_y > 0 tilts the journal axis towards +x at +z (dx/dz = theta_y): the film pushes that end back, a
   // negative moment about y. theta_x > 0 tilts it towards -y at +z: pushed back in +y there, M_x = -z F_y < 0.
   // Both oppose the tilt.
-  OilSpec oil;
-  oil.viscosity = 0.0108;
+  const OilSpec oil = testing::oil_of_viscosity(0.0108);
   const JournalBearingSpec j = short_bearing_spec();
   const JournalBearingElement e("test", j, oil, 0);
   auto ws = e.make_workspace();

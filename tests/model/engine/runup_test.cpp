@@ -41,6 +41,20 @@ double max_abs(const std::vector<double>& v) {
 
 RunupOptions options_for(const MachineSpec& spec) { return runup_options(spec); }
 
+// The 1x order track of `probe` over a run-up of `model` (made from `spec`): `points` estimates, each over
+// `revolutions` rotor revolutions. An incomplete run fails the test and gives an empty track.
+signal::OrderTrack order_track_of_run(const RunupModel& model, const MachineSpec& spec, const std::string& probe,
+                                      std::size_t points, double revolutions) {
+  const RunupResult r = simulate_runup(model, options_for(spec));
+  EXPECT_TRUE(r.complete) << r.message;
+  if (!r.complete) return {};
+  const int cp = channel(r, probe), cs = channel(r, "speed"), ca = channel(r, "spin_angle");
+  signal::OrderTrackOptions oo;
+  oo.points = points;
+  oo.revolutions = revolutions;
+  return signal::track_order(r.columns[cp], r.columns[ca], r.columns[cs], spec.output.sample_rate, oo);
+}
+
 TEST(SpeedFunction, RampAngleIsTheExactIntegral) {
   SpeedProfile p;
   p.start = 100.0;
@@ -218,14 +232,8 @@ TEST(Runup, SlowRampMatchesSteadyStateResponse) {
   spec.speed.end = spec.speed.speeds.back();
   spec.speed.duration = spec.speed.times.back();
   const auto model = make_runup_model(spec);
-  const RunupResult r = simulate_runup(*model, options_for(spec));
-  ASSERT_TRUE(r.complete) << r.message;
-  const int cx = channel(r, "disk.compressor.x"), cs = channel(r, "speed"), ca = channel(r, "spin_angle");
-  signal::OrderTrackOptions oo;
-  oo.points = 100;
-  oo.revolutions = 40;
-  const signal::OrderTrack track =
-      signal::track_order(r.columns[cx], r.columns[ca], r.columns[cs], spec.output.sample_rate, oo);
+  const signal::OrderTrack track = order_track_of_run(*model, spec, "disk.compressor.x", 100, 40);
+  ASSERT_FALSE(track.speeds.empty());
   const Rotor& rotor = model->rotor();
   int compared = 0;
   double worst = 0.0;
@@ -252,14 +260,10 @@ TEST(Runup, FastRampShiftsAndShrinksThePeak) {
   MachineSpec spec = reference();
   spec.speed.end = 60000 * kRpm;
   spec.speed.duration = 4.0 * 60000.0 / 150000.0;  // the paper's 37,500 rpm/s
+  ASSERT_EQ(spec.output.sample_rate, 20000.0);
   const auto model = make_runup_model(spec);
-  const RunupResult r = simulate_runup(*model, options_for(spec));
-  ASSERT_TRUE(r.complete) << r.message;
-  const int ct = channel(r, "disk.turbine.x"), cs = channel(r, "speed"), ca = channel(r, "spin_angle");
-  signal::OrderTrackOptions oo;
-  oo.points = 400;
-  oo.revolutions = 4;
-  const signal::OrderTrack tr = signal::track_order(r.columns[ct], r.columns[ca], r.columns[cs], 20000, oo);
+  const signal::OrderTrack tr = order_track_of_run(*model, spec, "disk.turbine.x", 400, 4);
+  ASSERT_FALSE(tr.speeds.empty());
   // The first forward critical (turbine-side mode) is near 30,700 rpm; look at 20,000 - 38,000 rpm.
   double run_peak = 0, run_speed = 0;
   for (std::size_t i = 0; i < tr.speeds.size(); ++i)

@@ -1,6 +1,7 @@
 // Result files are written beside the target and renamed into place: complete or not at all, a symbolic link
 // replaced instead of followed, a failed write an error that names the file.
 #include "model/io/output_file.h"
+#include "tests/support/temp_dir.h"
 
 #include <filesystem>
 #include <fstream>
@@ -23,11 +24,8 @@ std::string read(const fs::path& p) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("turbodyn_output_file_test_" + name + "_" +
-                                                     std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return turbodyn::testing::fresh_temp_dir("output_file_test_" + name + "_" +
+                                           std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
 }
 
 TEST(OutputFile, WritesAndReplacesASymlinkInsteadOfFollowingIt) {

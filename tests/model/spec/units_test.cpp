@@ -20,6 +20,22 @@ constexpr double pi = std::numbers::pi;
 // Relative tolerance 1e-12, for values whose computation and expectation may round differently.
 void expect_close(double actual, double expected) { EXPECT_NEAR(actual, expected, 1e-12 * std::abs(expected)); }
 
+// Each text parses as the SI value: exactly (EXPECT_DOUBLE_EQ), or to 1e-12 relative (expect_parses_close).
+struct Parse {
+  std::string_view text;
+  Dimension expected;
+  double si;
+};
+void expect_parses(std::initializer_list<Parse> cases) {
+  for (const Parse& c : cases) EXPECT_DOUBLE_EQ(parse_quantity(c.text, c.expected), c.si) << "'" << c.text << "'";
+}
+void expect_parses_close(std::initializer_list<Parse> cases) {
+  for (const Parse& c : cases) {
+    SCOPED_TRACE(std::string(c.text));
+    expect_close(parse_quantity(c.text, c.expected), c.si);
+  }
+}
+
 // The message of the UnitError parse_quantity throws; fails the test if it throws nothing.
 std::string error_of(std::string_view text, const Dimension& expected) {
   try {
@@ -37,18 +53,20 @@ std::string error_of(std::string_view text, const Dimension& expected) {
 TEST(ParseQuantity, ExamplesFromModelFiles) {
   EXPECT_DOUBLE_EQ(parse_quantity("15 um", dim::length), 15e-6);
   expect_close(parse_quantity("150000 rpm", dim::angular_speed), 150000 * 2 * pi / 60);
-  EXPECT_DOUBLE_EQ(parse_quantity("390 mg*mm", dim::unbalance), 390e-9);
-  EXPECT_DOUBLE_EQ(parse_quantity("90 degC", dim::temperature), 363.15);
-  EXPECT_DOUBLE_EQ(parse_quantity("7850 kg/m^3", dim::density), 7850);
-  EXPECT_DOUBLE_EQ(parse_quantity("2e7 N/m", dim::stiffness), 2e7);
-  EXPECT_DOUBLE_EQ(parse_quantity("200 N*s/m", dim::damping), 200);
-  EXPECT_DOUBLE_EQ(parse_quantity("4.5 bar", dim::pressure), 4.5e5);
-  EXPECT_DOUBLE_EQ(parse_quantity("210 GPa", dim::pressure), 210e9);
-  EXPECT_DOUBLE_EQ(parse_quantity("90 deg", dim::angle), pi / 2);
-  EXPECT_DOUBLE_EQ(parse_quantity("10.8 mPa*s", dim::viscosity), 10.8e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("2500 Hz", dim::frequency), 2500);
-  EXPECT_DOUBLE_EQ(parse_quantity("9.81 m/s^2", dim::acceleration), 9.81);
-  EXPECT_DOUBLE_EQ(parse_quantity("1.5e-5 kg*m^2", dim::inertia), 1.5e-5);
+  expect_parses({
+      {"390 mg*mm", dim::unbalance, 390e-9},
+      {"90 degC", dim::temperature, 363.15},
+      {"7850 kg/m^3", dim::density, 7850},
+      {"2e7 N/m", dim::stiffness, 2e7},
+      {"200 N*s/m", dim::damping, 200},
+      {"4.5 bar", dim::pressure, 4.5e5},
+      {"210 GPa", dim::pressure, 210e9},
+      {"90 deg", dim::angle, pi / 2},
+      {"10.8 mPa*s", dim::viscosity, 10.8e-3},
+      {"2500 Hz", dim::frequency, 2500},
+      {"9.81 m/s^2", dim::acceleration, 9.81},
+      {"1.5e-5 kg*m^2", dim::inertia, 1.5e-5},
+  });
 }
 
 TEST(ParseQuantity, DecimalPrefixesAreExact) {
@@ -61,119 +79,137 @@ TEST(ParseQuantity, DecimalPrefixesAreExact) {
 }
 
 TEST(ParseQuantity, PrefixesAndUnits) {
-  EXPECT_DOUBLE_EQ(parse_quantity("3 mm", dim::length), 3e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("2.5 cm", dim::length), 0.025);
-  EXPECT_DOUBLE_EQ(parse_quantity("1.2 km", dim::length), 1200);
-  EXPECT_DOUBLE_EQ(parse_quantity("40 nm", dim::length), 40e-9);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 in", dim::length), 0.0508);
-  EXPECT_DOUBLE_EQ(parse_quantity("1 inch", dim::length), 0.0254);
-  EXPECT_DOUBLE_EQ(parse_quantity("12 g", dim::mass), 0.012);
-  EXPECT_DOUBLE_EQ(parse_quantity("5 mg", dim::mass), 5e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 ms", dim::time), 3e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("7 us", dim::time), 7e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 min", dim::time), 120);
-  EXPECT_DOUBLE_EQ(parse_quantity("1.5 h", dim::time), 5400);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 kN", dim::force), 3000);
-  EXPECT_DOUBLE_EQ(parse_quantity("12 MPa", dim::pressure), 12e6);
-  EXPECT_DOUBLE_EQ(parse_quantity("101.3 kPa", dim::pressure), 101300);
-  EXPECT_DOUBLE_EQ(parse_quantity("1013 mbar", dim::pressure), 101300);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 kJ", dim::moment), 2000);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 kW", dim::moment / dim::time), 3000);
-  EXPECT_DOUBLE_EQ(parse_quantity("10.8 cP", dim::viscosity), 10.8e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 P", dim::viscosity), 0.2);
-  EXPECT_DOUBLE_EQ(parse_quantity("300 K", dim::temperature), 300);
-  EXPECT_DOUBLE_EQ(parse_quantity("5 mrad", dim::angle), 5e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("1 rev", dim::angle), 2 * pi);
-  EXPECT_DOUBLE_EQ(parse_quantity("1.2 MHz", dim::frequency), 1.2e6);
+  expect_parses({
+      {"3 mm", dim::length, 3e-3},
+      {"2.5 cm", dim::length, 0.025},
+      {"1.2 km", dim::length, 1200},
+      {"40 nm", dim::length, 40e-9},
+      {"2 in", dim::length, 0.0508},
+      {"1 inch", dim::length, 0.0254},
+      {"12 g", dim::mass, 0.012},
+      {"5 mg", dim::mass, 5e-6},
+      {"3 ms", dim::time, 3e-3},
+      {"7 us", dim::time, 7e-6},
+      {"2 min", dim::time, 120},
+      {"1.5 h", dim::time, 5400},
+      {"3 kN", dim::force, 3000},
+      {"12 MPa", dim::pressure, 12e6},
+      {"101.3 kPa", dim::pressure, 101300},
+      {"1013 mbar", dim::pressure, 101300},
+      {"2 kJ", dim::moment, 2000},
+      {"3 kW", dim::moment / dim::time, 3000},
+      {"10.8 cP", dim::viscosity, 10.8e-3},
+      {"2 P", dim::viscosity, 0.2},
+      {"300 K", dim::temperature, 300},
+      {"5 mrad", dim::angle, 5e-3},
+      {"1 rev", dim::angle, 2 * pi},
+      {"1.2 MHz", dim::frequency, 1.2e6},
+  });
 }
 
 TEST(ParseQuantity, CompoundUnits) {
-  EXPECT_DOUBLE_EQ(parse_quantity("3 N*m", dim::moment), 3);
-  EXPECT_DOUBLE_EQ(parse_quantity("5e4 N*m/rad", dim::rotational_stiffness), 5e4);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 N*m*s/rad", dim::rotational_damping), 2);
-  EXPECT_DOUBLE_EQ(parse_quantity("0.2 kg*mm", dim::unbalance), 2e-4);
-  EXPECT_DOUBLE_EQ(parse_quantity("7.85 g/cm^3", dim::density), 7850);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 N/mm", dim::stiffness), 2000);
-  EXPECT_DOUBLE_EQ(parse_quantity("30 m/s", dim::velocity), 30);
-  EXPECT_DOUBLE_EQ(parse_quantity("4 mm^2", dim::area), 4e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 kg*m^2", dim::inertia), 3);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 kg/m/s", dim::viscosity), 3);        // left to right: (kg/m)/s
-  EXPECT_DOUBLE_EQ(parse_quantity("3 kg*m^-1*s^-1", dim::viscosity), 3);  // negative exponents
-  EXPECT_DOUBLE_EQ(parse_quantity("100 rad/s^2", dim::angular_acceleration), 100);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 kg*m/s^2", dim::force), 3);
+  expect_parses({
+      {"3 N*m", dim::moment, 3},
+      {"5e4 N*m/rad", dim::rotational_stiffness, 5e4},
+      {"2 N*m*s/rad", dim::rotational_damping, 2},
+      {"0.2 kg*mm", dim::unbalance, 2e-4},
+      {"7.85 g/cm^3", dim::density, 7850},
+      {"2 N/mm", dim::stiffness, 2000},
+      {"30 m/s", dim::velocity, 30},
+      {"4 mm^2", dim::area, 4e-6},
+      {"3 kg*m^2", dim::inertia, 3},
+      {"3 kg/m/s", dim::viscosity, 3},        // left to right: (kg/m)/s
+      {"3 kg*m^-1*s^-1", dim::viscosity, 3},  // negative exponents
+      {"100 rad/s^2", dim::angular_acceleration, 100},
+      {"3 kg*m/s^2", dim::force, 3},
+  });
 }
 
 TEST(ParseQuantity, Reciprocals) {
-  EXPECT_DOUBLE_EQ(parse_quantity("2500 1/s", dim::frequency), 2500);
-  EXPECT_DOUBLE_EQ(parse_quantity("2500/s", dim::frequency), 2500);
-  EXPECT_DOUBLE_EQ(parse_quantity("2500 s^-1", dim::frequency), 2500);
-  EXPECT_DOUBLE_EQ(parse_quantity("2500 s^+1", dim::time), 2500);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 1/ms", dim::frequency), 3000);
-  EXPECT_DOUBLE_EQ(parse_quantity("1/s", dim::frequency), 1);
+  expect_parses({
+      {"2500 1/s", dim::frequency, 2500},
+      {"2500/s", dim::frequency, 2500},
+      {"2500 s^-1", dim::frequency, 2500},
+      {"2500 s^+1", dim::time, 2500},
+      {"3 1/ms", dim::frequency, 3000},
+      {"1/s", dim::frequency, 1},
+  });
 }
 
 TEST(ParseQuantity, UnicodeSpellings) {
-  EXPECT_DOUBLE_EQ(parse_quantity("15 \u00B5m", dim::length), 15e-6);  // MICRO SIGN
-  EXPECT_DOUBLE_EQ(parse_quantity("15 \u03BCm", dim::length), 15e-6);  // GREEK SMALL LETTER MU
-  EXPECT_DOUBLE_EQ(parse_quantity("15\u00B5m", dim::length), 15e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("4 \u03BCs", dim::time), 4e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("390 mg\u00B7mm", dim::unbalance), 390e-9);  // MIDDLE DOT
-  EXPECT_DOUBLE_EQ(parse_quantity("200 N\u00B7s/m", dim::damping), 200);
-  EXPECT_DOUBLE_EQ(parse_quantity("90 \u00B0C", dim::temperature), 363.15);  // DEGREE SIGN
-  EXPECT_DOUBLE_EQ(parse_quantity("90\u00B0", dim::angle), pi / 2);
-  EXPECT_DOUBLE_EQ(parse_quantity("7850 kg/m\u00B3", dim::density), 7850);  // SUPERSCRIPT THREE
-  EXPECT_DOUBLE_EQ(parse_quantity("4 mm\u00B2", dim::area), 4e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("15\u00A0um", dim::length), 15e-6);  // NO-BREAK SPACE
+  expect_parses({
+      {"15 \u00B5m", dim::length, 15e-6},  // MICRO SIGN
+      {"15 \u03BCm", dim::length, 15e-6},  // GREEK SMALL LETTER MU
+      {"15\u00B5m", dim::length, 15e-6},
+      {"4 \u03BCs", dim::time, 4e-6},
+      {"390 mg\u00B7mm", dim::unbalance, 390e-9},  // MIDDLE DOT
+      {"200 N\u00B7s/m", dim::damping, 200},
+      {"90 \u00B0C", dim::temperature, 363.15},  // DEGREE SIGN
+      {"90\u00B0", dim::angle, pi / 2},
+      {"7850 kg/m\u00B3", dim::density, 7850},  // SUPERSCRIPT THREE
+      {"4 mm\u00B2", dim::area, 4e-6},
+      {"15\u00A0um", dim::length, 15e-6},  // NO-BREAK SPACE
+  });
 }
 
 TEST(ParseQuantity, Whitespace) {
-  EXPECT_DOUBLE_EQ(parse_quantity("15um", dim::length), 15e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("  15 um  ", dim::length), 15e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("15\tum", dim::length), 15e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("15   um", dim::length), 15e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("200 N * s / m", dim::damping), 200);
-  EXPECT_DOUBLE_EQ(parse_quantity("200N*s/m", dim::damping), 200);
-  EXPECT_DOUBLE_EQ(parse_quantity("2e7N/m", dim::stiffness), 2e7);
+  expect_parses({
+      {"15um", dim::length, 15e-6},
+      {"  15 um  ", dim::length, 15e-6},
+      {"15\tum", dim::length, 15e-6},
+      {"15   um", dim::length, 15e-6},
+      {"200 N * s / m", dim::damping, 200},
+      {"200N*s/m", dim::damping, 200},
+      {"2e7N/m", dim::stiffness, 2e7},
+  });
 }
 
 TEST(ParseQuantity, BareNumbersAreSI) {
-  EXPECT_DOUBLE_EQ(parse_quantity("1e-3", dim::length), 1e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("-2", dim::force), -2);
-  EXPECT_DOUBLE_EQ(parse_quantity("+3.5", dim::mass), 3.5);
-  EXPECT_DOUBLE_EQ(parse_quantity("1.5E+3", dim::pressure), 1500);
-  EXPECT_DOUBLE_EQ(parse_quantity("0", dim::angular_speed), 0);
-  EXPECT_DOUBLE_EQ(parse_quantity(".5", dim::dimensionless), 0.5);
-  EXPECT_DOUBLE_EQ(parse_quantity(" 42 ", dim::temperature), 42);  // kelvin, no Celsius offset
-  EXPECT_DOUBLE_EQ(parse_quantity("-1.5e-3 mm", dim::length), -1.5e-6);
-  EXPECT_DOUBLE_EQ(parse_quantity("+1.5 mm", dim::length), 1.5e-3);
+  expect_parses({
+      {"1e-3", dim::length, 1e-3},
+      {"-2", dim::force, -2},
+      {"+3.5", dim::mass, 3.5},
+      {"1.5E+3", dim::pressure, 1500},
+      {"0", dim::angular_speed, 0},
+      {".5", dim::dimensionless, 0.5},
+      {" 42 ", dim::temperature, 42},  // kelvin, no Celsius offset
+      {"-1.5e-3 mm", dim::length, -1.5e-6},
+      {"+1.5 mm", dim::length, 1.5e-3},
+  });
 }
 
 TEST(ParseQuantity, Temperature) {
-  EXPECT_DOUBLE_EQ(parse_quantity("90 degC", dim::temperature), 363.15);
-  EXPECT_DOUBLE_EQ(parse_quantity("0 degC", dim::temperature), 273.15);
-  EXPECT_DOUBLE_EQ(parse_quantity("-40 degC", dim::temperature), 233.15);
-  EXPECT_DOUBLE_EQ(parse_quantity("90degC", dim::temperature), 363.15);
-  EXPECT_DOUBLE_EQ(parse_quantity("363.15 K", dim::temperature), 363.15);
-  EXPECT_DOUBLE_EQ(parse_quantity("2 K/s", dim::temperature / dim::time), 2);  // rates are written in K
+  expect_parses({
+      {"90 degC", dim::temperature, 363.15},
+      {"0 degC", dim::temperature, 273.15},
+      {"-40 degC", dim::temperature, 233.15},
+      {"90degC", dim::temperature, 363.15},
+      {"363.15 K", dim::temperature, 363.15},
+      {"2 K/s", dim::temperature / dim::time, 2},  // rates are written in K
+  });
 }
 
 // ---------------------------------------------------------------------------------------------------------------
 // Angle rule: a missing angle exponent counts whole turns of 2*pi rad.
 
 TEST(AngleRule, CyclesToRadians) {
-  expect_close(parse_quantity("2500 Hz", dim::angular_speed), 2500 * 2 * pi);
-  expect_close(parse_quantity("150000 rpm", dim::angular_speed), 5000 * pi);
-  expect_close(parse_quantity("1 1/s", dim::angular_speed), 2 * pi);
-  expect_close(parse_quantity("60 rev/min", dim::angular_speed), 2 * pi);
-  expect_close(parse_quantity("10 rev/s^2", dim::angular_acceleration), 20 * pi);
-  expect_close(parse_quantity("1 rad/s", dim::angular_speed), 1);
-  expect_close(parse_quantity("180 deg/s", dim::angular_speed), pi);
+  expect_parses_close({
+      {"2500 Hz", dim::angular_speed, 2500 * 2 * pi},
+      {"150000 rpm", dim::angular_speed, 5000 * pi},
+      {"1 1/s", dim::angular_speed, 2 * pi},
+      {"60 rev/min", dim::angular_speed, 2 * pi},
+      {"10 rev/s^2", dim::angular_acceleration, 20 * pi},
+      {"1 rad/s", dim::angular_speed, 1},
+      {"180 deg/s", dim::angular_speed, pi},
+  });
 }
 
 TEST(AngleRule, RadiansToCycles) {
-  EXPECT_DOUBLE_EQ(parse_quantity("150000 rpm", dim::frequency), 2500);
-  EXPECT_DOUBLE_EQ(parse_quantity("10 kHz", dim::frequency), 1e4);
-  EXPECT_DOUBLE_EQ(parse_quantity("2500 Hz", dim::frequency), 2500);
+  expect_parses({
+      {"150000 rpm", dim::frequency, 2500},
+      {"10 kHz", dim::frequency, 1e4},
+      {"2500 Hz", dim::frequency, 2500},
+  });
   expect_close(parse_quantity("1 rad/s", dim::frequency), 1 / (2 * pi));
   EXPECT_DOUBLE_EQ(parse_quantity("60 rev/min", dim::frequency), 1);
 }
@@ -187,9 +223,11 @@ TEST(AngleRule, OnlyBetweenRatesOfTime) {
 }
 
 TEST(AngleRule, QuantitiesWithoutAnglesUnchanged) {
-  EXPECT_DOUBLE_EQ(parse_quantity("15 mm", dim::length), 15e-3);
-  EXPECT_DOUBLE_EQ(parse_quantity("3 s", dim::time), 3);
-  EXPECT_DOUBLE_EQ(parse_quantity("2.5", dim::angular_speed), 2.5);  // bare numbers are SI (rad/s)
+  expect_parses({
+      {"15 mm", dim::length, 15e-3},
+      {"3 s", dim::time, 3},
+      {"2.5", dim::angular_speed, 2.5},  // bare numbers are SI (rad/s)
+  });
 }
 
 // ---------------------------------------------------------------------------------------------------------------
