@@ -19,11 +19,6 @@ using input::Sources;
 
 constexpr double kTwoPi = 2.0 * M_PI;
 
-// A number or "<number> <unit>"; the unit is checked by the model loader when the value is applied.
-studies::UnitValue node_value(Reader& r, const std::string& key) {
-  return studies::node_value(*r.get(key), studies::key_location(r, key), "15 um");
-}
-
 // A quantity in the unit dimension of a sensor, or absent (0).
 double sensor_quantity(Reader& r, const std::string& key, const Dimension& d) {
   return r.quantity_or(key, d, 0.0, Bound::NonNegative);
@@ -173,24 +168,14 @@ ParameterSpec read_parameter(Reader& r) {
   }
   if (p.paths.empty()) r.fail("path", "expected a key path or a non-empty list of key paths");
   p.name = r.text_or("name", p.paths.front());
-  bool unit_set = false;
-  auto take = [&](const std::string& key, bool required) {
-    if (!r.has(key)) {
-      if (required) r.fail_missing(key, "a value such as \"15 um\"");
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    const studies::UnitValue v = node_value(r, key);
-    if (unit_set && v.unit != p.unit)
-      r.fail(key, "is written in '" + v.unit + "' but the parameter's other values in '" + p.unit +
-                      "'; write all values of a parameter in one unit");
-    p.unit = v.unit;
-    unit_set = true;
-    return v.value;
-  };
-  p.start = take("start", true);
-  p.lower = take("lower", true);
-  p.upper = take("upper", true);
-  p.truth = take("true", false);
+  studies::OneUnitValues values(r, "parameter's", "write all values of a parameter in one unit", "15 um");
+  for (const char* key : {"start", "lower", "upper"})
+    if (!r.has(key)) r.fail_missing(key, "a value such as \"15 um\"");
+  p.start = values.take("start");
+  p.lower = values.take("lower");
+  p.upper = values.take("upper");
+  p.truth = values.take("true");
+  p.unit = values.unit();
   if (!(p.lower < p.upper)) r.fail("upper", "must be above lower");
   if (!(p.start >= p.lower && p.start <= p.upper)) r.fail("start", "must lie within [lower, upper]");
   r.finish();
@@ -205,13 +190,12 @@ constexpr EnumName<Loss> kLosses[] = {
 std::string to_string(Loss l) { return name_of(kLosses, l); }
 
 IdentifyStudy load_identify_study(const std::filesystem::path& file) {
-  const input::TomlFile in(file, "study file");
+  input::TomlFile in(file, "study file");
   const Sources& src = in.sources();
+  Reader& top = in.top();
   IdentifyStudy s;
-  Reader top(in.root(), "", src);
   {
-    Reader r = top.required_table("identify", "an [identify] table with at least model = \"...\"");
-    static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
+    Reader r = studies::read_study_head(top, "identify", file, s);
     s.method = r.choice("method", {"runup", "response"}, "runup") == "response" ? Method::Response : Method::Runup;
     s.speed_from_measurement = r.choice("speed", {"model", "measured"}, "model") == "measured";
     if (s.speed_from_measurement && s.method != Method::Runup)

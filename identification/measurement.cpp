@@ -290,6 +290,11 @@ void from_tacho(const Table& t, const MeasurementSpec& spec, const std::vector<d
 
 }  // namespace
 
+const EnumName<Quantity> kQuantities[3] = {
+    {Quantity::Displacement, "displacement"}, {Quantity::Acceleration, "acceleration"}, {Quantity::Force, "force"}};
+
+std::string to_string(Quantity q) { return name_of(kQuantities, q); }
+
 Dimension dimension_of(Quantity q) {
   switch (q) {
     case Quantity::Displacement: return dim::length;

@@ -20,10 +20,9 @@ namespace turbodyn::identification {
 /// What a sensor measures; it selects the unit dimension and what is done to the model's displacement.
 enum class Quantity { Displacement, Acceleration, Force };
 
-/// The names in study files.
-inline constexpr EnumName<Quantity> kQuantities[] = {
-    {Quantity::Displacement, "displacement"}, {Quantity::Acceleration, "acceleration"}, {Quantity::Force, "force"}};
-inline std::string to_string(Quantity q) { return name_of(kQuantities, q); }
+/// The names in study files: "displacement", "acceleration", "force".
+extern const EnumName<Quantity> kQuantities[3];
+std::string to_string(Quantity q);
 /// The dimension of a sensor's values (m, m/s^2, N).
 Dimension dimension_of(Quantity q);
 

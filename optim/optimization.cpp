@@ -65,20 +65,10 @@ Variable read_variable(Reader& r) {
     r.fail_missing("path", "the model-file path of the variable, e.g. \"bearings.compressor.damper.clearance\", or "
                            "paths = [...] for several keys set to one value");
   v.path = r.text_or("name", v.paths.size() == 1 ? v.paths[0] : v.paths[0] + " (+" + std::to_string(v.paths.size() - 1) + ")");
-  bool unit_set = false;
-  auto take = [&](const std::string& key) -> double {
-    const toml::node* n = r.get(key);
-    if (!n) return NAN;
-    const studies::UnitValue u = node_value(*n, location(r, key));
-    if (unit_set && u.unit != v.unit)
-      r.fail(key, "is written in '" + u.unit + "' but the variable's other values in '" + v.unit +
-                      "'; write low, high and start in one unit");
-    v.unit = u.unit;
-    unit_set = true;
-    return u.value;
-  };
-  v.low = take("low");
-  v.high = take("high");
+  studies::OneUnitValues values(r, "variable's", "write low, high and start in one unit", "51 um");
+  v.low = values.take("low");
+  v.high = values.take("high");
+  v.unit = values.unit();
   if (std::isnan(v.low)) r.fail_missing("low", "the lower bound, e.g. \"30 um\"");
   if (std::isnan(v.high)) r.fail_missing("high", "the upper bound, e.g. \"120 um\"");
   if (!(v.low < v.high))
@@ -86,7 +76,8 @@ Variable read_variable(Reader& r) {
   const std::string scale = r.choice("scale", {"linear", "log"}, "linear");
   v.log_scale = scale == "log";
   if (v.log_scale && !(v.low > 0.0)) r.fail("scale", "a logarithmic scale needs a positive lower bound");
-  v.start = take("start");
+  v.start = values.take("start");
+  v.unit = values.unit();
   if (std::isnan(v.start)) {
     v.start = v.value(0.5);
   } else if (v.start < v.low || v.start > v.high) {
@@ -283,13 +274,11 @@ std::vector<Override> run_overrides(const OptimizationSpec& spec, const std::vec
 }
 
 OptimizationSpec load_optimization(const std::filesystem::path& file) {
-  const input::TomlFile in(file, "study file");
-  const Sources& src = in.sources();
+  input::TomlFile in(file, "study file");
   OptimizationSpec s;
-  Reader top(in.root(), "", src);
+  Reader& top = in.top();
   {
-    Reader r = top.required_table("optimize", "an [optimize] table with at least model = \"...\"");
-    static_cast<studies::StudyCommon&>(s) = studies::read_study_common(r, file);
+    Reader r = studies::read_study_head(top, "optimize", file, s);
     if (const toml::array* probes = r.array("spectrograms"))
       for (const toml::node& n : *probes) {
         if (!n.is_string()) r.fail("spectrograms", "expected probe names such as \"disk.turbine.x\"");
@@ -362,7 +351,7 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
       for (std::size_t i = 0; i < terms->size(); ++i) {
         const toml::node& n = (*terms)[i];
         if (!n.is_table()) r.fail("terms", "expected tables {metric = \"...\", weight = 1.0}");
-        Reader t(*n.as_table(), r.key_path("terms") + "[" + std::to_string(i) + "]", src);
+        Reader t(*n.as_table(), r.key_path("terms") + "[" + std::to_string(i) + "]", in.sources());
         ObjectiveTerm term;
         term.metric = metric_index(t, "metric", s.metrics);
         term.weight = t.quantity_or("weight", dim::dimensionless, 1.0);
@@ -396,7 +385,7 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
   }
   top.finish();
   resolve_metrics(s);
-  Reader again(in.root(), "", src);
+  Reader again(in.root(), "", in.sources());
   again.each_table("constraints", [&](Reader& r, std::size_t i) {
     s.constraints[i].bound = bound_value(r, pending_bound_keys[i], s.metrics[s.constraints[i].metric].unit);
   });

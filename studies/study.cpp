@@ -32,27 +32,18 @@ Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
   p.path = r.text_or("path", "");
   if (p.path.empty()) r.fail("path", "missing required key (the model-file path of the parameter, e.g. \"disks.turbine.unbalance\")");
   Distribution& d = p.distribution;
-  unit.clear();
-  bool unit_set = false;
-  auto take = [&](const toml::node& n, const std::string& key) {
-    const UnitValue v = node_value(n, key_location(r, key), "580 mg*mm");
-    if (unit_set && v.unit != unit)
-      r.fail(key, "is written in '" + v.unit + "' but the parameter's other values in '" + unit +
-                      "'; write all values of a parameter in one unit");
-    unit = v.unit;
-    unit_set = true;
-    return v.value;
-  };
+  OneUnitValues values(r, "parameter's", "write all values of a parameter in one unit", "580 mg*mm");
   if (const toml::array* levels = r.array("levels")) {
     if (levels->empty()) r.fail("levels", "the list is empty");
     d.kind = Distribution::Kind::Levels;
-    for (const toml::node& n : *levels) d.levels.push_back(take(n, "levels"));
+    for (const toml::node& n : *levels) d.levels.push_back(values.take(n, "levels"));
   }
   const std::string dist = r.choice("distribution", {"uniform", "normal", "log-uniform"}, "uniform");
-  if (const toml::node* n = r.get("low")) d.low = take(*n, "low");
-  if (const toml::node* n = r.get("high")) d.high = take(*n, "high");
-  if (const toml::node* n = r.get("mean")) d.mean = take(*n, "mean");
-  if (const toml::node* n = r.get("std")) d.std = take(*n, "std");
+  if (const toml::node* n = r.get("low")) d.low = values.take(*n, "low");
+  if (const toml::node* n = r.get("high")) d.high = values.take(*n, "high");
+  if (const toml::node* n = r.get("mean")) d.mean = values.take(*n, "mean");
+  if (const toml::node* n = r.get("std")) d.std = values.take(*n, "std");
+  unit = values.unit();
   d.n_levels = static_cast<int>(r.integer_or("n_levels", 0, 2, 1000000));
   if (d.kind != Distribution::Kind::Levels) {
     if (dist == "normal") {
@@ -149,14 +140,21 @@ void check_speed_window(const StudyCommon& study, const SpeedProfile& speed) {
   throw ModelError(os.str());
 }
 
+input::Reader read_study_head(input::Reader& top, const std::string& table, const std::filesystem::path& file,
+                              StudyCommon& common) {
+  const bool vowel = std::string("aeiou").find(table.front()) != std::string::npos;
+  input::Reader r =
+      top.required_table(table, std::string(vowel ? "an [" : "a [") + table + "] table with at least model = \"...\"");
+  common = read_study_common(r, file);
+  return r;
+}
+
 StudySpec load_study(const std::filesystem::path& file) {
-  const input::TomlFile in(file, "study file");
+  input::TomlFile in(file, "study file");
   StudySpec s;
-  Reader top(in.root(), "", in.sources());
+  Reader& top = in.top();
   {
-    Reader r = top.required_table("study", "a [study] table with at least model = \"...\"");
-    static_cast<StudyCommon&>(s) = read_study_common(r, file);
-    r.finish();
+    read_study_head(top, "study", file, s).finish();
   }
   {
     Reader r = top.required_table("design", "a [design] table with kind = \"...\"");

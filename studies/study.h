@@ -49,6 +49,10 @@ struct StudyCommon {
   std::vector<Override> fixed;   ///< applied to every run before the run's own overrides
 };
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file);
+/// The head table of a study file, `table` ("study", "optimize", "identify"), which must be there: reads the keys
+/// every study has into `common` and returns the table's Reader for the study's own keys (the caller finishes it).
+input::Reader read_study_head(input::Reader& top, const std::string& table, const std::filesystem::path& file,
+                              StudyCommon& common);
 
 /// Checks the paths a study varies against its base model (loaded with `overrides`): each must be a number the
 /// model file reads (model_file.h: numeric_model_keys), not a name or a choice. Each path comes with the key that

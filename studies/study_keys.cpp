@@ -1,5 +1,7 @@
 #include "studies/study_keys.h"
 
+#include <limits>
+
 #include <cmath>
 #include <string>
 
@@ -17,6 +19,20 @@ UnitValue node_value(const toml::node& n, const std::string& context, const std:
   }
   if (n.is_string()) return split_value(*n.value<std::string>(), context);
   throw ModelError(context + ": expected a number or a string such as \"" + example + "\"");
+}
+
+double OneUnitValues::take(const toml::node& n, const std::string& key) {
+  const UnitValue v = node_value(n, key_location(r_, key), example_);
+  if (unit_set_ && v.unit != unit_)
+    r_.fail(key, "is written in '" + v.unit + "' but the " + whose_ + " other values in '" + unit_ + "'; " + advice_);
+  unit_ = v.unit;
+  unit_set_ = true;
+  return v.value;
+}
+
+double OneUnitValues::take(const std::string& key) {
+  const toml::node* n = r_.get(key);
+  return n ? take(*n, key) : std::numeric_limits<double>::quiet_NaN();
 }
 
 std::string key_location(const Reader& r, const std::string& key) { return r.location(key) + ": " + r.key_path(key); }

@@ -16,6 +16,26 @@ namespace turbodyn::studies {
 /// `context`, with `example` (such as "580 mg*mm") as the form to write.
 UnitValue node_value(const toml::node& n, const std::string& context, const std::string& example);
 
+/// Values of one study entry that must all be written in one unit (a parameter's levels, low, high, ...): the first
+/// value read sets unit(), a later one in another unit is a ModelError naming its key.
+class OneUnitValues {
+ public:
+  /// `whose` and `advice` complete the message "... but the WHOSE other values in 'mm'; ADVICE"; `example` as for
+  /// node_value.
+  OneUnitValues(input::Reader& r, std::string whose, std::string advice, std::string example)
+      : r_(r), whose_(std::move(whose)), advice_(std::move(advice)), example_(std::move(example)) {}
+  /// The value of node `n`, read for `key` (the key a message names).
+  double take(const toml::node& n, const std::string& key);
+  /// The value of `key`, NaN when absent.
+  double take(const std::string& key);
+  const std::string& unit() const { return unit_; }
+
+ private:
+  input::Reader& r_;
+  std::string whose_, advice_, example_, unit_;
+  bool unit_set_ = false;
+};
+
 /// "FILE:LINE:COLUMN: table.key" of a key, to start a message with.
 std::string key_location(const input::Reader& r, const std::string& key);
 

@@ -88,22 +88,6 @@ inline std::string describe_node(const toml::node& n) {
 
 enum class Bound { Any, Positive, NonNegative };
 
-// A TOML file read whole, with a Reader over its top level (tree and sources live as long as this object).
-class TomlFile {
- public:
-  /// `what` names the kind of file in the "cannot open" message ("study file").
-  TomlFile(const std::filesystem::path& file, const std::string& what)
-      : root_(parse_toml(read_text_file(file, what), file.string())), sources_{file.string(), {}} {}
-  TomlFile(const TomlFile&) = delete;
-  TomlFile& operator=(const TomlFile&) = delete;
-  const toml::table& root() const { return root_; }
-  const Sources& sources() const { return sources_; }
-
- private:
-  toml::table root_;
-  Sources sources_;
-};
-
 // Optional record of the key path of every key a Reader asks for (present or not), for the test that the
 // documentation names every key the loader accepts (model_file.h: accepted_model_keys). Off unless a KeyRecording
 // is alive on this thread; it costs one pointer test per key read, and keys are read only while loading.
@@ -354,5 +338,24 @@ class Reader {
   std::set<std::string> known_;
 };
 
+
+// A TOML file read whole, with a Reader over its top level (tree and sources live as long as this object).
+class TomlFile {
+ public:
+  /// `what` names the kind of file in the "cannot open" message ("study file").
+  TomlFile(const std::filesystem::path& file, const std::string& what)
+      : root_(parse_toml(read_text_file(file, what), file.string())), sources_{file.string(), {}},
+        top_(root_, "", sources_) {}
+  TomlFile(const TomlFile&) = delete;
+  TomlFile& operator=(const TomlFile&) = delete;
+  const toml::table& root() const { return root_; }
+  const Sources& sources() const { return sources_; }
+  Reader& top() { return top_; }
+
+ private:
+  toml::table root_;
+  Sources sources_;
+  Reader top_;
+};
 
 }  // namespace turbodyn::input
