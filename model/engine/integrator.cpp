@@ -193,16 +193,22 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   SUNLinearSolver LS = nullptr;
   const Integrator integrator = resolve_integrator(model, options.solver.integrator);
   const bool bdf = integrator == Integrator::CvodeBdf;
+  // The settings both integrators take, through their own functions (CVODE's and ERKStep's are alike).
+  auto configure = [&](auto set_user_data, auto set_error_handler, auto set_tolerances, auto set_max_steps,
+                       auto set_max_step, auto set_stop_time) {
+    set_user_data(mem, &in);
+    set_error_handler(mem, error_handler, &in);
+    set_tolerances(mem, options.solver.rtol, atol);
+    set_max_steps(mem, options.solver.max_steps);
+    if (options.solver.max_step > 0) set_max_step(mem, options.solver.max_step);
+    set_stop_time(mem, t_end);
+  };
   if (bdf) {
     mem = CVodeCreate(CV_BDF, ctx);
     in.cvode = mem;
     CVodeInit(mem, rhs_callback, t0, y);
-    CVodeSetUserData(mem, &in);
-    CVodeSetErrHandlerFn(mem, error_handler, &in);
-    CVodeSVtolerances(mem, options.solver.rtol, atol);
-    CVodeSetMaxNumSteps(mem, options.solver.max_steps);
-    if (options.solver.max_step > 0) CVodeSetMaxStep(mem, options.solver.max_step);
-    CVodeSetStopTime(mem, t_end);
+    configure(CVodeSetUserData, CVodeSetErrHandlerFn, CVodeSVtolerances, CVodeSetMaxNumSteps, CVodeSetMaxStep,
+              CVodeSetStopTime);
     CVodeSetMaxOrd(mem, options.solver.max_order);
     CVodeSetStabLimDet(mem, options.stability_limit_detection ? SUNTRUE : SUNFALSE);
     LS = SUNLinSolNewEmpty(ctx);
@@ -214,12 +220,8 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     CVodeSetLinearSolver(mem, LS, nullptr);
   } else if (integrator == Integrator::ArkodeErk) {
     mem = ERKStepCreate(rhs_callback, t0, y, ctx);
-    ERKStepSetUserData(mem, &in);
-    ERKStepSetErrHandlerFn(mem, error_handler, &in);
-    ERKStepSVtolerances(mem, options.solver.rtol, atol);
-    ERKStepSetMaxNumSteps(mem, options.solver.max_steps);
-    if (options.solver.max_step > 0) ERKStepSetMaxStep(mem, options.solver.max_step);
-    ERKStepSetStopTime(mem, t_end);
+    configure(ERKStepSetUserData, ERKStepSetErrHandlerFn, ERKStepSVtolerances, ERKStepSetMaxNumSteps,
+              ERKStepSetMaxStep, ERKStepSetStopTime);
   } else {
     N_VDestroy(atol);
     N_VDestroy(y);

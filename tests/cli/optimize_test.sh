@@ -4,6 +4,16 @@ set -u
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cli_setup "optimize_" "$@"
 
+# The damper study edited by the sed expression EXPR (written to $out/NAME.toml) is refused: exit 2 and a message
+# matching the grep pattern PATTERN.
+expect_refused_edit() {  # EXPR NAME PATTERN
+  sed "$1" "$src/tests/data/optim/cli_damper_study.toml" > "$out/$2.toml"
+  "$exe" optimize "$out/$2.toml" -o "$out/opt" > "$out/$2.log" 2>&1
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$2: exit $rc, expected 2: $(cat "$out/$2.log")"
+  grep -q -- "$3" "$out/$2.log" || fail "$2: message: $(cat "$out/$2.log")"
+}
+
 case $case in
   run_and_outputs)
     # A tiny run-up optimisation end to end: every output, and best.toml is a model file that loads.
@@ -20,33 +30,16 @@ case $case in
     "$exe" check "$out/opt/best.toml" > "$out/check.log" 2>&1 || fail "best.toml does not load: $(cat "$out/check.log")"
     ;;
   bad_algorithm)
-    sed 's/name = "cobyla"/name = "cobila"/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/study.toml"
-    "$exe" optimize "$out/study.toml" -o "$out/opt" > "$out/log" 2>&1
-    rc=$?
-    [ $rc -eq 2 ] || fail "exit $rc, expected 2: $(cat "$out/log")"
-    grep -q "study.toml:12:8: algorithm.name: unknown value 'cobila'" "$out/log" || fail "message: $(cat "$out/log")"
-    grep -q "did you mean 'cobyla'" "$out/log" || fail "no suggestion: $(cat "$out/log")"
-    sed 's/low = "35 um"/low = "95 um"/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/bounds.toml"
-    "$exe" optimize "$out/bounds.toml" -o "$out/opt" > "$out/log2" 2>&1
-    rc=$?
-    [ $rc -eq 2 ] || fail "bad bounds: exit $rc, expected 2"
-    grep -q "bounds.toml:19:7: variables\[0\].low: the lower bound 95 um must be below the upper bound 90 um" "$out/log2" \
-      || fail "message: $(cat "$out/log2")"
+    expect_refused_edit 's/name = "cobyla"/name = "cobila"/' study "study.toml:12:8: algorithm.name: unknown value 'cobila'"
+    grep -q "did you mean 'cobyla'" "$out/study.log" || fail "no suggestion: $(cat "$out/study.log")"
+    expect_refused_edit 's/low = "35 um"/low = "95 um"/' bounds \
+      "bounds.toml:19:7: variables\[0\].low: the lower bound 95 um must be below the upper bound 90 um"
     ;;
   bad_values)
     # Issue 20: a NaN bound ran; a variable that is not a number of the model changed nothing.
-    sed 's/^upper = "1 mm"/upper = nan/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/nan.toml"
-    "$exe" optimize "$out/nan.toml" -o "$out/opt" > "$out/log" 2>&1
-    rc=$?
-    [ $rc -eq 2 ] || fail "upper = nan: exit $rc, expected 2: $(cat "$out/log")"
-    grep -q "nan.toml:38:9: constraints\[0\].upper: value is not finite" "$out/log" || fail "message: $(cat "$out/log")"
-    sed 's/^low = "35 um"/low = nan/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/nanlow.toml"
-    "$exe" optimize "$out/nanlow.toml" -o "$out/opt" > "$out/log" 2>&1
-    [ $? -eq 2 ] && grep -q "variables\[0\].low: value is not finite" "$out/log" || fail "low = nan: $(cat "$out/log")"
-    sed 's/^paths = .*/paths = ["name"]/' "$src/tests/data/optim/cli_damper_study.toml" > "$out/path.toml"
-    "$exe" optimize "$out/path.toml" -o "$out/opt" > "$out/log" 2>&1
-    [ $? -eq 2 ] && grep -q "variables\[0\].path: 'name' is not a number" "$out/log" \
-      || fail "path: $(cat "$out/log")"
+    expect_refused_edit 's/^upper = "1 mm"/upper = nan/' nan "nan.toml:38:9: constraints\[0\].upper: value is not finite"
+    expect_refused_edit 's/^low = "35 um"/low = nan/' nanlow "variables\[0\].low: value is not finite"
+    expect_refused_edit 's/^paths = .*/paths = ["name"]/' path "variables\[0\].path: 'name' is not a number"
     ;;
   restart)
     # The same optimisation twice: the second invocation takes every evaluation from evaluations.jsonl.

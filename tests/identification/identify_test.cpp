@@ -108,22 +108,17 @@ TEST(Identify, LinearJeffcottBearingStiffnessAndDampingFromNoisyUnbalanceRespons
 // with Gaussian noise of 0.1 um.
 constexpr double kTrueClearanceUm = 30.0, kTrueViscosityMPas = 10.0, kJournalNoiseUm = 0.1;
 
-constexpr const char* kJournalParameters = R"([[parameters]]
-name = "clearance"
-path = ["bearings.left.clearance", "bearings.right.clearance"]
-start = "34 um"
-lower = "20 um"
-upper = "45 um"
-true = "30 um"
+// One [[parameters]] entry of an identification study: `path` is the TOML value of its path key (a string or a list).
+std::string parameter_entry(const std::string& name, const std::string& path, const std::string& start,
+                            const std::string& lower, const std::string& upper, const std::string& truth) {
+  return "[[parameters]]\nname = \"" + name + "\"\npath = " + path + "\nstart = \"" + start + "\"\nlower = \"" +
+         lower + "\"\nupper = \"" + upper + "\"\ntrue = \"" + truth + "\"\n\n";
+}
 
-[[parameters]]
-name = "viscosity"
-path = "oil.viscosity"
-start = "12 mPa*s"
-lower = "5 mPa*s"
-upper = "20 mPa*s"
-true = "10 mPa*s"
-)";
+const std::string kJournalParameters =
+    parameter_entry("clearance", R"(["bearings.left.clearance", "bearings.right.clearance"])", "34 um", "20 um",
+                    "45 um", "30 um") +
+    parameter_entry("viscosity", R"("oil.viscosity")", "12 mPa*s", "5 mPa*s", "20 mPa*s", "10 mPa*s");
 
 // truth: overrides of the bench run (e.g. its speed history); identify_keys: extra lines of the [identify] table.
 std::filesystem::path runup_study(const std::filesystem::path& dir, const std::string& model_file,
@@ -259,22 +254,11 @@ TEST(Identify, MeasuredSpeedNeedsATimeSeries) {
 // The floating-ring variant: inner and outer film clearances of both bearings (true 30 and 60 um).
 TEST(Identify, NonlinearFloatingRingClearancesFromNoisyRunup) {
   const auto dir = scratch("floating_ring");
-  const std::string parameters = R"([[parameters]]
-name = "inner_clearance"
-path = ["bearings.left.inner_clearance", "bearings.right.inner_clearance"]
-start = "34 um"
-lower = "20 um"
-upper = "45 um"
-true = "30 um"
-
-[[parameters]]
-name = "outer_clearance"
-path = ["bearings.left.outer_clearance", "bearings.right.outer_clearance"]
-start = "68 um"
-lower = "40 um"
-upper = "90 um"
-true = "60 um"
-)";
+  const std::string parameters =
+      parameter_entry("inner_clearance", R"(["bearings.left.inner_clearance", "bearings.right.inner_clearance"])",
+                      "34 um", "20 um", "45 um", "30 um") +
+      parameter_entry("outer_clearance", R"(["bearings.left.outer_clearance", "bearings.right.outer_clearance"])",
+                      "68 um", "40 um", "90 um", "60 um");
   const IdentifyStudy study =
       load_identify_study(runup_study(dir, "tests/data/identification/floating_ring_rotor.toml", parameters, 15));
   IdentifyOptions o;

@@ -54,6 +54,21 @@ double angle_difference(double a, double b) { return std::remainder(a - b, 2.0 *
 // ---------------------------------------------------------------------------------------------------------------
 // Windows
 
+// Every segment of s shows the amplitude of each (bin, amplitude) pair within tol.
+void expect_in_every_segment(const Spectrogram& s, std::initializer_list<std::pair<std::size_t, double>> bins,
+                             double tol) {
+  for (std::size_t seg = 0; seg < s.n_segments(); ++seg)
+    for (const auto& [bin, amplitude] : bins) EXPECT_NEAR(s.at(seg, bin), amplitude, tol) << "segment " << seg;
+}
+
+// STFT options with segments of n samples and window w, the rest at their defaults.
+StftOptions options(std::size_t n, Window w) {
+  StftOptions o;
+  o.segment_length = n;
+  o.window = w;
+  return o;
+}
+
 TEST(Window, FromStringAcceptsTheNamesCaseInsensitively) {
   EXPECT_EQ(window_from_string("rectangular"), Window::Rectangular);
   EXPECT_EQ(window_from_string("hann"), Window::Hann);
@@ -173,9 +188,7 @@ TEST(Stft, MatchesADirectDftForAnyLength) {
     std::vector<double> x(n);
     for (std::size_t i = 0; i < n; ++i)
       x[i] = std::sin(0.37 * static_cast<double>(i * i) + 1.0) + 0.1 * static_cast<double>(i % 5);
-    StftOptions o;
-    o.segment_length = n;
-    o.window = Window::Rectangular;
+    StftOptions o = options(n, Window::Rectangular);
     o.remove_mean = false;
     const Spectrogram s = stft(x, 1.0, o);
     ASSERT_EQ(s.n_segments(), 1u);
@@ -198,18 +211,12 @@ TEST(Stft, DcAndNyquistAreNotDoubled) {
   const std::size_t n = 1000;
   std::vector<double> x(2 * n);
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = 0.7 + 1.9 * (i % 2 == 0 ? 1.0 : -1.0);
-  StftOptions o;
-  o.segment_length = n;
-  o.window = Window::Rectangular;
+  StftOptions o = options(n, Window::Rectangular);
   o.remove_mean = false;
   const Spectrogram s = stft(x, 2000.0, o);
   ASSERT_EQ(s.n_bins(), 501u);
   EXPECT_DOUBLE_EQ(s.frequencies.back(), 1000.0);
-  for (std::size_t seg = 0; seg < s.n_segments(); ++seg) {
-    EXPECT_NEAR(s.at(seg, 0), 0.7, 1e-12);
-    EXPECT_NEAR(s.at(seg, 500), 1.9, 1e-12);
-    EXPECT_NEAR(s.at(seg, 250), 0.0, 1e-12);
-  }
+  expect_in_every_segment(s, {{0, 0.7}, {500, 1.9}, {250, 0.0}}, 1e-12);
 }
 
 TEST(Stft, RemoveMeanTakesOutTheDcButNotTheTone) {
@@ -218,19 +225,13 @@ TEST(Stft, RemoveMeanTakesOutTheDcButNotTheTone) {
   const auto x = sampled(4 * n, fs, [](double t) { return 3.0 + 0.5 * std::sin(2 * pi * 40.0 * t); });
   for (Window w : {Window::Rectangular, Window::Hann, Window::FlatTop}) {
     SCOPED_TRACE(to_string(w));
-    StftOptions o;
-    o.segment_length = n;
-    o.window = w;
+    StftOptions o = options(n, w);
     o.remove_mean = true;
     const Spectrogram with = stft(x, fs, o);
     o.remove_mean = false;
     const Spectrogram without = stft(x, fs, o);
-    for (std::size_t seg = 0; seg < with.n_segments(); ++seg) {
-      EXPECT_NEAR(with.at(seg, 0), 0.0, 1e-9);
-      EXPECT_NEAR(without.at(seg, 0), 3.0, 1e-9);
-      EXPECT_NEAR(with.at(seg, 40), 0.5, 1e-9);
-      EXPECT_NEAR(without.at(seg, 40), 0.5, 1e-9);
-    }
+    expect_in_every_segment(with, {{0, 0.0}, {40, 0.5}}, 1e-9);
+    expect_in_every_segment(without, {{0, 3.0}, {40, 0.5}}, 1e-9);
   }
 }
 
@@ -244,9 +245,7 @@ TEST(Stft, OffBinTonesStayWithinTheWindowsScallopingBounds) {
     const double f = 200.0 + offset;
     SCOPED_TRACE("offset " + std::to_string(offset) + " bins");
     const auto x = sampled(2 * n, fs, [&](double t) { return A * std::cos(2 * pi * f * t + 1.0); });
-    StftOptions o;
-    o.segment_length = n;
-    o.window = Window::FlatTop;
+    StftOptions o = options(n, Window::FlatTop);
     const Spectrogram flat = stft(x, fs, o);
     o.window = Window::Hann;
     const Spectrogram hann = stft(x, fs, o);
@@ -272,9 +271,7 @@ TEST(Stft, OffBinTonesStayWithinTheWindowsScallopingBounds) {
 TEST(Stft, TwoTonesAreBothRecoveredWithoutLeakageBetweenThem) {
   const std::size_t n = 1024;
   const double fs = 8192.0;  // 8 Hz bins
-  StftOptions o;
-  o.segment_length = n;
-  o.window = Window::Hann;
+  StftOptions o = options(n, Window::Hann);
   {  // on bins 200 and 208
     const auto x = sampled(4 * n, fs, [](double t) {
       return 1.0 * std::cos(2 * pi * 1600.0 * t + 0.2) + 0.25 * std::cos(2 * pi * 1664.0 * t - 1.0);

@@ -84,6 +84,13 @@ std::size_t differing_values(const TimeSeriesData& data, std::size_t rows) {
   return differing;
 }
 
+// A file marked incomplete that holds exactly the first `rows` samples, bit for bit.
+void expect_incomplete_with_rows(const TimeSeriesData& data, std::size_t rows) {
+  EXPECT_FALSE(data.complete);
+  ASSERT_EQ(data.time.size(), rows);
+  EXPECT_EQ(differing_values(data, rows), 0u);
+}
+
 void append_samples(Hdf5TimeSeriesWriter& writer, std::size_t from, std::size_t to) {
   std::vector<double> row(writer.channels().size());
   for (std::size_t r = from; r < to; ++r) {
@@ -144,9 +151,7 @@ TEST_F(TimeSeriesFile, FinishFalseMarksIncomplete) {
   append_samples(writer, 0, 250);
   writer.finish(false);
   const TimeSeriesData data = read_hdf5_timeseries(file);
-  EXPECT_FALSE(data.complete);
-  ASSERT_EQ(data.time.size(), 250u);
-  EXPECT_EQ(differing_values(data, 250), 0u);
+  expect_incomplete_with_rows(data, 250);
 }
 
 TEST_F(TimeSeriesFile, TimeOnlyWithoutChannels) {
@@ -169,9 +174,7 @@ TEST_F(TimeSeriesFile, DestructorWithoutFinishFlushesAndLeavesIncomplete) {
   }
   const TimeSeriesData data = read_hdf5_timeseries(file);
   expect_channels(data, three_channels());
-  EXPECT_FALSE(data.complete);
-  ASSERT_EQ(data.time.size(), 1000u);
-  EXPECT_EQ(differing_values(data, 1000), 0u);
+  expect_incomplete_with_rows(data, 1000);
   EXPECT_EQ(data.string_attributes.at("status"), "integrator failed at t = 0.05 s");
 }
 
@@ -210,9 +213,7 @@ TEST_F(TimeSeriesFile, CrashAfterFlushKeepsFlushedRows) {
   ASSERT_EQ(exit_code, 1);
   const TimeSeriesData data = read_hdf5_timeseries(file);
   expect_channels(data, three_channels());
-  EXPECT_FALSE(data.complete);
-  ASSERT_EQ(data.time.size(), 1000u);
-  EXPECT_EQ(differing_values(data, 1000), 0u);
+  expect_incomplete_with_rows(data, 1000);
   EXPECT_EQ(data.number_attributes.at("speed_rpm"), 150000.0);
   EXPECT_EQ(data.string_attributes.at("software"), "turbodyn");
 }
@@ -226,9 +227,7 @@ TEST_F(TimeSeriesFile, CrashKeepsEveryFullBuffer) {
   });
   ASSERT_EQ(exit_code, 1);
   const TimeSeriesData data = read_hdf5_timeseries(file);
-  EXPECT_FALSE(data.complete);
-  ASSERT_EQ(data.time.size(), 1024u);
-  EXPECT_EQ(differing_values(data, 1024), 0u);
+  expect_incomplete_with_rows(data, 1024);
 }
 
 TEST_F(TimeSeriesFile, CrashBeforeAnyFlushLeavesAnEmptyReadableFile) {
