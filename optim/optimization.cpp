@@ -149,7 +149,7 @@ double bound_value(Reader& r, const std::string& key, const std::string& unit) {
 // units.
 void resolve_metrics(OptimizationSpec& s) {
   const std::vector<Override> overrides = run_overrides(s, start_design(s), &s.cases.front());
-  const MachineSpec machine = load_model(s.model, overrides);
+  const MachineSpec machine = studies::load_study_model(s, overrides);
   std::vector<std::pair<std::string, std::string>> paths;
   for (std::size_t i = 0; i < s.variables.size(); ++i)
     for (const std::string& p : s.variables[i].paths)

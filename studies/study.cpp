@@ -110,9 +110,30 @@ StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& fil
   return s;
 }
 
+namespace {
+
+// Runs `read` (which loads the study's base model) so that a ModelError names the study file first.
+template <class F>
+auto in_study_context(const StudyCommon& study, F&& read) {
+  try {
+    return read();
+  } catch (const ModelError& e) {
+    const std::string source = study.source.string();
+    if (source.empty() || std::string(e.what()).rfind(source, 0) == 0) throw;
+    throw ModelError(source + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+MachineSpec load_study_model(const StudyCommon& study, const std::vector<Override>& overrides) {
+  return in_study_context(study, [&] { return load_model(study.model, overrides); });
+}
+
 void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
                         const std::vector<std::pair<std::string, std::string>>& key_and_path) {
-  const std::vector<std::string> numeric = numeric_model_keys(study.model, overrides);
+  const std::vector<std::string> numeric =
+      in_study_context(study, [&] { return numeric_model_keys(study.model, overrides); });
   for (const auto& [key, path] : key_and_path) {
     if (std::binary_search(numeric.begin(), numeric.end(), path)) continue;
     const std::string hint = closest_match(path, numeric);

@@ -91,7 +91,7 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
   // Check the study against the model once, before any run: overrides apply, probes exist.
   {
     const std::vector<Override> overrides = run_overrides(study, design, shard.empty() ? 0 : shard[0]);
-    const MachineSpec spec = load_model(study.model, overrides);
+    const MachineSpec spec = load_study_model(study, overrides);
     std::vector<std::pair<std::string, std::string>> paths;
     for (std::size_t p = 0; p < design.paths.size(); ++p)
       paths.emplace_back("parameters[" + std::to_string(p) + "].path", design.paths[p]);

@@ -6,6 +6,7 @@
 
 #include "model/engine/element_factory.h"
 #include "model/engine/runup_workspace.h"
+#include "model/spec/errors.h"
 
 namespace turbodyn {
 
@@ -41,9 +42,14 @@ RunupModel::RunupModel(const MachineSpec& spec, Rotor rotor, std::vector<std::un
       for (int b = 0; b < nb; ++b) Kib(a, b) = rotor_.K(I[a], B[b]);
     }
     const Eigen::LLT<Eigen::MatrixXd> kll(Kii);
-    if (kll.info() != Eigen::Success)
-      throw std::runtime_error("Craig-Bampton reduction: the shaft with its bearing nodes held is not stiff; "
-                               "set solver.reduction_cutoff = 0");
+    // Held at the translations of one node only, the shaft still tilts about it: singular in exact arithmetic,
+    // though round-off may let the factorisation pass.
+    const bool one_node = std::all_of(B.begin(), B.end(), [&](int d) { return d / kDofPerNode == B[0] / kDofPerNode; });
+    if (kll.info() != Eigen::Success || one_node)
+      throw ModelError(spec.source.string() + ": solver.reduction_cutoff: the Craig-Bampton reduction holds the rotor at the " +
+                       std::to_string(nb) + " translations its bearings and disks act on, and it can still move "
+                       "as a rigid body there (a rotor on one bearing tilts freely): give it bearings at two places "
+                       "or more, or set solver.reduction_cutoff = 0 to simulate the unreduced model");
     const Eigen::MatrixXd Psi = -kll.solve(Kib);
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kii, Mii);
     const double wmax = 2.0 * M_PI * reduction_cutoff;

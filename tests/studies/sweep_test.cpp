@@ -207,5 +207,22 @@ runs = 4
   }
 }
 
+TEST(StudyFile, AFaultInTheStudysOverridesNamesTheStudyFileAndTheOverride) {
+  // Issue 20 (found by the input fuzzer): the message named the override only, not the study file that holds it.
+  std::string body = one_parameter_study("kind = \"full-factorial\"",
+                                         "path = \"disks.turbine.unbalance\"\nlevels = [\"1 mg*mm\"]", "disk.turbine.x");
+  body.replace(body.find("\"disks.compressor.unbalance=0\""), 30, "\"disks.compresor.unbalance=0\"");
+  const StudySpec s = load_study(write_study("bad_fixed", body));
+  SweepOptions o;
+  o.output_dir = temp_dir("bad_fixed_out");
+  try {
+    run_sweep(s, o);
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad_fixed.toml: --set disks.compresor.unbalance=0:"));
+    EXPECT_THAT(e.what(), HasSubstr("disks.compresor.z: missing required key"));  // a new disk, not a misspelt one
+  }
+}
+
 }  // namespace
 }  // namespace turbodyn::studies

@@ -98,6 +98,21 @@ TEST(Reduction, KeepsTheLowModesOfTheFullModel) {
   }
 }
 
+TEST(Reduction, ARotorThatCanMoveRigidlyAtItsBoundaryIsAModelErrorNamingTheFileAndKey) {
+  // Issue 20 (found by the input fuzzer, a model file cut short): a shaft held at one node only (here one disk, no
+  // bearing) tilts freely about it; the reduction said "not stiff" in a runtime_error naming no file.
+  MachineSpec spec = reference();
+  spec.bearings.clear();
+  spec.disks.pop_back();
+  try {
+    (void)make_runup_model(spec);
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("reference_linear.toml: solver.reduction_cutoff:"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("rigid body"));
+  }
+}
+
 TEST(Jacobian, AssembledJacobianMatchesFiniteDifferencesOfTheRhs) {
   // Pedestal bearings add internal states; the exact rotor part, the analytic element Jacobian and the
   // scattering into the blocks are all checked against forward differences of the full right-hand side.
