@@ -41,6 +41,21 @@ std::string one_parameter_study(const std::string& design, const std::string& pa
          "\n[[metrics]]\nkind = \"max\"\nprobe = \"" + probe + "\"\n";
 }
 
+// The ModelError of a sweep of the study `body` (file NAME.toml) that the study file loads but the sweep refuses
+// before its first run; "" (and a failure) if it runs.
+std::string sweep_error(const std::string& name, const std::string& body) {
+  const StudySpec s = load_study(write_study(name, body));
+  SweepOptions o;
+  o.output_dir = temp_dir(name + "_out");
+  try {
+    run_sweep(s, o);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << name << ": no error";
+  return "";
+}
+
 TEST(Sweep, ResponseIsLinearInTheUnbalance) {
   // A linear rotor: every response scales exactly with the single unbalance (superposition), so max |x| / U is
   // the same for every level.
@@ -195,16 +210,9 @@ runs = 4
                                            "disk.turbine.x")),
               HasSubstr("one unit"));
   // A probe the model does not have is found before any run starts.
-  const StudySpec s = load_study(write_study(
-      "probe", one_parameter_study("kind = \"full-factorial\"", unbalance + "levels = [\"1 mg*mm\"]", "disk.turbine.z")));
-  SweepOptions o;
-  o.output_dir = temp_dir("probe_out");
-  try {
-    run_sweep(s, o);
-    ADD_FAILURE() << "no error";
-  } catch (const ModelError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("did you mean 'disk.turbine.x'"));
-  }
+  EXPECT_THAT(sweep_error("probe", one_parameter_study("kind = \"full-factorial\"",
+                                                       unbalance + "levels = [\"1 mg*mm\"]", "disk.turbine.z")),
+              HasSubstr("did you mean 'disk.turbine.x'"));
 }
 
 TEST(StudyFile, AFaultInTheStudysOverridesNamesTheStudyFileAndTheOverride) {
@@ -212,16 +220,9 @@ TEST(StudyFile, AFaultInTheStudysOverridesNamesTheStudyFileAndTheOverride) {
   std::string body = one_parameter_study("kind = \"full-factorial\"",
                                          "path = \"disks.turbine.unbalance\"\nlevels = [\"1 mg*mm\"]", "disk.turbine.x");
   body.replace(body.find("\"disks.compressor.unbalance=0\""), 30, "\"disks.compresor.unbalance=0\"");
-  const StudySpec s = load_study(write_study("bad_fixed", body));
-  SweepOptions o;
-  o.output_dir = temp_dir("bad_fixed_out");
-  try {
-    run_sweep(s, o);
-    ADD_FAILURE() << "no error";
-  } catch (const ModelError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("bad_fixed.toml: --set disks.compresor.unbalance=0:"));
-    EXPECT_THAT(e.what(), HasSubstr("disks.compresor.z: missing required key"));  // a new disk, not a misspelt one
-  }
+  const std::string e = sweep_error("bad_fixed", body);
+  EXPECT_THAT(e, HasSubstr("bad_fixed.toml: --set disks.compresor.unbalance=0:"));
+  EXPECT_THAT(e, HasSubstr("disks.compresor.z: missing required key"));  // a new disk, not a misspelt one
 }
 
 }  // namespace
