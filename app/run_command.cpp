@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <chrono>
 #include <csignal>
 #include <fstream>
 #include <iomanip>
@@ -145,7 +146,26 @@ int run_run_command(const RunCommandOptions& options) {
   Hdf5TimeSeriesWriter writer(options.output_dir / "timeseries.h5", channels);
   writer.set_attribute("model", spec.name);
   writer.set_attribute("model_file", spec.source.string());
-  ro.sink = [&](double t, const double* v) { writer.append(t, v); };
+  // Flushed about once a second of wall time, so that a killed run keeps all but its last second of samples.
+  auto last_flush = std::chrono::steady_clock::now();
+  ro.sink = [&](double t, const double* v) {
+    writer.append(t, v);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_flush > std::chrono::seconds(1)) {
+      writer.flush();
+      last_flush = now;
+    }
+  };
+  // A summary from the start, marked incomplete: a run killed before its end leaves a directory that `turbodyn
+  // plot` redraws (from the flushed samples). The run's own summary replaces it.
+  {
+    RunupResult pending;
+    pending.complete = false;
+    pending.message = "running, or killed before its end: this summary is written when the run starts and replaced "
+                      "when it ends";
+    write_output_file(options.output_dir / "summary.json",
+                      run_summary(spec, *model, ro, pending, options.overrides).dump(1) + "\n");
+  }
   const bool tty = isatty(STDERR_FILENO);
   const double t_end = model->speed().duration();
   // The time left from the cost so far against the rotor speed and the ramp still to go (remaining_time.h).
@@ -163,8 +183,10 @@ int run_run_command(const RunCommandOptions& options) {
 
   g_interrupted.store(false);
   auto previous = std::signal(SIGINT, on_sigint);
+  auto previous_term = std::signal(SIGTERM, on_sigint);  // a scheduler's stop: the same orderly end as Ctrl-C
   const RunupResult r = simulate_runup(*model, ro);
   std::signal(SIGINT, previous);
+  std::signal(SIGTERM, previous_term);
   if (tty) std::cerr << "\n";
   writer.finish(r.complete);
 

@@ -25,12 +25,20 @@ struct Integration {
   void* cvode = nullptr;
   double gamma_factored = -1.0;
   std::string last_error;
+  const std::atomic<bool>* cancel = nullptr;  // RunupOptions::cancel
+  bool cancelled = false;       // a right-hand side saw the cancel flag and stopped the integrator
   long jacobian_step = 0;       // integrator step count at the last Jacobian
   long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
 };
 
 int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto* in = static_cast<Integration*>(user);
+  // Ctrl-C is honoured inside an output interval too (a stalled run may take no sample for minutes): an
+  // unrecoverable right-hand-side failure ends the integrator's call at once, with the state of its last step.
+  if (in->cancel && in->cancel->load(std::memory_order_relaxed)) {
+    in->cancelled = true;
+    return -1;
+  }
   try {
     in->model->Rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot), *in->ws);
   } catch (const std::exception& e) {
@@ -189,6 +197,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   Integration in;
   in.model = &model;
   in.ws = ws.get();
+  in.cancel = options.cancel;
   void* mem = nullptr;
   SUNLinearSolver LS = nullptr;
   const Integrator integrator = resolve_integrator(model, options.solver.integrator);
@@ -237,6 +246,11 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   for (long k = 1; k <= n_out; ++k) {
     const double tout = std::min(t0 + k * dt_out, t_end);
     const int flag = bdf ? CVode(mem, tout, y, &t, CV_NORMAL) : ERKStepEvolve(mem, tout, y, &t, ARK_NORMAL);
+    if (flag < 0 && in.cancelled) {
+      result.complete = false;
+      result.message = describe_stop(t, model.spin(t).speed, "interrupted");
+      break;
+    }
     if (flag < 0) {
       const char* name = bdf ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag);
       std::string cause = std::string(name ? name : "integrator failure");

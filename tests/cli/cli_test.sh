@@ -101,6 +101,41 @@ EOF2
     grep -q "interrupted" "$out/log" || fail "no reason given: $(cat "$out/log")"
     [ -s "$out/timeseries.h5" ] || fail "partial results not written"
     ;;
+  run_interrupted_between_samples)
+    # Issue 20: Ctrl-C was checked only between output samples, so a run that took no sample for minutes ignored it.
+    # One sample a minute of simulated time here: SIGINT and SIGTERM end the run within a second anyway.
+    for sig in INT TERM; do
+      "$exe" run "$src/examples/reference_linear.toml" --set speed.duration=400 --set "output.sample_rate=0.02 Hz" \
+        --no-plots -o "$out/$sig" > "$out/$sig.log" 2>&1 &
+      pid=$!
+      sleep 2
+      kill -$sig $pid
+      start=$(date +%s%N)
+      wait $pid
+      rc=$?
+      ms=$((($(date +%s%N) - start) / 1000000))
+      [ $rc -eq 130 ] || fail "SIG$sig: exit $rc, expected 130: $(cat "$out/$sig.log")"
+      echo "SIG$sig: stopped after $ms ms"
+      # The aim is well under a second; the bound is loose so that a loaded machine does not fail it (before, the
+      # run went on for minutes).
+      [ $ms -lt 5000 ] || fail "SIG$sig: the run took $ms ms to stop"
+      grep -q "interrupted" "$out/$sig.log" || fail "SIG$sig: no reason given: $(cat "$out/$sig.log")"
+      grep -q '"complete": false' "$out/$sig/summary.json" || fail "SIG$sig: summary not marked incomplete"
+    done
+    ;;
+  run_killed_keeps_its_samples)
+    # Issue 20: SIGKILL kept only whole 4,096-row blocks of the time series and no summary.json, and `turbodyn plot`
+    # refused the directory. Now the samples are flushed each second and the summary is written at the start.
+    "$exe" run "$src/examples/reference_linear.toml" --set speed.duration=400 --no-plots -o "$out" > "$out/log" 2>&1 &
+    pid=$!
+    sleep 4
+    kill -KILL $pid
+    wait $pid 2>/dev/null
+    grep -q '"complete": false' "$out/summary.json" || fail "no summary marked incomplete: $(cat "$out/summary.json")"
+    "$exe" plot "$out" > "$out/plot.log" 2>&1 || fail "plot refused the killed run: $(cat "$out/plot.log")"
+    grep -q "(the run is incomplete)" "$out/plot.log" || fail "plot: $(cat "$out/plot.log")"
+    ls "$out"/*.png > /dev/null 2>&1 || fail "no pictures from the killed run's samples"
+    ;;
   sweep_kill_and_resume)
     # A study killed hard (SIGKILL) part-way resumes where it stopped, without redoing finished runs.
     study="$src/examples/study_reference_linear.toml"
