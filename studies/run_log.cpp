@@ -1,5 +1,7 @@
 #include "studies/run_log.h"
 
+#include <sstream>
+
 #include "model/spec/errors.h"
 
 namespace turbodyn::studies {
@@ -7,16 +9,26 @@ namespace turbodyn::studies {
 RunLogContents read_run_log(const std::filesystem::path& file, const nlohmann::json& header,
                             const std::string& mismatch) {
   RunLogContents c;
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in) return c;
-  std::string line;
-  while (std::getline(in, line)) {
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string all = text.str();
+  std::size_t begin = 0;
+  for (int line_no = 1; begin < all.size(); ++line_no) {
+    const std::size_t newline = all.find('\n', begin);
+    if (newline == std::string::npos) break;  // cut short by a kill: that run is done again
+    const std::string line = all.substr(begin, newline - begin);
+    begin = newline + 1;
+    c.complete_bytes = begin;
     if (line.empty()) continue;
     nlohmann::json j;
     try {
       j = nlohmann::json::parse(line);
     } catch (const nlohmann::json::parse_error&) {
-      continue;  // cut short by a kill: that run is done again
+      throw ModelError(file.string() + ":" + std::to_string(line_no) +
+                       ": a damaged line (not JSON) inside the log; a kill cuts only the last line short. Move the "
+                       "file away to start the batch afresh");
     }
     if (!c.has_header) {
       if (j != header) throw ModelError(file.string() + ": " + mismatch);
@@ -32,6 +44,8 @@ RunLog::RunLog(const std::filesystem::path& file, const nlohmann::json& header, 
   RunLogContents c = read_run_log(file, header, mismatch);
   records_ = std::move(c.records);
   std::filesystem::create_directories(file.parent_path().empty() ? "." : file.parent_path());
+  // A last line cut short by a kill goes, so that the next line does not continue it.
+  if (c.has_header) std::filesystem::resize_file(file, c.complete_bytes);
   out_.open(file, c.has_header ? std::ios::app : std::ios::trunc);
   if (!out_) throw ModelError(file.string() + ": cannot write");
   if (!c.has_header) out_ << header.dump() << "\n" << std::flush;

@@ -16,17 +16,20 @@ namespace turbodyn::studies {
 struct RunLogContents {
   bool has_header = false;              ///< the file has a complete first line
   std::vector<nlohmann::json> records;  ///< the complete lines after it
+  std::size_t complete_bytes = 0;       ///< the length of the file up to the end of its last complete line
 };
 
-/// The lines of `file` (none if it does not exist); lines cut short by a kill are skipped. Throws ModelError
-/// "FILE: `mismatch`" when the first complete line is not `header`, i.e. the file belongs to another batch.
+/// The lines of `file` (none if it does not exist); a last line cut short by a kill (no newline) is skipped. Throws
+/// ModelError "FILE: `mismatch`" when the first complete line is not `header`, i.e. the file belongs to another
+/// batch, and "FILE:LINE: a damaged line" for a complete line that is not JSON.
 RunLogContents read_run_log(const std::filesystem::path& file, const nlohmann::json& header,
                             const std::string& mismatch);
 
 class RunLog {
  public:
-  /// Reads `file` as read_run_log does and opens it for appending. A file without a complete header line (new,
-  /// empty, or killed while the header was written) starts over with `header`.
+  /// Reads `file` as read_run_log does and opens it for appending, after cutting off a last line cut short by a
+  /// kill. A file without a complete header line (new, empty, or killed while the header was written) starts over
+  /// with `header`.
   RunLog(const std::filesystem::path& file, const nlohmann::json& header, const std::string& mismatch);
 
   /// The records read when the log was opened.

@@ -53,6 +53,31 @@ TEST(RunLog, SkipsALineCutShortByAKill) {
   EXPECT_EQ(c.records.size(), 1u);
 }
 
+TEST(RunLog, AppendingAfterALineCutShortStartsANewLine) {
+  // Issue 20: the next record continued the cut line ("{\"ind{\"index\":1}"), so it was lost on the next resume.
+  const auto f = fresh_file("cut_append");
+  std::filesystem::create_directories(f.parent_path());
+  std::ofstream(f) << kHeader.dump() << "\n{\"index\":0}\n{\"ind";
+  {
+    RunLog log(f, kHeader, "");
+    log.append({{"index", 1}});
+  }
+  EXPECT_EQ(content(f), kHeader.dump() + "\n{\"index\":0}\n{\"index\":1}\n");
+  EXPECT_EQ(read_run_log(f, kHeader, "").records.size(), 2u);
+}
+
+TEST(RunLog, ADamagedLineInsideTheLogIsRefusedWithItsLineNumber) {
+  const auto f = fresh_file("damaged");
+  std::filesystem::create_directories(f.parent_path());
+  std::ofstream(f) << kHeader.dump() << "\n{\"index\":0}\nnot json\n{\"index\":2}\n";
+  try {
+    RunLog log(f, kHeader, "");
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("log.jsonl:3: a damaged line"));
+  }
+}
+
 TEST(RunLog, AHeaderCutShortStartsOver) {
   const auto f = fresh_file("cut_header");
   std::filesystem::create_directories(f.parent_path());
