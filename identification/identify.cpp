@@ -75,13 +75,18 @@ class Problem {
       else errors[k] = "a model feature is undefined (NaN) at one of the compared speeds";
     });
     std::lock_guard<std::mutex> lock(mutex_);
+    const bool cancelled = cancel_ && cancel_->load();
     for (std::size_t k = 0; k < todo.size(); ++k) {
-      if (!fresh[k] && !(cancel_ && cancel_->load())) last_error_ = errors[k];
+      if (!fresh[k] && cancelled) continue;  // stopped by Ctrl-C: neither a result nor a finished run
+      if (!fresh[k]) last_error_ = errors[k];
       cache_[points[todo[k]]] = fresh[k];
       ++runs_;
     }
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (!out[i]) out[i] = cache_.at(points[i]);
+      if (!out[i]) {
+        const auto it = cache_.find(points[i]);
+        if (it != cache_.end()) out[i] = it->second;
+      }
     return out;
   }
 
@@ -173,9 +178,12 @@ class Progress final : public ceres::IterationCallback {
            << (study_.parameters[i].unit.empty() ? "" : " " + study_.parameters[i].unit);
       options_.progress(os.str());
     }
+    last_values_ = scaling_.values(x_);  // the state after this iteration (update_state_every_iteration)
     if (options_.cancel && options_.cancel->load()) return ceres::SOLVER_ABORT;
     return ceres::SOLVER_CONTINUE;
   }
+  /// The parameter values after the last finished iteration (empty before the first).
+  const std::vector<double>& last_values() const { return last_values_; }
 
  private:
   const IdentifyOptions& options_;
@@ -183,6 +191,7 @@ class Progress final : public ceres::IterationCallback {
   const IdentifyStudy& study_;
   const double* x_;
   const Problem& problem_;
+  std::vector<double> last_values_;
 };
 
 double resolution_of(const IdentifyStudy& s, const MeasuredData& m) {
@@ -319,7 +328,8 @@ IdentifyResult identify(const IdentifyStudy& study, const IdentifyOptions& optio
   out.initial_cost = summary.initial_cost;
   out.final_cost = summary.final_cost;
   out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.estimate = scaling.values(x.data());
+  // An aborted solve (Ctrl-C) leaves the parameter blocks as Ceres chooses: report the last finished iteration.
+  out.estimate = out.cancelled && !progress.last_values().empty() ? progress.last_values() : scaling.values(x.data());
   if (!summary.IsSolutionUsable())
     out.warnings.push_back("Ceres found no usable solution: " + summary.message +
                            (problem.last_error().empty() ? "" : " (last model failure: " + problem.last_error() + ")"));

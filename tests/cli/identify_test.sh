@@ -22,6 +22,31 @@ case $case in
     "$exe" run "$out/fitted.toml" --no-plots -o "$out/fitted_run" > "$out/run.log" 2>&1 || fail "fitted.toml does not run: $(cat "$out/run.log")"
     grep -q '"complete": true' "$out/fitted_run/summary.json" || fail "fitted run incomplete"
     ;;
+  interrupted_keeps_the_last_iteration)
+    # Issue 20: after Ctrl-C, estimates.json held the start values although the message promised the last finished
+    # iteration (and the log showed iteration 2 elsewhere), and the run count included the cancelled runs.
+    "$exe" identify "$src/examples/identify_bench_rotor.toml" -o "$out" -j 2 --no-plots > "$out/log" 2>&1 &
+    pid=$!
+    for _ in $(seq 1 1800); do
+      grep -q "^iteration   2 " "$out/log" 2>/dev/null && break
+      sleep 0.1
+    done
+    kill -INT $pid
+    wait $pid
+    rc=$?
+    [ $rc -eq 130 ] || fail "exit $rc, expected 130: $(cat "$out/log")"
+    grep -q "interrupted: the results are those of the last finished iteration" "$out/log" || fail "$(cat "$out/log")"
+    python3 - "$out/log" "$out/estimates.json" <<'PY' || fail "estimates are not those of the last iteration: $(cat "$out/log")"
+import json, re, sys
+last = [l for l in open(sys.argv[1]) if l.startswith("iteration ")][-1]
+logged = {m.group(1): float(m.group(2)) for m in re.finditer(r"(\w+) = ([-+0-9.eE]+)", last)}
+est = {p["name"]: p["estimate"] for p in json.load(open(sys.argv[2]))["parameters"]}
+starts = {p["name"]: p["start"] for p in json.load(open(sys.argv[2]))["parameters"]}
+assert est != starts, "the start values"
+for name, v in est.items():
+    assert abs(v - logged[name]) <= 1e-5 * abs(v), (name, v, logged[name])
+PY
+    ;;
   bad_measured_file)
     # A NaN in the measured file: exit code 2 and a message naming file, line, field and column.
     sed 's/^0.010000,\([^,]*\),\([^,]*\),\([^,]*\),.*$/0.010000,\1,\2,\3,nan/' "$src/examples/data/bench_rotor_runup.csv" \
