@@ -78,7 +78,6 @@ void write_pictures(const std::string& title, const std::vector<BallBearingEquil
   chart.series.push_back(series("radial k_xx", 0, "#1f77b4", Series::Style::LinesPoints));
   chart.series.push_back(series("radial k_yy", 1, "#ff7f0e", Series::Style::Dashed));
   chart.series.push_back(series("axial k_zz (outer ring on its preload spring)", 2, "#2ca02c", Series::Style::LinesPoints));
-  chart.legend_position = "bottom left";
   plot::render_png(chart, dir / "stiffness.png");
 
   plot::LineChart tilt;
@@ -87,7 +86,6 @@ void write_pictures(const std::string& title, const std::vector<BallBearingEquil
   tilt.ylabel = "tilt stiffness [N m/rad]";
   tilt.series.push_back(series("k_theta_x theta_x", 3, "#1f77b4", Series::Style::LinesPoints));
   tilt.series.push_back(series("k_theta_y theta_y", 4, "#ff7f0e", Series::Style::Dashed));
-  tilt.legend_position = "bottom left";
   plot::render_png(tilt, dir / "tilt_stiffness.png");
 }
 

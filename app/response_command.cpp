@@ -67,7 +67,7 @@ int run_response_command(const ResponseCommandOptions& options) {
     plot::LineChart chart;
     chart.title = "Steady-state unbalance response: " + spec.name;
     chart.xlabel = "rotor speed f_d [Hz]";
-    chart.ylabel = "1x orbit major semi-axis [um]";
+    chart.ylabel = "1x orbit major semi-axis [µm]";
     chart.logy = true;
     std::size_t c = 2;
     for (const RigidDisk& d : rotor.disks) {

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "post/plot.h"
+#include "post/plot_style.h"
 #include "model/io/run_summary.h"
 #include "model/io/output_file.h"
 #include "model/engine/integrator.h"
@@ -46,8 +47,9 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
   std::getline(in, line);
   if (line.rfind("speed_rad_s,speed_rpm,mode,frequency_hz,damping_ratio,whirl", 0) != 0)
     throw ModelError(file.string() + ": not a campbell.csv of turbodyn modal (header '" + line + "')");
-  plot::Series fwd{"forward modes (linear model)", {}, {}, plot::Series::Style::Points, "#ff5050", 1.2};
-  plot::Series bwd{"backward modes (linear model)", {}, {}, plot::Series::Style::Points, "#40a0ff", 1.2};
+  plot::Series fwd{"forward modes (linear model)", {}, {}, plot::Series::Style::Points, plot::style::kForwardOnDark, 1.2};
+  plot::Series bwd{"backward modes (linear model)", {}, {}, plot::Series::Style::Points, plot::style::kBackwardOnDark,
+                   1.2};
   int row = 1;
   while (std::getline(in, line)) {
     ++row;

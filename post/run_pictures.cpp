@@ -1,5 +1,7 @@
 #include "post/run_pictures.h"
 
+#include "post/plot_style.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -102,8 +104,9 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
   hm.logz = true;
   if (!against_time && !hm.x.empty()) {
     const double x0 = hm.x.front(), x1 = hm.x.back();
-    hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Dashed, "white", 1.0});
-    hm.overlays.push_back({"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, "#bbbbbb", 1.0});
+    hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Lines, plot::style::kOrder1xOnDark, 1.0});
+    hm.overlays.push_back(
+        {"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, plot::style::kOrderHalfOnDark, 1.0});
   }
   return hm;
 }
