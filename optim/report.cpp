@@ -7,6 +7,7 @@
 
 #include "post/plot.h"
 #include "post/plot_style.h"
+#include "post/run_pictures.h"
 #include "studies/table.h"
 
 namespace turbodyn::optim {
@@ -132,13 +133,17 @@ void write_convergence_plot(const OptimizationSpec& s, const OptimizationResult&
   chart.title = "Convergence: " + s.name + " (" + s.algorithm.name + ")";
   chart.xlabel = "evaluation (request to the model, incl. finite-difference points)";
   std::string unit;
-  // A unit when the objective is a plain sum of metrics of one unit.
+  // A unit when the objective is a plain sum of metrics of one unit, shown as the pictures show that quantity
+  // (a displacement in µm).
   unit = s.metrics[s.objective.terms[0].metric].unit;
   for (const ObjectiveTerm& t : s.objective.terms)
     if (t.weight != 1.0 || s.metrics[t.metric].unit != unit) unit.clear();
-  chart.ylabel = with_unit("objective", unit);
-  for (plot::Series* p : {&feasible, &infeasible, &best})
+  const post::Display d = post::display_of(unit);
+  chart.ylabel = with_unit("objective", d.unit);
+  for (plot::Series* p : {&feasible, &infeasible, &best}) {
+    for (double& v : p->y) v *= d.factor;
     if (!p->x.empty()) chart.series.push_back(*p);
+  }
   if (chart.series.empty()) return;
   plot::render_png(chart, png, plot::Size{900, 600});
 }

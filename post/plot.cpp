@@ -252,6 +252,8 @@ std::string line_chart_script(const LineChart& c, const fs::path& png, const fs:
   for (const Series& se : c.series) any_label = any_label || !se.label.empty();
   if (any_label) s << key_line(c.legend_position, false);
   else s << "unset key\n";
+  // Room for the last x tic label ("160000") when no legend takes the right margin.
+  if (c.legend_position.find("right") == std::string::npos || !any_label) s << "set rmargin 5\n";
   if (c.xrange) s << "set xrange [" << num(c.xrange->first) << ":" << num(c.xrange->second) << "]\n";
   if (c.yrange) s << "set yrange [" << num(c.yrange->first) << ":" << num(c.yrange->second) << "]\n";
   if (c.logy) s << "set logscale y 10\n";

@@ -39,6 +39,7 @@ int column_of(const RunupResult& r, ProbeChannel::Kind kind) {
 
 Display display_of(const std::string& si_unit) {
   if (si_unit == "m") return {1e6, "µm"};
+  if (si_unit == "N/m") return {1e-6, "N/µm"};
   return {1.0, si_unit};
 }
 
