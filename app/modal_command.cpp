@@ -14,6 +14,8 @@
 #include "model/io/output_file.h"
 #include "post/plot.h"
 #include "post/plot_style.h"
+#include "post/report.h"
+#include "app/command_line.h"
 #include "model/rotor/rotor.h"
 #include "model/spec/limits.h"
 #include "model/spec/units.h"
@@ -351,8 +353,9 @@ int run_modal_command(const ModalCommandOptions& options) {
       write_mode_shape_picture(spec, rotor, r, options.output_dir / pictures.back());
     }
   }
+  post::write_modal_report(options.output_dir, j, {command_line(), pictures, {"modal.json", "campbell.csv"}, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv"
+  std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv, report.html"
             << (options.plots ? ", campbell.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall
             << " s)\n";
   return 0;
