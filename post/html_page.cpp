@@ -16,7 +16,7 @@ body{font-family:sans-serif;max-width:1100px;margin:1.5em auto;padding:0 1em;col
 h1{font-size:1.5em;margin-bottom:.2em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}
 code,pre{background:#f3f3f3;padding:.1em .3em;border-radius:3px}
 pre{padding:.5em;white-space:pre-wrap;word-break:break-all}
-table{border-collapse:collapse;margin:.5em 0}th,td{border:1px solid #d0d0d0;padding:.2em .6em;text-align:left}
+.wide{overflow-x:auto}table{border-collapse:collapse;margin:.5em 0}th,td{border:1px solid #d0d0d0;padding:.2em .6em;text-align:left}
 th{background:#f0f0f0}.num{white-space:nowrap;font-variant-numeric:tabular-nums}
 .warn{background:#fff3e0;border-left:4px solid #e65100;padding:.5em .8em;margin:.6em 0}
 .ok{color:#1b5e20}.bad{color:#b71c1c;font-weight:bold}
@@ -126,7 +126,8 @@ void HtmlPage::warnings(const std::vector<std::string>& list) {
 
 void HtmlPage::table(const std::string& label, const std::vector<std::string>& header,
                      const std::vector<std::vector<std::string>>& rows) {
-  body_ += "<table data-table=\"" + html_escape(label) + "\">\n<tr>";
+  // A study's table can be wider than the page: it scrolls sideways, the page does not.
+  body_ += "<div class=\"wide\"><table data-table=\"" + html_escape(label) + "\">\n<tr>";
   for (const std::string& h : header) body_ += "<th>" + html_escape(h) + "</th>";
   body_ += "</tr>\n";
   for (const auto& row : rows) {
@@ -134,7 +135,7 @@ void HtmlPage::table(const std::string& label, const std::vector<std::string>& h
     for (const std::string& cell : row) body_ += "<td>" + cell + "</td>";
     body_ += "</tr>\n";
   }
-  body_ += "</table>\n";
+  body_ += "</table></div>\n";
 }
 
 void HtmlPage::key_values(const std::string& label, const std::vector<std::pair<std::string, std::string>>& rows) {

@@ -1,28 +1,15 @@
 // report.html pieces: escaping, numbers shown as engineers read them and tied to their source in the result file,
-// a page without external references; and the run report built from a summary.json.
+// a page without external references.
 #include "post/html_page.h"
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "post/report.h"
 
 namespace turbodyn::post {
 namespace {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-std::string read(const std::filesystem::path& f) {
-  std::ifstream in(f);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 TEST(HtmlPage, TextIsEscaped) {
   EXPECT_EQ(html_escape("<b>\"a\" & 'b'</b>"), "&lt;b&gt;&quot;a&quot; &amp; &#39;b&#39;&lt;/b&gt;");
@@ -70,36 +57,6 @@ TEST(HtmlPage, PicturesAndFilesAreRelativeLinksAndThePageHasNoExternalReference)
   EXPECT_THAT(html, Not(HasSubstr("http")));
   EXPECT_THAT(html, Not(HasSubstr("<script src")));
   EXPECT_THAT(html, HasSubstr("data-kind=\"run\""));
-}
-
-TEST(Report, RunReportFromASummary) {
-  const auto dir = std::filesystem::temp_directory_path() / "turbodyn_html_page_test";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  nlohmann::json j;
-  j["complete"] = false;
-  j["message"] = "gave up at t = 0.2 s";
-  j["model"] = {{"name", "Rotor & <co>"}, {"source", "m.toml"}};
-  j["overrides"] = {"speed.end=40000 rpm"};
-  j["command"] = "turbodyn run m.toml -o out";
-  j["options"] = {{"integrator", "cvode-bdf"}, {"t_end_s", 0.5}};
-  j["t_reached_s"] = 0.2;
-  j["stats"] = {{"wall_time_s", 0.1}, {"steps", 10}, {"rhs_calls", 20}};
-  j["energy"] = {{"balance_error_j", 1e-9}};
-  j["probes"] = {{"disk.c.x", {{"unit", "m"}, {"description", "x"}, {"max_abs", 3e-5}, {"speed_at_max_rpm", 39000.0},
-                               {"time_at_max_s", 0.19}}}};
-  j["pictures"] = {"spectrogram_disk.c.x.png"};
-  j["warnings"] = {"no spectrogram of y"};
-  write_run_report(dir, j, {});
-  const std::string html = read(dir / "report.html");
-  EXPECT_THAT(html, HasSubstr("Rotor &amp; &lt;co&gt;"));
-  EXPECT_THAT(html, HasSubstr("INCOMPLETE"));
-  EXPECT_THAT(html, HasSubstr(">30.00 µm</span>"));
-  EXPECT_THAT(html, HasSubstr("turbodyn run m.toml -o out"));
-  EXPECT_THAT(html, HasSubstr("no spectrogram of y"));
-  EXPECT_THAT(html, HasSubstr("<img src=\"spectrogram_disk.c.x.png\""));
-  EXPECT_FALSE(std::filesystem::exists(dir / "report.html.tmp"));
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
