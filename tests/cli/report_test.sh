@@ -11,6 +11,12 @@ check() { python3 "$src/tests/cli/check_report.py" "$@" || fail "report of $1"; 
 
 case $case in
   run) check "$work/run_short" run 20 ;;
+  run_incomplete)
+    # A run the integrator gave up on: the page says so at the top, and still shows what was computed.
+    check "$work/run_integrator_gives_up" run 20
+    grep -q 'class="warn" data-alert>INCOMPLETE: the run-up' "$work/run_integrator_gives_up/report.html" \
+      || fail "no incomplete marker on the page"
+    ;;
   plot)
     # turbodyn plot rewrites the page: it names the redrawing command and shows the redrawn pictures.
     check "$work/plot_redraws/run" run 20
