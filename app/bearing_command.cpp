@@ -15,12 +15,15 @@
 #include "model/io/output_file.h"
 #include "model/spec/units.h"
 #include "post/plot.h"
+#include "post/report.h"
+#include "app/command_line.h"
 
 namespace turbodyn::app {
 namespace {
 
 constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
 constexpr double kDeg = 180.0 / M_PI;
+constexpr double kPerMetreToPerMicrometre = 1e-6;  // pictures show stiffness in N/µm
 const char* const kDofNames[5] = {"x", "y", "z", "theta_x", "theta_y"};
 
 std::string trim(std::string s) {
@@ -67,18 +70,18 @@ void write_pictures(const std::string& title, const std::vector<BallBearingEquil
   for (const BallBearingEquilibrium& r : results) rpm.push_back(r.speed * kRadPerSToRpm);
   const auto series = [&](const std::string& label, int i, const std::string& color, Series::Style style) {
     Series s{label, rpm, {}, style, color, 1.8};
-    for (const BallBearingEquilibrium& r : results) s.y.push_back(r.stiffness(i, i));
+    for (const BallBearingEquilibrium& r : results)
+      s.y.push_back(r.stiffness(i, i) * (i < 3 ? kPerMetreToPerMicrometre : 1.0));
     return s;
   };
   plot::LineChart chart;
   chart.title = "Stiffness of ball bearing " + title + " against speed (quasi-static)";
   chart.xlabel = "rotor speed [rpm]";
-  chart.ylabel = "stiffness [N/m]";
+  chart.ylabel = "stiffness [N/µm]";
   chart.logy = true;
   chart.series.push_back(series("radial k_xx", 0, "#1f77b4", Series::Style::LinesPoints));
   chart.series.push_back(series("radial k_yy", 1, "#ff7f0e", Series::Style::Dashed));
   chart.series.push_back(series("axial k_zz (outer ring on its preload spring)", 2, "#2ca02c", Series::Style::LinesPoints));
-  chart.legend_position = "bottom left";
   plot::render_png(chart, dir / "stiffness.png");
 
   plot::LineChart tilt;
@@ -87,7 +90,6 @@ void write_pictures(const std::string& title, const std::vector<BallBearingEquil
   tilt.ylabel = "tilt stiffness [N m/rad]";
   tilt.series.push_back(series("k_theta_x theta_x", 3, "#1f77b4", Series::Style::LinesPoints));
   tilt.series.push_back(series("k_theta_y theta_y", 4, "#ff7f0e", Series::Style::Dashed));
-  tilt.legend_position = "bottom left";
   plot::render_png(tilt, dir / "tilt_stiffness.png");
 }
 
@@ -244,8 +246,13 @@ int run_bearing_command(const BearingCommandOptions& options) {
   }
   std::cout << std::defaultfloat;
   if (options.plots) write_pictures(b.name, results, options.output_dir);
+  post::write_bearing_report(options.output_dir, j,
+                             {command_line(),
+                              options.plots ? std::vector<std::string>{"stiffness.png", "tilt_stiffness.png"}
+                                            : std::vector<std::string>{},
+                              {"bearing.json", "bearing.csv", "bearing_balls.csv"}, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, bearing_balls.csv"
+  std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, bearing_balls.csv, report.html"
             << (options.plots ? ", stiffness.png, tilt_stiffness.png" : "") << " (" << std::setprecision(3) << wall
             << " s)\n";
   return 0;

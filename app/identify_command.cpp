@@ -10,6 +10,10 @@
 #include "identification/identify.h"
 #include "identification/identify_study.h"
 #include "identification/report.h"
+#include "app/command_line.h"
+#include "post/report.h"
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 namespace turbodyn::app {
 namespace {
@@ -40,6 +44,12 @@ int run_identify_command(const IdentifyCommandOptions& options) {
   std::signal(SIGINT, previous);
   std::vector<std::string> warnings = r.warnings;
   const std::vector<std::string> files = write_identify_results(study, r, options.output_dir, options.plots, warnings);
+  {
+    std::ifstream in(options.output_dir / "estimates.json");
+    auto [pictures, others] = post::split_pictures(files);
+    post::write_identify_report(options.output_dir, nlohmann::json::parse(in),
+                                {command_line(), pictures, others, warnings});
+  }
 
   std::cout << study.name << ": " << r.brief_report << "\n";
   std::cout << std::setprecision(6);

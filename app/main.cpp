@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/bearing_command.h"
+#include "app/command_line.h"
 #include "app/identify_command.h"
 #include "app/journal_command.h"
 #include "app/modal_command.h"
@@ -44,6 +45,7 @@ int run_check(const std::filesystem::path& file, const std::vector<turbodyn::Ove
 }  // namespace
 
 int main(int argc, char** argv) {
+  turbodyn::app::set_command_line(argc, argv);
   CLI::App app{"turbodyn: nonlinear run-up simulation of turbocharger rotors"};
   app.set_version_flag("--version", "turbodyn 0.1.0");
   app.require_subcommand(1);

@@ -13,6 +13,9 @@
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "model/io/output_file.h"
 #include "post/plot.h"
+#include "post/plot_style.h"
+#include "post/report.h"
+#include "app/command_line.h"
 #include "model/rotor/rotor.h"
 #include "model/spec/limits.h"
 #include "model/spec/units.h"
@@ -94,10 +97,10 @@ void write_campbell_picture(const MachineSpec& spec, const Campbell& campbell, c
   chart.title = "Campbell diagram: " + spec.name;
   chart.xlabel = "rotor speed [rpm]";
   chart.ylabel = "damped natural frequency [Hz]";
-  Series fw{"forward whirl", {}, {}, Series::Style::Points, "#1f77b4", 1.2};
-  Series bw{"backward whirl", {}, {}, Series::Style::Points, "#d62728", 1.2};
-  Series other{"mixed / planar", {}, {}, Series::Style::Points, "#7f7f7f", 1.2};
-  Series tor{"torsional", {}, {}, Series::Style::Points, "#17becf", 1.2};
+  Series fw{"forward whirl", {}, {}, Series::Style::Points, plot::style::kForward, 1.2};
+  Series bw{"backward whirl", {}, {}, Series::Style::Points, plot::style::kBackward, 1.2};
+  Series other{"mixed / planar", {}, {}, Series::Style::Points, plot::style::kMixedWhirl, 1.2};
+  Series tor{"torsional", {}, {}, Series::Style::Points, plot::style::kTorsional, 1.2};
   for (const ModalResult& r : campbell.points) {
     for (const Mode& m : r.modes) {
       if (m.frequency > fmax) continue;
@@ -107,20 +110,22 @@ void write_campbell_picture(const MachineSpec& spec, const Campbell& campbell, c
     }
   }
   const double smin = campbell.points.front().speed, smax = campbell.points.back().speed;
-  const char* order_colors[] = {"black", "#2ca02c", "#9467bd", "#8c564b"};
+  // 1x solid black, 0.5x dashed grey (as on the spectrograms), other orders dashed in colours of their own.
+  const char* other_colors[] = {"#2ca02c", "#8c564b", "#e377c2", "#bcbd22"};
   int oi = 0;
   for (double order : orders) {
     std::ostringstream label;
     label << order << "x";
+    const bool one = order == 1.0, half = order == 0.5;
     Series line{label.str(), {smin * kRadPerSToRpm, smax * kRadPerSToRpm},
                 {order * smin / (2 * M_PI), order * smax / (2 * M_PI)},
-                oi == 0 ? Series::Style::Lines : Series::Style::Dashed, order_colors[oi % 4], 1.5};
+                one ? Series::Style::Lines : Series::Style::Dashed,
+                one ? plot::style::kOrder1x : half ? plot::style::kOrderHalf : other_colors[oi++ % 4], 1.5};
     chart.series.push_back(line);
-    ++oi;
   }
   for (Series* s : {&fw, &bw, &other, &tor})
     if (!s->x.empty()) chart.series.push_back(*s);
-  Series crit{"critical speeds", {}, {}, Series::Style::Points, "#ff7f0e", 2.5};
+  Series crit{"critical speeds", {}, {}, Series::Style::Points, plot::style::kCriticalSpeed, 2.5};
   for (const CriticalSpeed& c : campbell.critical) {
     if (c.frequency > fmax) continue;
     crit.x.push_back(c.speed * kRadPerSToRpm);
@@ -128,7 +133,7 @@ void write_campbell_picture(const MachineSpec& spec, const Campbell& campbell, c
   }
   if (!crit.x.empty()) chart.series.push_back(crit);
   chart.xrange = std::make_pair(smin * kRadPerSToRpm, smax * kRadPerSToRpm);
-  chart.legend_position = "bottom right";
+  chart.legend_position = "outside right top";  // not over the branches at top speed
   chart.yrange = std::make_pair(0.0, fmax);
   plot::render_png(chart, png);
 }
@@ -334,6 +339,7 @@ int run_modal_command(const ModalCommandOptions& options) {
               << "\n";
   std::cout << std::defaultfloat;
 
+  std::vector<std::string> pictures;
   if (options.plots) {
     double fmax = spec.modal.frequency_max;
     if (fmax <= 0) {
@@ -341,11 +347,15 @@ int run_modal_command(const ModalCommandOptions& options) {
       fmax = 1.1 * std::max(top_order * speeds.back() / (2 * M_PI), 1.0);
     }
     write_campbell_picture(spec, campbell, spec.modal.orders, fmax, options.output_dir / "campbell.png");
-    for (const ModalResult& r : shapes)
-      write_mode_shape_picture(spec, rotor, r, options.output_dir / ("modes_" + speed_tag(r.speed) + ".png"));
+    pictures.push_back("campbell.png");
+    for (const ModalResult& r : shapes) {
+      pictures.push_back("modes_" + speed_tag(r.speed) + ".png");
+      write_mode_shape_picture(spec, rotor, r, options.output_dir / pictures.back());
+    }
   }
+  post::write_modal_report(options.output_dir, j, {command_line(), pictures, {"modal.json", "campbell.csv"}, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv"
+  std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv, report.html"
             << (options.plots ? ", campbell.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall
             << " s)\n";
   return 0;

@@ -19,6 +19,8 @@
 #include "model/io/output_file.h"
 #include "model/io/overrides.h"
 #include "post/run_pictures.h"
+#include "post/report.h"
+#include "app/command_line.h"
 #include "optim/optimizer.h"
 #include "optim/report.h"
 #include "studies/sweep.h"
@@ -215,6 +217,11 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
   result["files"] = written;
   result["warnings"] = warnings;
   write_output_file(dir / "result.json", result.dump(1) + "\n");
+  {
+    auto [pictures, others] = post::split_pictures(written);
+    others.insert(others.begin(), "result.json");
+    post::write_optimize_report(dir, result, {command_line(), pictures, others, {}});
+  }
 
   std::cout << spec.name << ": " << r.nlopt_result << " (" << r.reason << ") after " << r.history.size()
             << (r.history.size() == 1 ? " evaluation (" : " evaluations (") << r.new_evaluations << " run, "

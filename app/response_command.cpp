@@ -9,6 +9,8 @@
 
 #include "app/modal_command.h"
 #include "post/plot.h"
+#include "post/report.h"
+#include "app/command_line.h"
 #include "model/rotor/response.h"
 #include "model/io/output_file.h"
 #include "model/rotor/rotor.h"
@@ -61,13 +63,16 @@ int run_response_command(const ResponseCommandOptions& options) {
   }
   nlohmann::json j;
   j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
+  nlohmann::json overrides = nlohmann::json::array();
+  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
+  j["overrides"] = overrides;
   for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
   write_output_file(options.output_dir / "response.json", j.dump(1) + "\n");
   if (options.plots) {
     plot::LineChart chart;
     chart.title = "Steady-state unbalance response: " + spec.name;
     chart.xlabel = "rotor speed f_d [Hz]";
-    chart.ylabel = "1x orbit major semi-axis [um]";
+    chart.ylabel = "1x orbit major semi-axis [µm]";
     chart.logy = true;
     std::size_t c = 2;
     for (const RigidDisk& d : rotor.disks) {
@@ -78,7 +83,11 @@ int run_response_command(const ResponseCommandOptions& options) {
     }
     plot::render_png(chart, options.output_dir / "response.png");
   }
-  std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json"
+  post::write_response_report(options.output_dir, j,
+                              {command_line(), options.plots ? std::vector<std::string>{"response.png"}
+                                                             : std::vector<std::string>{},
+                               {"response.json", "response.csv"}, {}});
+  std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json, report.html"
             << (options.plots ? ", response.png" : "") << " (" << speeds.size() << " speeds)\n";
   return 0;
 }

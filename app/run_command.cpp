@@ -14,6 +14,9 @@
 #include <nlohmann/json.hpp>
 
 #include "post/plot.h"
+#include "post/plot_style.h"
+#include "post/report.h"
+#include "app/command_line.h"
 #include "model/io/run_summary.h"
 #include "model/io/output_file.h"
 #include "model/engine/integrator.h"
@@ -47,8 +50,9 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
   std::getline(in, line);
   if (line.rfind("speed_rad_s,speed_rpm,mode,frequency_hz,damping_ratio,whirl", 0) != 0)
     throw ModelError(file.string() + ": not a campbell.csv of turbodyn modal (header '" + line + "')");
-  plot::Series fwd{"forward modes (linear model)", {}, {}, plot::Series::Style::Points, "#ff5050", 1.2};
-  plot::Series bwd{"backward modes (linear model)", {}, {}, plot::Series::Style::Points, "#40a0ff", 1.2};
+  plot::Series fwd{"forward modes (linear model)", {}, {}, plot::Series::Style::Points, plot::style::kForwardOnDark, 1.2};
+  plot::Series bwd{"backward modes (linear model)", {}, {}, plot::Series::Style::Points, plot::style::kBackwardOnDark,
+                   1.2};
   int row = 1;
   while (std::getline(in, line)) {
     ++row;
@@ -74,6 +78,14 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
     if (!s->x.empty()) out.push_back(*s);
   if (out.empty()) throw ModelError(file.string() + ": no forward or backward modes");
   return out;
+}
+
+// The result files of a run directory besides the pictures, for the report's links.
+std::vector<std::string> run_files(const std::filesystem::path& dir) {
+  std::vector<std::string> files;
+  for (const char* f : {"summary.json", "timeseries.h5", "timeseries.csv"})
+    if (std::filesystem::exists(dir / f)) files.push_back(f);
+  return files;
 }
 
 }  // namespace
@@ -123,6 +135,7 @@ int run_plot_command(const PlotCommandOptions& options) {
   for (const Override& o : options.overrides) plot_overrides.push_back(o.path + "=" + o.value);
   j["plot_overrides"] = plot_overrides;  // the pictures were drawn with these on top of `overrides`
   write_output_file(summary_file, j.dump(1) + "\n");
+  post::write_run_report(options.run_dir, j, {command_line(), {}, run_files(options.run_dir), {}});
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   std::cout << "Redrew " << pictures.size() << " pictures of " << options.run_dir.string()
             << (r.complete ? "" : " (the run is incomplete)") << "\n";
@@ -212,7 +225,9 @@ int run_run_command(const RunCommandOptions& options) {
   j["pictures"] = pictures;
   j["spectrogram_maxima"] = spectral;
   j["warnings"] = warnings;
+  j["command"] = command_line();
   write_output_file(options.output_dir / "summary.json", j.dump(1) + "\n");
+  post::write_run_report(options.output_dir, j, {"", {}, run_files(options.output_dir), {}});
 
   std::cout << spec.name << ": " << (r.complete ? "complete" : "INCOMPLETE") << ", " << r.stats.steps << " steps, "
             << r.stats.rhs_calls << " rhs calls, wall " << format_duration(r.stats.wall_time) << "\n";
@@ -224,7 +239,7 @@ int run_run_command(const RunCommandOptions& options) {
               << std::defaultfloat;
   }
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
-  std::cout << "Wrote " << (options.output_dir / "timeseries.h5").string() << ", summary.json"
+  std::cout << "Wrote " << (options.output_dir / "timeseries.h5").string() << ", summary.json, report.html"
             << (spec.output.csv ? ", timeseries.csv" : "") << ", " << pictures.size() << " pictures\n";
   if (!r.complete) {
     std::cerr << "error: " << options.model_file.string() << ": run-up " << r.message

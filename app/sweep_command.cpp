@@ -11,6 +11,11 @@
 
 #include "model/io/model_file.h"
 #include "studies/sweep.h"
+#include "app/command_line.h"
+#include "model/io/output_file.h"
+#include "post/report.h"
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 namespace turbodyn::app {
 namespace {
@@ -35,6 +40,15 @@ void parse_shard(const std::string& text, std::size_t& k, std::size_t& n) {
   } catch (const std::exception&) {
     throw ModelError("--shard '" + text + "': expected K/N with 0 <= K < N, e.g. --shard 3/16");
   }
+}
+
+// report.html of a study's output directory, from the results.json just written.
+void write_report(const std::filesystem::path& dir, const std::vector<std::string>& files, const std::string& kind) {
+  std::ifstream in(dir / "results.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  auto [pictures, others] = post::split_pictures(files);
+  others.push_back("runs.jsonl");
+  post::write_study_report(dir, j, kind, {command_line(), pictures, others, {}});
 }
 
 }  // namespace
@@ -62,6 +76,7 @@ int run_sweep_command(const SweepCommandOptions& options) {
   if (tty) std::cerr << "\n";
   const std::vector<std::string> files =
       studies::write_results(study, r.design, r.runs, options.output_dir, options.plots);
+  write_report(options.output_dir, files, "sweep");
   std::size_t failed = 0;
   for (const auto& run : r.runs) failed += run.status != "ok";
   std::cout << study.name << ": " << r.runs.size() << " of " << r.design.values.size() << " runs recorded"
@@ -88,7 +103,10 @@ int run_merge_command(const std::filesystem::path& study_file, const std::vector
   }
   std::vector<studies::RunRecord> all;
   for (auto& [i, r] : runs) all.push_back(r);
-  studies::write_results(study, design, all, output_dir, plots);
+  const std::vector<std::string> files = studies::write_results(study, design, all, output_dir, plots);
+  auto [pictures, others] = post::split_pictures(files);
+  std::ifstream in(output_dir / "results.json");
+  post::write_study_report(output_dir, nlohmann::json::parse(in), "merge", {command_line(), pictures, others, {}});
   std::cout << study.name << ": merged " << all.size() << " of " << design.values.size() << " runs from "
             << dirs.size() << " directories into " << output_dir.string() << "\n";
   if (all.size() < design.values.size())

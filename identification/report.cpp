@@ -7,6 +7,7 @@
 
 #include "model/io/output_file.h"
 #include "post/plot.h"
+#include "post/plot_style.h"
 #include "post/run_pictures.h"
 #include "post/signal.h"
 #include "studies/table.h"
@@ -65,12 +66,12 @@ void spectrogram_picture(const Record& r, std::size_t sensor, const ProcessingSp
   one.label = "1x";
   one.x = {hm.x.front(), hm.x.back()};
   one.y = {hm.x.front() / kHzToRpm, hm.x.back() / kHzToRpm};
-  one.color = "white";
+  one.color = plot::style::kOrder1xOnDark;
   plot::Series half;
   half.label = "0.5x";
   half.x = one.x;
   half.y = {0.5 * one.y[0], 0.5 * one.y[1]};
-  half.color = "white";
+  half.color = plot::style::kOrderHalfOnDark;
   half.style = plot::Series::Style::Dashed;
   hm.overlays = {one, half};
   try_render(hm, png, files, warnings);
@@ -237,9 +238,9 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       c.title = fs.name + ": " + what + " (" + sensor.name + ", " + sensor.probe + ")";
       c.xlabel = "rotor speed [rpm]";
       c.ylabel = what + " [" + unit + "]";
-      c.series.push_back(series("measured", m.speed_hz, m.*member, factor, plot::Series::Style::Points, "black"));
-      if (i0) c.series.push_back(series("initial model", i0->speed_hz, i0->*member, factor, plot::Series::Style::Dashed, "#888888"));
-      c.series.push_back(series("fitted model", fi.speed_hz, fi.*member, factor, plot::Series::Style::Lines, "#d62728"));
+      c.series.push_back(series("measured", m.speed_hz, m.*member, factor, plot::Series::Style::Points, plot::style::kMeasured));
+      if (i0) c.series.push_back(series("initial model", i0->speed_hz, i0->*member, factor, plot::Series::Style::Dashed, plot::style::kInitial));
+      c.series.push_back(series("fitted model", fi.speed_hz, fi.*member, factor, plot::Series::Style::Lines, plot::style::kFitted));
       try_render(c, dir / file, files, warnings);
     };
     const std::string stem = "feature_" + post::file_safe(fs.name);
@@ -254,9 +255,9 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       c.title = fs.name + ": 1x resonance (" + sensor.name + ")";
       c.xlabel = "rotor speed [rpm]";
       c.ylabel = "1x amplitude [" + disp.unit + "]";
-      c.series.push_back(series("measured", m.curve_speed_hz, m.curve_amplitude, disp.factor, plot::Series::Style::Points, "black"));
-      if (i0) c.series.push_back(series("initial model", i0->curve_speed_hz, i0->curve_amplitude, disp.factor, plot::Series::Style::Dashed, "#888888"));
-      c.series.push_back(series("fitted model", fi.curve_speed_hz, fi.curve_amplitude, disp.factor, plot::Series::Style::Lines, "#d62728"));
+      c.series.push_back(series("measured", m.curve_speed_hz, m.curve_amplitude, disp.factor, plot::Series::Style::Points, plot::style::kMeasured));
+      if (i0) c.series.push_back(series("initial model", i0->curve_speed_hz, i0->curve_amplitude, disp.factor, plot::Series::Style::Dashed, plot::style::kInitial));
+      c.series.push_back(series("fitted model", fi.curve_speed_hz, fi.curve_amplitude, disp.factor, plot::Series::Style::Lines, plot::style::kFitted));
       for (double v : {m.resonance_hz, fi.resonance_hz})
         if (std::isfinite(v)) c.vertical_lines.push_back(v * kHzToRpm);
       try_render(c, dir / (stem + ".png"), files, warnings);

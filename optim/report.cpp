@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "post/plot.h"
+#include "post/plot_style.h"
+#include "post/run_pictures.h"
 #include "studies/table.h"
 
 namespace turbodyn::optim {
@@ -110,9 +112,10 @@ nlohmann::json result_json(const OptimizationSpec& s, const OptimizationResult& 
 }
 
 void write_convergence_plot(const OptimizationSpec& s, const OptimizationResult& r, const std::filesystem::path& png) {
-  plot::Series feasible{"feasible design", {}, {}, plot::Series::Style::Points, "#1f77b4", 1.5};
-  plot::Series infeasible{"infeasible design", {}, {}, plot::Series::Style::Points, "#d62728", 1.5};
-  plot::Series best{"best feasible so far", {}, {}, plot::Series::Style::Lines, "#2ca02c", 2.0};
+  plot::Series feasible{"feasible design", {}, {}, plot::Series::Style::Points, plot::style::kFeasible, 1.5};
+  plot::Series infeasible{"infeasible design", {}, {}, plot::Series::Style::Points, plot::style::kInfeasible, 1.5};
+  // A step line: the best holds until an evaluation improves on it.
+  plot::Series best{"best feasible so far", {}, {}, plot::Series::Style::Steps, plot::style::kBestSoFar, 2.0};
   double b = NAN;
   for (const HistoryEntry& h : r.history) {
     const Assessment& a = h.assessment;
@@ -130,14 +133,17 @@ void write_convergence_plot(const OptimizationSpec& s, const OptimizationResult&
   chart.title = "Convergence: " + s.name + " (" + s.algorithm.name + ")";
   chart.xlabel = "evaluation (request to the model, incl. finite-difference points)";
   std::string unit;
-  // A unit when the objective is a plain sum of metrics of one unit.
+  // A unit when the objective is a plain sum of metrics of one unit, shown as the pictures show that quantity
+  // (a displacement in µm).
   unit = s.metrics[s.objective.terms[0].metric].unit;
   for (const ObjectiveTerm& t : s.objective.terms)
     if (t.weight != 1.0 || s.metrics[t.metric].unit != unit) unit.clear();
-  chart.ylabel = with_unit("objective", unit);
-  chart.legend_position = "top right";
-  for (plot::Series* p : {&feasible, &infeasible, &best})
+  const post::Display d = post::display_of(unit);
+  chart.ylabel = with_unit("objective", d.unit);
+  for (plot::Series* p : {&feasible, &infeasible, &best}) {
+    for (double& v : p->y) v *= d.factor;
     if (!p->x.empty()) chart.series.push_back(*p);
+  }
   if (chart.series.empty()) return;
   plot::render_png(chart, png, plot::Size{900, 600});
 }

@@ -149,7 +149,7 @@ std::string header(const fs::path& out, Size size, const std::string& title, con
     << "set terminal pngcairo size " << size.width << "," << size.height
     << " enhanced font 'Sans,12' linewidth 1 rounded\n"
     << "set output " << gp_string(out.string(), false) << "\n";
-  if (!title.empty()) s << "set title " << gp_string(title) << " font ',14' noenhanced\n";
+  if (!title.empty()) s << "set title " << gp_string(fit_title(title, size.width)) << " font ',14' noenhanced\n";
   if (!xlabel.empty()) s << "set xlabel " << gp_string(xlabel) << " noenhanced\n";
   if (!ylabel.empty()) s << "set ylabel " << gp_string(ylabel) << " noenhanced\n";
   s << "set border lw 1 lc rgb '#303030'\n"
@@ -167,6 +167,9 @@ std::string style_of(const Series& s, const std::string& auto_color) {
     case Series::Style::Dashed: st << " with lines lw " << w << " dt (8,5)"; break;
     case Series::Style::Points: st << " with points pt 7 ps " << ps; break;
     case Series::Style::LinesPoints: st << " with linespoints lw " << w << " pt 7 ps " << ps; break;
+    case Series::Style::Steps: st << " with steps lw " << w; break;
+    case Series::Style::Crosses: st << " with points pt 2 ps " << ps << " lw 2"; break;
+    case Series::Style::Triangles: st << " with points pt 9 ps " << ps; break;
   }
   st << " lc rgb " << gp_string(s.color.empty() ? auto_color : s.color, false);
   if (s.label.empty()) st << " notitle";
@@ -202,14 +205,16 @@ std::size_t write_series_block(std::string& out, const std::string& name, const 
 
 /// 'set key' for a legend at 'position'. Inside the plot area it gets a box with a mostly opaque background
 /// (light for line charts, dark for heat maps so that white and pale overlay lines show in it); data behind it
-/// remain faintly visible. Outside the plot area it has no box (gnuplot 5.4 lets a boxed key below the plot
-/// overlap the x label).
+/// remain faintly visible. Outside the plot area a line chart's legend has no box (gnuplot 5.4 lets a boxed key
+/// below the plot overlap the x label when the box has a title line), a heat map's a dark one.
 std::string key_line(const std::string& position, bool dark) {
   bool outside = false;
   for (const char* word : {"out", "below", "above", "over", "under", "margin"})
     outside = outside || position.find(word) != std::string::npos;
   std::string s = "set key " + position + " Left reverse samplen 3 spacing 1.15 width 1 noenhanced";
-  if (outside) s += " nobox";
+  // A heat map's overlay lines are light (white 1x line): their legend needs a dark ground outside the plot too.
+  if (outside && dark) s += " box lc rgb '#909090' opaque fc rgb '#303030' textcolor rgb 'white'";
+  else if (outside) s += " nobox";
   else if (dark) s += " box lc rgb '#909090' opaque fc rgb '#1a303030' textcolor rgb 'white'";
   else s += " box lc rgb '#b0b0b0' opaque fc rgb '#30ffffff'";
   return s + "\n";
@@ -247,10 +252,20 @@ std::string line_chart_script(const LineChart& c, const fs::path& png, const fs:
   for (const Series& se : c.series) any_label = any_label || !se.label.empty();
   if (any_label) s << key_line(c.legend_position, false);
   else s << "unset key\n";
+  // Room for the last x tic label ("160000") when no legend takes the right margin.
+  if (c.legend_position.find("right") == std::string::npos || !any_label) s << "set rmargin 5\n";
   if (c.xrange) s << "set xrange [" << num(c.xrange->first) << ":" << num(c.xrange->second) << "]\n";
   if (c.yrange) s << "set yrange [" << num(c.yrange->first) << ":" << num(c.yrange->second) << "]\n";
   if (c.logy) s << "set logscale y 10\n";
   if (c.equal_axes) s << "set size ratio -1\n";
+  // Scatter plots: points on the automatic range's ends would sit on the border, half hidden.
+  const bool points_only = std::all_of(c.series.begin(), c.series.end(), [](const Series& se) {
+    return se.style == Series::Style::Points || se.style == Series::Style::Crosses ||
+           se.style == Series::Style::Triangles;
+  });
+  if (points_only && !c.equal_axes)
+    s << "set offsets graph " << (c.xrange ? "0, graph 0" : "0.03, graph 0.03") << ", graph "
+      << (c.yrange || c.logy ? "0, graph 0" : "0.05, graph 0.05") << "\n";
 
   std::vector<double> vlines;
   for (double v : c.vertical_lines) {
@@ -374,6 +389,8 @@ std::string heatmap_script(const Heatmap& m, const fs::path& png, const fs::path
   check_range(png, "z range", m.zrange, m.logz);
   check_series_shapes(png, m.overlays, "heat map overlay");
   check_legend_position(png, m.legend_position);
+  if (m.levels < 0 || m.levels == 1 || m.levels > 256)
+    fail(png, "heat map levels " + std::to_string(m.levels) + " must be 0 (continuous) or 2 .. 256");
 
   double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin, minpos = zmin;
   for (double v : m.z) {
@@ -433,7 +450,7 @@ std::string heatmap_script(const Heatmap& m, const fs::path& png, const fs::path
   // Viridis (perceptually uniform, readable in grey scale and for colour-blind viewers).
   s << "set palette defined (0 '#440154', 0.1 '#482475', 0.2 '#414487', 0.3 '#355f8d', 0.4 '#2a788e', "
        "0.5 '#21918c', 0.6 '#22a884', 0.7 '#44bf70', 0.8 '#7ad151', 0.9 '#bddf26', 1 '#fde725')\n"
-    << "set palette maxcolors 0\n"
+    << "set palette maxcolors " << std::max(0, m.levels) << "\n"
     << "set colorbox vertical\n"
     << "set cbtics out nomirror scale 0.7\n";
   if (m.logz) s << "set logscale cb 10\nset mcbtics 10\n";
@@ -441,11 +458,22 @@ std::string heatmap_script(const Heatmap& m, const fs::path& png, const fs::path
     << "set xrange [" << num(ax.lo) << ":" << num(ax.hi) << "]\n"
     << "set yrange [" << num(ay.lo) << ":" << num(ay.hi) << "]\n"
     << "set grid front xtics ytics lt 1 lc rgb '#a0ffffff' lw 0.6 dt (3,4)\n"
-    << "set border front\nset tics front\n";
+    << "set border front\nset tics front\n"
+    << "unset clip points\n";  // overlay points on the edge (runs at a design's bounds) drawn whole
   bool any_label = false;
   for (const Series& se : m.overlays) any_label = any_label || !se.label.empty();
-  if (any_label) s << key_line(m.legend_position, true);
-  else s << "unset key\n";
+  if (any_label) {
+    s << key_line(m.legend_position, true);
+    // gnuplot 5.4 reserves too little room for a boxed key below the x label (it overlaps the label when the tics
+    // carry exponents): a bottom margin of the tics, the label and the key's rows (about three entries a row).
+    if (m.legend_position.find("below") != std::string::npos) {
+      std::size_t labelled = 0;
+      for (const Series& se : m.overlays) labelled += !se.label.empty();
+      s << "set bmargin " << 5 + (labelled + 2) / 3 << "\n";
+    }
+  } else {
+    s << "unset key\n";
+  }
   s << data;
   s << "plot $map using 1:2:3 with image notitle";
   std::size_t auto_index = 0;
@@ -455,6 +483,75 @@ std::string heatmap_script(const Heatmap& m, const fs::path& png, const fs::path
     if (se.color.empty()) ++auto_index;
     s << ", \\\n     $o" << i << " using 1:2" << style_of(se, color);
   }
+  s << "\n";
+  return s.str();
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Bar chart
+
+/// A colour as the integer gnuplot's 'lc rgb variable' reads; colour names other than black and white are refused
+/// (bars take "#rrggbb").
+long rgb_int(const fs::path& png, const std::string& color) {
+  if (color == "black") return 0;
+  if (color == "white") return 0xffffff;
+  if (color.size() == 7 && color[0] == '#') {
+    long v = 0;
+    const auto r = std::from_chars(color.data() + 1, color.data() + 7, v, 16);
+    if (r.ec == std::errc() && r.ptr == color.data() + 7) return v;
+  }
+  fail(png, "bar colour '" + color + "' must be \"#rrggbb\", \"black\" or \"white\"");
+}
+
+std::string bar_chart_script(const BarChart& c, const fs::path& png, const fs::path& out, Size size) {
+  check_size(png, size);
+  if (c.bars.empty()) fail(png, "empty data: the bar chart has no bars");
+  check_range(png, "x range", c.xrange, false);
+  check_legend_position(png, c.legend_position);
+  double longest = 0.0;
+  for (const Bar& b : c.bars) {
+    if (!std::isfinite(b.value)) fail(png, "bar '" + b.label + "': value " + num(b.value) + " is not finite");
+    longest = std::max(longest, std::abs(b.value));
+  }
+  const double half = longest > 0 ? 1.3 * longest : 1.0;  // room for the value beside the longest bar
+  const std::pair<double, double> xr = c.xrange ? *c.xrange : std::make_pair(-half, half);
+  const std::size_t n = c.bars.size();
+
+  std::ostringstream s;
+  s << header(out, size, c.title, c.xlabel, "");
+  s << "set style fill solid 0.85 noborder\n"
+    << "set grid xtics lt 1 lc rgb '#d8d8d8' lw 1\n"
+    << "unset mytics\n"
+    << "set xrange [" << num(xr.first) << ":" << num(xr.second) << "]\n"
+    << "set yrange [0.4:" << num(static_cast<double>(n) + 0.6) << "]\n"
+    << "set arrow 1 from first 0, graph 0 to first 0, graph 1 nohead front lc rgb '#303030' lw 1\n"
+    << "set ytics scale 0 (";
+  // The first bar on top.
+  for (std::size_t i = 0; i < n; ++i)
+    s << (i ? ", " : "") << gp_string(c.bars[i].label) << " " << n - i;
+  s << ") noenhanced\n";
+  int tag = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Bar& b = c.bars[i];
+    if (b.text.empty()) continue;
+    s << "set label " << tag++ << " " << gp_string(b.text) << " at first " << num(b.value) << ", first " << n - i
+      << (b.value < 0 ? " right offset -0.6,0" : " left offset 0.6,0") << " front noenhanced\n";
+  }
+  if (c.legend.empty()) s << "unset key\n";
+  else s << key_line(c.legend_position, false);
+  s << "$bars << EOD\n";
+  std::size_t auto_index = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Bar& b = c.bars[i];
+    const double y = static_cast<double>(n - i);
+    const std::string color = b.color.empty() ? kLineColors[auto_index++ % kLineColors.size()] : b.color;
+    s << num(b.value) << " " << num(y) << " " << num(std::min(0.0, b.value)) << " " << num(std::max(0.0, b.value))
+      << " " << num(y - 0.32) << " " << num(y + 0.32) << " " << rgb_int(png, color) << "\n";
+  }
+  s << "EOD\n";
+  s << "plot $bars using 1:2:3:4:5:6:7 with boxxyerror lc rgb variable notitle";
+  for (const auto& [color, text] : c.legend)
+    s << ", \\\n     keyentry with boxes fc rgb " << gp_string(color, false) << " title " << gp_string(text, false);
   s << "\n";
   return s.str();
 }
@@ -654,10 +751,45 @@ std::string gnuplot_script(const Heatmap& map, const fs::path& png, Size size) {
   return heatmap_script(map, png, png, size);
 }
 
+std::string gnuplot_script(const BarChart& chart, const fs::path& png, Size size) {
+  return bar_chart_script(chart, png, png, size);
+}
+
+std::string fit_title(const std::string& title, int width_px) {
+  // The title font (14 pt sans) takes up to about 11 px per character (measured on the pictures).
+  const std::size_t max_chars = static_cast<std::size_t>(std::max(20, (width_px - 40) / 11));
+  auto length = [](const std::string& t) {  // characters, not UTF-8 bytes
+    std::size_t n = 0;
+    for (char ch : t) n += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;
+    return n;
+  };
+  std::string result, line;
+  std::size_t start = 0;
+  while (start <= title.size()) {
+    std::size_t end = title.find('\n', start);
+    if (end == std::string::npos) end = title.size();
+    std::istringstream words(title.substr(start, end - start));
+    line.clear();
+    std::string out_line;
+    for (std::string w; words >> w;) {
+      if (!line.empty() && length(line) + 1 + length(w) > max_chars) {
+        out_line += line + "\n";
+        line.clear();
+      }
+      line += (line.empty() ? "" : " ") + w;
+    }
+    result += (start ? "\n" : "") + out_line + line;
+    start = end + 1;
+  }
+  return result;
+}
+
 void render_png(const LineChart& chart, const fs::path& png, Size size) {
   render(chart, png, size, line_chart_script);
 }
 
 void render_png(const Heatmap& map, const fs::path& png, Size size) { render(map, png, size, heatmap_script); }
+
+void render_png(const BarChart& chart, const fs::path& png, Size size) { render(chart, png, size, bar_chart_script); }
 
 }  // namespace turbodyn::plot

@@ -1,5 +1,7 @@
 #include "post/run_pictures.h"
 
+#include "post/plot_style.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -37,6 +39,7 @@ int column_of(const RunupResult& r, ProbeChannel::Kind kind) {
 
 Display display_of(const std::string& si_unit) {
   if (si_unit == "m") return {1e6, "µm"};
+  if (si_unit == "N/m") return {1e-6, "N/µm"};
   return {1.0, si_unit};
 }
 
@@ -102,8 +105,9 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
   hm.logz = true;
   if (!against_time && !hm.x.empty()) {
     const double x0 = hm.x.front(), x1 = hm.x.back();
-    hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Dashed, "white", 1.0});
-    hm.overlays.push_back({"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, "#bbbbbb", 1.0});
+    hm.overlays.push_back({"1x", {x0, x1}, {x0, x1}, plot::Series::Style::Lines, plot::style::kOrder1xOnDark, 1.0});
+    hm.overlays.push_back(
+        {"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, plot::style::kOrderHalfOnDark, 1.0});
   }
   return hm;
 }

@@ -18,7 +18,8 @@
 
 namespace turbodyn::post {
 
-/// How values of a unit are shown: lengths (SI unit "m") in µm, everything else as it is.
+/// How values of a unit are shown in pictures and reports: lengths (SI unit "m") in µm, stiffnesses ("N/m") in N/µm,
+/// everything else as it is.
 struct Display {
   double factor = 1.0;  ///< shown value = SI value x factor
   std::string unit;

@@ -18,6 +18,7 @@ packages=(
   libbenchmark-dev       # micro-benchmarks
   libnlopt-cxx-dev       # design optimisation (turbodyn optimize)
   libceres-dev           # parameter identification (turbodyn identify)
+  chromium               # a test opens every kind of report.html in a real browser (headless)
 )
 
 missing=()

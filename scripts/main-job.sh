@@ -11,5 +11,7 @@ scripts/install-deps.sh
 scripts/build.sh
 build/app/turbodyn modal examples/reference_linear.toml -o out/reference/modal
 build/app/turbodyn run examples/reference_floating_ring.toml -j "$(nproc)" -o out/reference/runup
-echo "main job: pictures in out/reference/runup (spectrogram_*.png, order1x_*.png, orbits_*.png) and"
+echo "main job: open out/reference/runup/report.html (and out/reference/modal/report.html) in a browser:"
+echo "          the key numbers and every picture of each result on one page."
+echo "          Pictures in out/reference/runup (spectrogram_*.png, order1x_*.png, orbits_*.png) and"
 echo "          out/reference/modal (campbell.png, modes_*.png); numbers in summary.json and modal.json"

@@ -19,6 +19,7 @@
 #include "studies/metrics.h"
 #include "studies/parallel.h"
 #include "studies/run_log.h"
+#include "studies/sweep_pictures.h"
 #include "studies/table.h"
 
 namespace turbodyn::studies {
@@ -208,19 +209,8 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
         for (std::size_t p = 0; p < s.src.size(); ++p)
           csv.text(study.metrics[m].name).text(design.paths[p]).number(s.src[p]).number(s.r_squared).end_row();
         if (plots) {
-          plot::LineChart chart;
-          chart.title = "Sensitivity of " + study.metrics[m].name + " (standardised regression, R^2 = " +
-                        table_number(std::round(s.r_squared * 1000) / 1000) + ")";
-          chart.xlabel = "parameter";
-          chart.ylabel = "standardised regression coefficient [-]";
-          for (std::size_t p = 0; p < s.src.size(); ++p) {
-            chart.series.push_back({design.paths[p], {double(p + 1), double(p + 1)}, {0.0, s.src[p]},
-                                    plot::Series::Style::Lines, "", 12.0});
-          }
-          chart.xrange = std::make_pair(0.0, double(s.src.size() + 1));
-          chart.legend_position = "outside right top";
           const std::string f = "sensitivity_" + post::file_safe(study.metrics[m].name) + ".png";
-          plot::render_png(chart, dir / f);
+          draw_tornado(study, design, m, s, dir / f);
           files.push_back(f);
         }
       } catch (const std::invalid_argument&) {
@@ -236,69 +226,15 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   }
   if (!plots || runs.empty()) return files;
 
-  // Metric against each parameter.
+  // Metric against each parameter; for two parameters a map per metric.
   for (std::size_t m = 0; m < study.metrics.size(); ++m) {
     for (std::size_t p = 0; p < design.paths.size(); ++p) {
-      plot::LineChart chart;
-      chart.title = study.metrics[m].name + " against " + design.paths[p];
-      chart.xlabel = param_label(p);
-      chart.ylabel = metric_label(m);
-      plot::Series ok{"runs", {}, {}, plot::Series::Style::Points, "#1f77b4", 2.0};
-      plot::Series bad{"incomplete runs", {}, {}, plot::Series::Style::Points, "#d62728", 2.0};
-      for (const RunRecord& r : runs) {
-        if (!std::isfinite(r.metrics[m])) continue;
-        plot::Series& s = r.status == "ok" ? ok : bad;
-        s.x.push_back(r.parameters[p]);
-        s.y.push_back(r.metrics[m]);
-      }
-      if (ok.x.empty() && bad.x.empty()) continue;
-      if (!ok.x.empty()) chart.series.push_back(ok);
-      if (!bad.x.empty()) chart.series.push_back(bad);
-      const std::string f = "metric_" + post::file_safe(study.metrics[m].name) + "_vs_" + post::file_safe(design.paths[p]) + ".png";
-      plot::render_png(chart, dir / f);
-      files.push_back(f);
+      const std::string f =
+          "metric_" + post::file_safe(study.metrics[m].name) + "_vs_" + post::file_safe(design.paths[p]) + ".png";
+      if (draw_metric_scatter(study, design, runs, m, p, metric_units[m], dir / f)) files.push_back(f);
     }
-  }
-  // Two-parameter full factorial: a map per metric.
-  if (study.design.kind == DesignKind::FullFactorial && design.paths.size() == 2) {
-    std::vector<double> xs, ys;
-    for (const auto& row : design.values) {
-      if (std::find(xs.begin(), xs.end(), row[0]) == xs.end()) xs.push_back(row[0]);
-      if (std::find(ys.begin(), ys.end(), row[1]) == ys.end()) ys.push_back(row[1]);
-    }
-    std::sort(xs.begin(), xs.end());
-    std::sort(ys.begin(), ys.end());
-    for (std::size_t m = 0; m < study.metrics.size() && xs.size() >= 2 && ys.size() >= 2; ++m) {
-      plot::Heatmap hm;
-      hm.title = study.metrics[m].name;
-      hm.xlabel = param_label(0);
-      hm.ylabel = param_label(1);
-      hm.zlabel = metric_label(m);
-      hm.x = xs;
-      hm.y = ys;
-      hm.z.assign(xs.size() * ys.size(), NAN);
-      bool any = false;
-      for (const RunRecord& r : runs) {
-        const std::size_t i = std::find(xs.begin(), xs.end(), r.parameters[0]) - xs.begin();
-        const std::size_t jy = std::find(ys.begin(), ys.end(), r.parameters[1]) - ys.begin();
-        hm.z[jy * xs.size() + i] = r.metrics[m];
-        any = any || std::isfinite(r.metrics[m]);
-      }
-      // A map with holes would paint missing runs as some value: draw it only when every run is there.
-      if (!any || std::any_of(hm.z.begin(), hm.z.end(), [](double v) { return !std::isfinite(v); })) continue;
-      double zmin = INFINITY, zmax = -INFINITY;
-      for (double v : hm.z)
-        if (std::isfinite(v)) {
-          zmin = std::min(zmin, v);
-          zmax = std::max(zmax, v);
-        }
-      for (double& v : hm.z)
-        if (!std::isfinite(v)) v = zmin;
-      if (zmax > zmin) hm.zrange = std::make_pair(zmin, zmax);
-      const std::string f = "map_" + post::file_safe(study.metrics[m].name) + ".png";
-      plot::render_png(hm, dir / f);
-      files.push_back(f);
-    }
+    const std::string f = "map_" + post::file_safe(study.metrics[m].name) + ".png";
+    if (draw_metric_map(study, design, runs, m, metric_units[m], dir / f)) files.push_back(f);
   }
   return files;
 }

@@ -185,6 +185,18 @@ TEST_F(PlotTest, LineChartOfAnotherSizeLogAxisAndEqualAxes) {
   EXPECT_EQ(png_info(file("sub/dir/orbit.png")).width, 800);
 }
 
+TEST_F(PlotTest, BarChartIsAPng) {
+  REQUIRE_GNUPLOT();
+  BarChart b;
+  b.title = "Tornado";
+  b.bars = {{"a", 0.9, "", "+0.90"}, {"b", -0.2, "", "-0.20"}};
+  render_png(b, file("bars.png"), Size{800, 400});
+  const PngInfo info = png_info(file("bars.png"));
+  EXPECT_TRUE(info.signature);
+  EXPECT_EQ(info.width, 800);
+  EXPECT_EQ(info.height, 400);
+}
+
 TEST_F(PlotTest, HeatmapWithOverlayIsAPngOfTheRequestedSize) {
   REQUIRE_GNUPLOT();
   const fs::path f = file("heat.png");
@@ -294,6 +306,61 @@ TEST(PlotScript, HeatmapUsesImageWithPaletteAndColourBarLabel) {
   // Pixels are centred on the cell centres: the range reaches half a cell beyond the outer centres.
   EXPECT_THAT(s, HasSubstr("set xrange [-0.5:59.5]"));
   EXPECT_THAT(s, HasSubstr("set yrange [-1:79]"));
+}
+
+TEST(PlotScript, LongTitlesAreBrokenToFitThePicture) {
+  const std::string t = "Sensitivity of max_compressor_bearing_force (standardised regression coefficients, R² = 0.93)";
+  const std::string fitted = fit_title(t, 600);
+  EXPECT_THAT(fitted, HasSubstr("\n"));
+  for (std::size_t start = 0, end = 0; end != std::string::npos; start = end + 1) {
+    end = fitted.find('\n', start);
+    EXPECT_LE(fitted.substr(start, end == std::string::npos ? end : end - start).size(), (600u - 40u) / 11u + 2u);
+  }
+  EXPECT_EQ(fit_title("Short title", 1000), "Short title");
+  EXPECT_EQ(fit_title("two\nlines", 1000), "two\nlines");
+  LineChart c = two_series();
+  c.title = t;
+  EXPECT_THAT(gnuplot_script(c, "/tmp/t.png", Size{600, 400}), HasSubstr("'Sensitivity of max_compressor_bearing_force'.\"\\n\".'"));
+}
+
+TEST(PlotScript, StepsCrossesTrianglesLevelsAndDefaultLegend) {
+  LineChart c = two_series();
+  c.series[0].style = Series::Style::Steps;
+  c.series[1].style = Series::Style::Crosses;
+  std::string s = gnuplot_script(c, "/tmp/s.png");
+  EXPECT_THAT(s, HasSubstr("with steps lw"));
+  EXPECT_THAT(s, HasSubstr("with points pt 2"));
+  EXPECT_THAT(s, HasSubstr("set key below"));
+  c.series[0].style = Series::Style::Triangles;
+  s = gnuplot_script(c, "/tmp/s.png");
+  EXPECT_THAT(s, HasSubstr("with points pt 9"));
+  EXPECT_THAT(s, HasSubstr("set offsets graph 0.03"));  // points only: kept off the border
+  Heatmap m = ridge();
+  m.levels = 12;
+  EXPECT_THAT(gnuplot_script(m, "/tmp/h.png"), HasSubstr("set palette maxcolors 12"));
+  m.levels = 1;
+  EXPECT_THROW(gnuplot_script(m, "/tmp/h.png"), PlotError);
+}
+
+TEST(PlotScript, BarChartDrawsHorizontalBarsTopDownWithLabelsAndLegend) {
+  BarChart b;
+  b.title = "Sensitivity";
+  b.xlabel = "coefficient [-]";
+  b.bars = {{"stiffness\n2e7 … 4e7 N/m", -0.8, "#ff7f0e", "-0.80"}, {"unbalance", 0.3, "#1f77b4", "+0.30"}};
+  b.legend = {{"#1f77b4", "raises the metric"}};
+  const std::string s = gnuplot_script(b, "/tmp/b.png");
+  EXPECT_THAT(s, HasSubstr("with boxxyerror lc rgb variable"));
+  EXPECT_THAT(s, HasSubstr("set ytics scale 0 ('stiffness'.\"\\n\".'2e7 … 4e7 N/m' 2, 'unbalance' 1)"));
+  EXPECT_THAT(s, HasSubstr("\n-0.8 2 -0.8 0 "));  // first bar on top, from -0.8 to 0
+  EXPECT_THAT(s, HasSubstr(" 16744206\n"));      // #ff7f0e as an integer
+  EXPECT_THAT(s, HasSubstr("set xrange [-"));  // symmetric about 0
+  b.xrange = std::make_pair(-1.0, 1.0);
+  EXPECT_THAT(gnuplot_script(b, "/tmp/b.png"), HasSubstr("set xrange [-1:1]"));
+  EXPECT_THAT(s, HasSubstr("keyentry with boxes fc rgb '#1f77b4' title 'raises the metric'"));
+  b.bars[0].color = "orange";
+  EXPECT_THROW(gnuplot_script(b, "/tmp/b.png"), PlotError);
+  b.bars.clear();
+  EXPECT_THROW(gnuplot_script(b, "/tmp/b.png"), PlotError);
 }
 
 TEST(PlotScript, UnevenHeatmapAxisIsResampledOntoCells) {

@@ -1,0 +1,412 @@
+#include "post/report.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "post/html_page.h"
+#include "post/run_pictures.h"
+
+namespace turbodyn::post {
+namespace {
+
+constexpr double kHzToRpm = 60.0;
+// A study's table on the page stops here; results.csv holds every run.
+constexpr std::size_t kMaxStudyRows = 400;
+
+using Row = std::vector<std::string>;
+
+std::string text(const nlohmann::json& j, const std::string& key, const std::string& fallback = "") {
+  return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : fallback;
+}
+
+std::string join(const nlohmann::json& list, const std::string& sep) {
+  std::string s;
+  if (!list.is_array()) return s;
+  for (const auto& v : list) s += (s.empty() ? "" : sep) + (v.is_string() ? v.get<std::string>() : v.dump());
+  return s;
+}
+
+// Model, overrides and command: the first section of every page.
+void origin(HtmlPage& page, const std::string& model_source, const nlohmann::json& overrides,
+            const std::string& command) {
+  page.heading("Model and command");
+  std::vector<std::pair<std::string, std::string>> rows{
+      {"model file", "<code>" + html_escape(model_source) + "</code>"}};
+  if (overrides.is_array() && !overrides.empty()) {
+    std::string o;
+    for (const auto& v : overrides) o += "<code>--set " + html_escape(v.get<std::string>()) + "</code> ";
+    rows.emplace_back("overrides", o);
+  }
+  page.key_values("origin", rows);
+  if (!command.empty()) page.command(command);
+}
+
+void pictures_and_files(HtmlPage& page, const ReportInputs& in) {
+  page.heading("Pictures");
+  page.pictures(in.pictures);
+  page.heading("Files");
+  page.files(in.files);
+}
+
+// The index of the largest finite value of an array of numbers (or -1).
+long argmax(const nlohmann::json& a) {
+  long best = -1;
+  double v = -INFINITY;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].is_number() && a[i].get<double>() > v) {
+      v = a[i].get<double>();
+      best = static_cast<long>(i);
+    }
+  return best;
+}
+
+}  // namespace
+
+std::pair<std::vector<std::string>, std::vector<std::string>> split_pictures(const std::vector<std::string>& files) {
+  std::pair<std::vector<std::string>, std::vector<std::string>> out;
+  for (const std::string& f : files)
+    (f.size() > 4 && f.compare(f.size() - 4, 4, ".png") == 0 ? out.first : out.second).push_back(f);
+  return out;
+}
+
+void write_run_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "summary.json";
+  const nlohmann::json& model = j.at("model");
+  HtmlPage page("Run-up: " + text(model, "name"), "run");
+  const bool complete = j.value("complete", false);
+  if (!complete)
+    page.alert("INCOMPLETE: the run-up " + text(j, "message") +
+               "; everything up to that point is written and shown here.");
+  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), text(j, "command"));
+  if (!in.command.empty()) {
+    page.paragraph("Pictures redrawn by:");
+    page.command(in.command);
+    if (j.contains("plot_overrides") && !j["plot_overrides"].empty())
+      page.paragraph("with the output settings " + join(j["plot_overrides"], ", "));
+  }
+
+  page.heading("Run");
+  page.key_values(
+      "run", {{"status", complete ? "<span class=\"ok\">complete</span>" : "<span class=\"bad\">incomplete</span>"},
+              {"time reached", HtmlPage::number(F, j, "/t_reached_s", 1.0, "s") + " of " +
+                                   HtmlPage::number(F, j, "/options/t_end_s", 1.0, "s")},
+              {"integrator", html_escape(text(j.at("options"), "integrator"))},
+              {"steps", HtmlPage::number(F, j, "/stats/steps", 1.0, "", 7)},
+              {"right-hand sides", HtmlPage::number(F, j, "/stats/rhs_calls", 1.0, "", 8)},
+              {"wall time", HtmlPage::number(F, j, "/stats/wall_time_s", 1.0, "s", 3)},
+              {"energy balance error", HtmlPage::number(F, j, "/energy/balance_error_j", 1.0, "J", 3)}});
+
+  page.heading("Maxima of the probes");
+  std::vector<Row> rows;
+  for (const auto& [name, p] : j.at("probes").items()) {
+    const Display d = display_of(text(p, "unit"));
+    const std::string at = json_pointer("/probes", name);
+    rows.push_back({"<code>" + html_escape(name) + "</code>", html_escape(text(p, "description")),
+                    HtmlPage::number(F, j, at + "/max_abs", d.factor, d.unit),
+                    HtmlPage::number(F, j, at + "/speed_at_max_rpm", 1.0, "rpm", 5),
+                    HtmlPage::number(F, j, at + "/time_at_max_s", 1.0, "s")});
+  }
+  page.table("probes", {"probe", "what", "largest |value|", "at rotor speed", "at time"}, rows);
+
+  if (j.contains("spectrogram_maxima") && !j["spectrogram_maxima"].empty()) {
+    page.heading("Largest spectral lines");
+    page.paragraph("The largest amplitude of each spectrogram (the way the paper quotes its maxima).");
+    rows.clear();
+    for (const auto& [name, m] : j["spectrogram_maxima"].items()) {
+      const Display d = display_of(text(m, "unit"));
+      const std::string at = json_pointer("/spectrogram_maxima", name);
+      rows.push_back({"<code>" + html_escape(name) + "</code>",
+                      HtmlPage::number(F, j, at + "/amplitude", d.factor, d.unit),
+                      HtmlPage::number(F, j, at + "/frequency_hz", 1.0, "Hz"),
+                      m.contains("speed_hz") ? HtmlPage::number(F, j, at + "/speed_hz", kHzToRpm, "rpm", 5)
+                                             : HtmlPage::number(F, j, at + "/time_s", 1.0, "s")});
+    }
+    page.table("spectral", {"probe", "amplitude", "frequency", "at rotor speed (or time)"}, rows);
+  }
+  std::vector<std::string> warnings = in.warnings;
+  if (j.contains("warnings"))
+    for (const auto& w : j["warnings"]) warnings.push_back(w.get<std::string>());
+  if (!warnings.empty()) page.heading("Warnings");
+  page.warnings(warnings);
+  ReportInputs with_pictures = in;
+  if (with_pictures.pictures.empty() && j.contains("pictures"))
+    for (const auto& p : j["pictures"]) with_pictures.pictures.push_back(p.get<std::string>());
+  pictures_and_files(page, with_pictures);
+  page.write(dir);
+}
+
+void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "modal.json";
+  const nlohmann::json& model = j.at("model");
+  HtmlPage page("Modal analysis: " + text(model, "name"), "modal");
+  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), in.command);
+  page.heading("Rotor");
+  page.key_values("rotor", {{"frame", html_escape(text(j, "frame"))},
+                            {"nodes", HtmlPage::number(F, j, "/model/n_nodes", 1.0, "", 6)},
+                            {"degrees of freedom", HtmlPage::number(F, j, "/model/n_dof", 1.0, "", 6)},
+                            {"rotor mass", HtmlPage::number(F, j, "/model/total_mass_kg", 1.0, "kg")}});
+  page.heading("Critical speeds");
+  page.paragraph("Crossings of the natural frequencies with the order lines.");
+  std::vector<Row> rows;
+  const nlohmann::json& crit = j.at("critical_speeds");
+  for (std::size_t i = 0; i < crit.size(); ++i) {
+    const std::string at = json_pointer("/critical_speeds", i);
+    rows.push_back({HtmlPage::number(F, j, at + "/order", 1.0, "x", 3), html_escape(text(crit[i], "whirl")),
+                    HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
+                    HtmlPage::number(F, j, at + "/frequency_hz", 1.0, "Hz"),
+                    HtmlPage::number(F, j, at + "/damping_ratio", 1.0, "", 3)});
+  }
+  if (rows.empty()) page.paragraph("No order line crosses a natural frequency in the speed range.");
+  else page.table("critical_speeds", {"order", "whirl", "rotor speed", "natural frequency", "damping ratio"}, rows);
+  if (!j.at("campbell").empty()) {
+    const nlohmann::json& first = j["campbell"][0];
+    page.heading("Natural frequencies at " + display_number(first.at("speed_rpm").get<double>(), 5) + " rpm");
+    rows.clear();
+    for (std::size_t i = 0; i < first.at("modes").size(); ++i) {
+      const std::string at = json_pointer("/campbell/0/modes", i);
+      rows.push_back({std::to_string(i + 1), HtmlPage::number(F, j, at + "/frequency_hz", 1.0, "Hz"),
+                      HtmlPage::number(F, j, at + "/damping_ratio", 1.0, "", 3),
+                      html_escape(text(first["modes"][i], "whirl"))});
+    }
+    page.table("modes", {"mode", "damped natural frequency", "damping ratio", "whirl"}, rows);
+  }
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
+void write_response_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "response.json";
+  const nlohmann::json& model = j.at("model");
+  HtmlPage page("Unbalance response: " + text(model, "name"), "response");
+  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), in.command);
+  page.heading("Peaks");
+  page.paragraph("The largest steady-state 1x response over the speeds computed, and the speed where it occurs.");
+  std::vector<Row> rows;
+  const nlohmann::json& cols = j.at("columns");
+  for (const auto& [name, values] : cols.items()) {
+    std::string what, unit;
+    double scale = 1.0;
+    auto ends = [&](const std::string& s) {
+      return name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+    };
+    if (ends(".major_semi_axis_m")) what = "orbit major semi-axis", unit = "µm", scale = 1e6;
+    else if (ends(".fx_amplitude_n")) what = "force amplitude x", unit = "N";
+    else if (ends(".fy_amplitude_n")) what = "force amplitude y", unit = "N";
+    else continue;
+    const long k = argmax(values);
+    if (k < 0) continue;
+    rows.push_back({"<code>" + html_escape(name) + "</code>", html_escape(what),
+                    HtmlPage::number(F, j, json_pointer(json_pointer("/columns", name), k), scale, unit),
+                    HtmlPage::number(F, j, json_pointer("/columns/speed_hz", k), kHzToRpm, "rpm", 5)});
+  }
+  page.table("peaks", {"column", "what", "peak", "at rotor speed"}, rows);
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
+void write_bearing_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "bearing.json";
+  const nlohmann::json& model = j.at("model");
+  const std::string name = text(j.at("bearing"), "name");
+  HtmlPage page("Ball bearing " + name + ": " + text(model, "name"), "bearing");
+  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), in.command);
+  page.heading("Load");
+  page.key_values("load", {{"Fx", HtmlPage::number(F, j, "/load_n/0", 1.0, "N")},
+                           {"Fy", HtmlPage::number(F, j, "/load_n/1", 1.0, "N")},
+                           {"Fz (on top of the preload)", HtmlPage::number(F, j, "/load_n/2", 1.0, "N")}});
+  page.heading("Stiffness and cage speed against rotor speed");
+  std::vector<Row> rows;
+  const nlohmann::json& res = j.at("results");
+  const Display k = display_of("N/m");
+  for (std::size_t i = 0; i < res.size(); ++i) {
+    const std::string at = json_pointer("/results", i);
+    rows.push_back({HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
+                    HtmlPage::number(F, j, at + "/cage_speed_ratio", 1.0, "", 4),
+                    HtmlPage::number(F, j, at + "/stiffness/0/0", k.factor, k.unit),
+                    HtmlPage::number(F, j, at + "/stiffness/1/1", k.factor, k.unit),
+                    HtmlPage::number(F, j, at + "/stiffness/2/2", k.factor, k.unit),
+                    HtmlPage::number(F, j, at + "/stiffness/3/3", 1.0, "N m/rad")});
+  }
+  page.table("bearing", {"rotor speed", "cage / shaft speed", "k_xx", "k_yy", "k_zz", "k_θxθx"}, rows);
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
+void write_study_report(const std::filesystem::path& dir, const nlohmann::json& j, const std::string& kind,
+                        const ReportInputs& in) {
+  const std::string F = "results.json";
+  HtmlPage page("Study: " + text(j, "study"), kind);
+  origin(page, text(j, "model"), nlohmann::json::array(), in.command);
+  const nlohmann::json& runs = j.at("runs");
+  std::size_t incomplete = 0, failed = 0;
+  for (const auto& r : runs) {
+    incomplete += text(r, "status") == "incomplete";
+    failed += text(r, "status") == "failed";
+  }
+  const std::size_t total = j.at("runs_total").get<std::size_t>(), recorded = j.at("runs_recorded").get<std::size_t>();
+  if (recorded < total)
+    page.alert("INCOMPLETE STUDY: " + std::to_string(recorded) + " of " + std::to_string(total) +
+               " runs recorded (interrupted, or shards not merged yet).");
+  if (incomplete + failed > 0)
+    page.alert(std::to_string(incomplete) + " run(s) incomplete (the integrator gave up; metrics of the part that "
+               "ran) and " + std::to_string(failed) + " failed (no metrics); marked in the table and the pictures.");
+  page.heading("Runs");
+  page.key_values("counts", {{"runs in the design", HtmlPage::number(F, j, "/runs_total", 1.0, "", 7)},
+                             {"runs recorded", HtmlPage::number(F, j, "/runs_recorded", 1.0, "", 7)},
+                             {"failed", HtmlPage::number(F, j, "/runs_failed", 1.0, "", 7)}});
+
+  const nlohmann::json& params = j.at("parameters");
+  const nlohmann::json& metrics = j.at("metrics");
+  std::vector<Display> disp;
+  for (const auto& m : metrics) disp.push_back(display_of(text(m, "unit")));
+  if (j.contains("sensitivity") && !j["sensitivity"].empty()) {
+    page.heading("Sensitivity");
+    page.paragraph("Standardised regression coefficients: the change of the metric, in standard deviations, per "
+                   "standard deviation of the parameter; R² tells how much of the metric's variation the linear "
+                   "model explains.");
+    std::vector<std::string> header{"metric", "R²"};
+    for (const auto& p : params) header.push_back(text(p, "path"));
+    std::vector<Row> rows;
+    for (const auto& m : metrics) {
+      const std::string name = text(m, "name");
+      if (!j["sensitivity"].contains(name)) continue;
+      const std::string at = json_pointer("/sensitivity", name);
+      Row row{html_escape(name), HtmlPage::number(F, j, at + "/r_squared", 1.0, "", 3)};
+      for (std::size_t p = 0; p < params.size(); ++p)
+        row.push_back(HtmlPage::number(F, j, json_pointer(at + "/src", p), 1.0, "", 3));
+      rows.push_back(row);
+    }
+    page.table("sensitivity", header, rows);
+  }
+
+  page.heading("Study table");
+  std::vector<std::string> header{"run"};
+  for (const auto& p : params)
+    header.push_back(text(p, "path") + (text(p, "unit").empty() ? "" : " [" + text(p, "unit") + "]"));
+  for (std::size_t m = 0; m < metrics.size(); ++m)
+    header.push_back(text(metrics[m], "name") + (disp[m].unit.empty() ? "" : " [" + disp[m].unit + "]"));
+  header.push_back("status");
+  std::vector<Row> rows;
+  for (std::size_t i = 0; i < runs.size() && i < kMaxStudyRows; ++i) {
+    const std::string at = json_pointer("/runs", i);
+    Row row{HtmlPage::number(F, j, at + "/index", 1.0, "", 7)};
+    for (std::size_t p = 0; p < params.size(); ++p)
+      row.push_back(HtmlPage::number(F, j, json_pointer(at + "/parameters", p)));
+    for (std::size_t m = 0; m < metrics.size(); ++m)
+      row.push_back(HtmlPage::number(F, j, json_pointer(at + "/metrics", m), disp[m].factor));
+    const std::string status = text(runs[i], "status");
+    row.push_back(status == "ok" ? "ok"
+                                 : "<span class=\"bad\">" + html_escape(status) + "</span> " +
+                                       html_escape(text(runs[i], "error")));
+    rows.push_back(row);
+  }
+  page.table("runs", header, rows);
+  if (runs.size() > kMaxStudyRows)
+    page.paragraph("The first " + std::to_string(kMaxStudyRows) + " of " + std::to_string(runs.size()) +
+                   " runs; results.csv holds them all.");
+  page.warnings(in.warnings);
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
+void write_optimize_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "result.json";
+  HtmlPage page("Optimisation: " + text(j, "study"), "optimize");
+  if (j.value("interrupted", false))
+    page.alert("INTERRUPTED: the results are those of the evaluations finished so far; run the same command again "
+               "to continue.");
+  if (!j.value("best_feasible", false))
+    page.alert(j.at("best").is_null() ? "NO RESULT: every evaluation failed."
+                                      : "NO FEASIBLE DESIGN: the best design shown violates constraints.");
+  origin(page, text(j, "model"), nlohmann::json::array(), in.command);
+  page.heading("Convergence");
+  page.key_values("convergence",
+                  {{"algorithm", html_escape(text(j.at("algorithm"), "as_run"))},
+                   {"result", html_escape(text(j, "nlopt_result") + ": " + text(j, "reason"))},
+                   {"requests", HtmlPage::number(F, j, "/evaluations/requests", 1.0, "", 6)},
+                   {"new evaluations", HtmlPage::number(F, j, "/evaluations/new", 1.0, "", 6)},
+                   {"from the cache", HtmlPage::number(F, j, "/evaluations/cached", 1.0, "", 6)},
+                   {"wall time", HtmlPage::number(F, j, "/wall_time_s", 1.0, "s", 3)},
+                   {"initial objective", HtmlPage::number(F, j, "/initial/objective")},
+                   {"best objective", HtmlPage::number(F, j, "/best/objective")}});
+  if (!j.at("best").is_null()) {
+    page.heading("Optimum");
+    std::vector<Row> rows;
+    const nlohmann::json& vars = j.at("variables");
+    for (std::size_t i = 0; i < vars.size(); ++i)
+      rows.push_back({"<code>" + html_escape(text(vars[i], "path")) + "</code>",
+                      HtmlPage::number(F, j, json_pointer("/initial/design_values", i), 1.0, text(vars[i], "unit"), 5),
+                      HtmlPage::number(F, j, json_pointer("/best/design_values", i), 1.0, text(vars[i], "unit"), 5),
+                      HtmlPage::number(F, j, json_pointer(json_pointer("/variables", i), "low"), 1.0, "", 5) + " … " +
+                          HtmlPage::number(F, j, json_pointer(json_pointer("/variables", i), "high"), 1.0,
+                                           text(vars[i], "unit"), 5)});
+    page.table("design", {"variable", "initial", "optimum", "bounds"}, rows);
+    const nlohmann::json& cons = j["best"].at("constraints");
+    if (!cons.empty()) {
+      rows.clear();
+      for (std::size_t k = 0; k < cons.size(); ++k) {
+        const std::string at = json_pointer("/best/constraints", k);
+        const bool upper = cons[k].contains("upper");
+        rows.push_back({html_escape(text(cons[k], "name")), html_escape(text(cons[k], "case")),
+                        HtmlPage::number(F, j, at + "/value", 1.0, text(cons[k], "unit")),
+                        std::string(upper ? "≤ " : "≥ ") +
+                            HtmlPage::number(F, j, at + (upper ? "/upper" : "/lower"), 1.0, text(cons[k], "unit")),
+                        cons[k].value("satisfied", false) ? "<span class=\"ok\">yes</span>"
+                                                          : "<span class=\"bad\">no</span>"});
+      }
+      page.table("constraints", {"constraint", "case", "value at the optimum", "bound", "satisfied"}, rows);
+    }
+  }
+  std::vector<std::string> warnings = in.warnings;
+  if (j.contains("warnings"))
+    for (const auto& w : j["warnings"]) warnings.push_back(w.get<std::string>());
+  page.warnings(warnings);
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
+void write_identify_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "estimates.json";
+  HtmlPage page("Identification: " + text(j, "study"), "identify");
+  if (j.value("cancelled", false))
+    page.alert("INTERRUPTED: the estimates are those of the last finished iteration.");
+  if (!j.value("converged", false)) page.alert("NOT CONVERGED: " + text(j, "termination"));
+  if (!j.value("covariance_ok", false))
+    page.alert("No covariance (the σ are missing): " + text(j, "covariance_message"));
+  origin(page, text(j, "model"), nlohmann::json::array(), in.command);
+  page.paragraph("Measurement: " + text(j, "measurement") + " (method " + text(j, "method") + ")");
+  page.heading("Estimates");
+  std::vector<Row> rows;
+  const nlohmann::json& ps = j.at("parameters");
+  bool truth = false;
+  for (const auto& p : ps) truth = truth || p.contains("true");
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const std::string at = json_pointer("/parameters", i), unit = text(ps[i], "unit");
+    Row row{html_escape(text(ps[i], "name")),
+            HtmlPage::number(F, j, at + "/estimate", 1.0, unit, 5) + " ± " +
+                HtmlPage::number(F, j, at + "/std_dev", 1.0, unit, 2),
+            HtmlPage::number(F, j, at + "/start", 1.0, unit, 5)};
+    if (truth) {
+      row.push_back(HtmlPage::number(F, j, at + "/true", 1.0, unit, 5));
+      row.push_back(HtmlPage::number(F, j, at + "/error_in_std_devs", 1.0, "σ", 2));
+    }
+    if (ps[i].value("at_bound", false)) row[0] += " <span class=\"bad\">at a bound</span>";
+    rows.push_back(row);
+  }
+  std::vector<std::string> header{"parameter", "estimate ± σ", "start"};
+  if (truth) header.insert(header.end(), {"true value", "error"});
+  page.table("estimates", header, rows);
+  page.heading("Convergence");
+  page.key_values("convergence", {{"termination", html_escape(text(j, "termination"))},
+                                  {"iterations", HtmlPage::number(F, j, "/iterations", 1.0, "", 6)},
+                                  {"initial cost", HtmlPage::number(F, j, "/cost/initial")},
+                                  {"final cost", HtmlPage::number(F, j, "/cost/final")},
+                                  {"residuals", HtmlPage::number(F, j, "/residuals/count", 1.0, "", 7)},
+                                  {"model runs", HtmlPage::number(F, j, "/model_runs", 1.0, "", 6)},
+                                  {"wall time", HtmlPage::number(F, j, "/wall_time_s", 1.0, "s", 3)}});
+  page.warnings(in.warnings);
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
+}  // namespace turbodyn::post

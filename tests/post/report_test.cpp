@@ -1,0 +1,86 @@
+// The pages of the commands, built from their result JSON: a run's page (incomplete marker, escaped model name,
+// maxima in µm, command, warnings, pictures) and a study's (incomplete and failed runs marked, numbers tied to
+// results.json).
+#include "post/report.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace turbodyn::post {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string read(const std::filesystem::path& f) {
+  std::ifstream in(f);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("turbodyn_report_test_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(Report, RunReportFromASummary) {
+  const auto dir = fresh_dir("run");
+  nlohmann::json j;
+  j["complete"] = false;
+  j["message"] = "gave up at t = 0.2 s";
+  j["model"] = {{"name", "Rotor & <co>"}, {"source", "m.toml"}};
+  j["overrides"] = {"speed.end=40000 rpm"};
+  j["command"] = "turbodyn run m.toml -o out";
+  j["options"] = {{"integrator", "cvode-bdf"}, {"t_end_s", 0.5}};
+  j["t_reached_s"] = 0.2;
+  j["stats"] = {{"wall_time_s", 0.1}, {"steps", 10}, {"rhs_calls", 20}};
+  j["energy"] = {{"balance_error_j", 1e-9}};
+  j["probes"] = {{"disk.c.x", {{"unit", "m"}, {"description", "x"}, {"max_abs", 3e-5}, {"speed_at_max_rpm", 39000.0},
+                               {"time_at_max_s", 0.19}}}};
+  j["pictures"] = {"spectrogram_disk.c.x.png"};
+  j["warnings"] = {"no spectrogram of y"};
+  write_run_report(dir, j, {});
+  const std::string html = read(dir / "report.html");
+  EXPECT_THAT(html, HasSubstr("Rotor &amp; &lt;co&gt;"));
+  EXPECT_THAT(html, HasSubstr("INCOMPLETE"));
+  EXPECT_THAT(html, HasSubstr(">30.00 µm</span>"));
+  EXPECT_THAT(html, HasSubstr("turbodyn run m.toml -o out"));
+  EXPECT_THAT(html, HasSubstr("no spectrogram of y"));
+  EXPECT_THAT(html, HasSubstr("<img src=\"spectrogram_disk.c.x.png\""));
+  EXPECT_FALSE(std::filesystem::exists(dir / "report.html.tmp"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
+  const auto dir = fresh_dir("study");
+  nlohmann::json j;
+  j["study"] = "s";
+  j["model"] = "m.toml";
+  j["parameters"] = {{{"path", "bearings.a.k"}, {"unit", "N/m"}}};
+  j["metrics"] = {{{"name", "max_x"}, {"unit", "m"}}};
+  j["runs"] = {{{"index", 0}, {"parameters", {2e7}}, {"metrics", {2.5e-5}}, {"status", "ok"}, {"error", ""}},
+               {{"index", 1}, {"parameters", {3e7}}, {"metrics", {nullptr}}, {"status", "failed"},
+                {"error", "boom <x>"}}};
+  j["runs_total"] = 3;
+  j["runs_recorded"] = 2;
+  j["runs_failed"] = 1;
+  j["sensitivity"] = nlohmann::json::object();
+  write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}});
+  const std::string html = read(dir / "report.html");
+  EXPECT_THAT(html, HasSubstr("INCOMPLETE STUDY: 2 of 3 runs"));
+  EXPECT_THAT(html, HasSubstr("0 run(s) incomplete"));
+  EXPECT_THAT(html, HasSubstr("data-pointer=\"/runs/0/metrics/0\""));
+  EXPECT_THAT(html, HasSubstr(">25.00</span>"));  // in µm, as the column header says
+  EXPECT_THAT(html, HasSubstr("max_x [µm]"));
+  EXPECT_THAT(html, HasSubstr("boom &lt;x&gt;"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace turbodyn::post
