@@ -1,4 +1,5 @@
 #include "app/identify_command.h"
+#include "app/interrupt.h"
 
 #include <atomic>
 #include <cmath>
@@ -16,32 +17,17 @@
 #include <nlohmann/json.hpp>
 
 namespace turbodyn::app {
-namespace {
-
-constexpr int kExitInterrupted = 130;
-
-std::atomic<bool> g_stop_identify{false};
-extern "C" void on_sigint_identify(int) { g_stop_identify.store(true); }
-
-}  // namespace
-
 int run_identify_command(const IdentifyCommandOptions& options) {
   using namespace identification;
   const IdentifyStudy study = load_identify_study(options.study_file);
   IdentifyOptions io;
   io.threads = options.threads;
-  io.cancel = &g_stop_identify;
+  io.cancel = InterruptGuard::flag();
   io.progress = [](const std::string& line) { std::cerr << line << "\n"; };
-  g_stop_identify.store(false);
-  auto previous = std::signal(SIGINT, on_sigint_identify);
-  IdentifyResult r;
-  try {
-    r = identify(study, io);
-  } catch (...) {
-    std::signal(SIGINT, previous);
-    throw;
-  }
-  std::signal(SIGINT, previous);
+  const IdentifyResult r = [&] {
+    const InterruptGuard guard;
+    return identify(study, io);
+  }();
   std::vector<std::string> warnings = r.warnings;
   const std::vector<std::string> files = write_identify_results(study, r, options.output_dir, options.plots, warnings);
   {

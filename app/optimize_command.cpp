@@ -1,4 +1,5 @@
 #include "app/optimize_command.h"
+#include "app/interrupt.h"
 
 #include <unistd.h>
 
@@ -29,17 +30,8 @@ namespace turbodyn::app {
 namespace {
 
 constexpr int kExitNoFeasibleDesign = 4;
-constexpr int kExitInterrupted = 130;
 constexpr plot::Size kPanelSize{800, 560};  // one spectrogram of the side-by-side pair
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_sigint_optimize(int) { g_stop.store(true); }
-
-std::string duration(double s) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(s < 120 ? 1 : 1) << (s < 120 ? s : s / 60.0) << (s < 120 ? " s" : " min");
-  return os.str();
-}
 
 std::string short_number(double v) {
   std::ostringstream os;
@@ -64,7 +56,7 @@ RunupResult final_run(const optim::OptimizationSpec& spec, const std::vector<dou
   machine = load_model(spec.model, optim::run_overrides(spec, design, &spec.cases.front()));
   const auto model = make_runup_model(machine);
   RunupOptions ro = runup_options(machine);
-  ro.cancel = &g_stop;
+  ro.cancel = InterruptGuard::flag();
   if (spec.final_runs == "window") {
     if (spec.speed_window_min > 0.0) ro.t_start = studies::time_at_speed(machine.speed, spec.speed_window_min);
     if (spec.speed_window_max > 0.0) ro.t_end = studies::time_at_speed(machine.speed, spec.speed_window_max);
@@ -161,21 +153,20 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
   optim::OptimizerOptions oo;
   oo.log_file = dir / "evaluations.jsonl";
   oo.threads = options.threads;
-  oo.cancel = &g_stop;
+  oo.cancel = InterruptGuard::flag();
   const bool tty = isatty(STDERR_FILENO);
   oo.progress = [&](const optim::HistoryEntry& h, const optim::OptimizationProgress& p) {
     std::ostringstream os;
     os << "eval " << h.request << (h.gradient_point ? " (gradient point" : " (design") << ", "
-       << (h.cached ? "cached" : duration(h.evaluation.wall_time)) << "): objective "
+       << (h.cached ? "cached" : format_duration(h.evaluation.wall_time)) << "): objective "
        << short_number(h.assessment.objective) << (h.assessment.failed ? " FAILED: " + h.assessment.note
                                                    : h.assessment.feasible ? " feasible" : " infeasible")
        << "; best " << (std::isnan(p.best_objective) ? std::string("-") : short_number(p.best_objective)) << "; "
-       << p.new_evaluations << " new, " << p.cached_evaluations << " cached, wall " << duration(p.wall_time);
+       << p.new_evaluations << " new, " << p.cached_evaluations << " cached, wall " << format_duration(p.wall_time);
     if (tty) std::cerr << "\r" << os.str() << "\033[K" << std::flush;
     else std::cerr << os.str() << "\n";
   };
-  g_stop.store(false);
-  auto previous = std::signal(SIGINT, on_sigint_optimize);
+  const InterruptGuard guard;  // also over the final run-ups and pictures
   const optim::OptimizationResult r = optim::optimize(spec, optim::model_evaluator(spec), oo);
   if (tty) std::cerr << "\n";
 
@@ -213,7 +204,6 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
       warnings.push_back(std::string("pictures: ") + e.what());
     }
   }
-  std::signal(SIGINT, previous);
   result["files"] = written;
   result["warnings"] = warnings;
   write_output_file(dir / "result.json", result.dump(1) + "\n");
@@ -226,7 +216,7 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
   std::cout << spec.name << ": " << r.nlopt_result << " (" << r.reason << ") after " << r.history.size()
             << (r.history.size() == 1 ? " evaluation (" : " evaluations (") << r.new_evaluations << " run, "
             << r.cached_evaluations << " from the cache), "
-            << duration(r.wall_time) << "\n";
+            << format_duration(r.wall_time) << "\n";
   if (!r.note.empty()) std::cout << "note: " << r.note << "\n";
   if (r.best) {
     const optim::HistoryEntry& b = r.history[*r.best];

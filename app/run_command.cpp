@@ -1,4 +1,5 @@
 #include "app/run_command.h"
+#include "app/interrupt.h"
 
 #include <unistd.h>
 
@@ -28,18 +29,6 @@ namespace turbodyn::app {
 namespace {
 
 constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
-constexpr int kExitIncomplete = 3;
-constexpr int kExitInterrupted = 130;
-
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted.store(true); }
-
-std::string format_duration(double s) {
-  std::ostringstream os;
-  if (s < 120) os << std::fixed << std::setprecision(1) << s << " s";
-  else os << std::fixed << std::setprecision(1) << s / 60.0 << " min";
-  return os.str();
-}
 
 // Natural frequencies of a linearised model (campbell.csv of `turbodyn modal`) as point series against rotor speed
 // in Hz, one per whirl direction, for the spectrograms.
@@ -151,7 +140,7 @@ int run_run_command(const RunCommandOptions& options) {
   std::filesystem::create_directories(options.output_dir);
 
   RunupOptions ro = runup_options(spec);
-  ro.cancel = &g_interrupted;
+  ro.cancel = InterruptGuard::flag();
   ro.threads = options.threads;
 
   std::vector<Channel> channels;
@@ -194,12 +183,10 @@ int run_run_command(const RunCommandOptions& options) {
     else std::cerr << os.str() << "\n";
   };
 
-  g_interrupted.store(false);
-  auto previous = std::signal(SIGINT, on_sigint);
-  auto previous_term = std::signal(SIGTERM, on_sigint);  // a scheduler's stop: the same orderly end as Ctrl-C
-  const RunupResult r = simulate_runup(*model, ro);
-  std::signal(SIGINT, previous);
-  std::signal(SIGTERM, previous_term);
+  const RunupResult r = [&] {
+    const InterruptGuard guard;
+    return simulate_runup(*model, ro);
+  }();
   if (tty) std::cerr << "\n";
   writer.finish(r.complete);
 
@@ -244,7 +231,7 @@ int run_run_command(const RunCommandOptions& options) {
   if (!r.complete) {
     std::cerr << "error: " << options.model_file.string() << ": run-up " << r.message
               << "; the results up to that point are written and marked incomplete\n";
-    return g_interrupted.load() ? kExitInterrupted : kExitIncomplete;
+    return InterruptGuard::interrupted() ? kExitInterrupted : kExitIncomplete;
   }
   return 0;
 }

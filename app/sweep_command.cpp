@@ -1,4 +1,5 @@
 #include "app/sweep_command.h"
+#include "app/interrupt.h"
 
 #include <unistd.h>
 
@@ -20,14 +21,6 @@
 namespace turbodyn::app {
 namespace {
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_sigint_sweep(int) { g_stop.store(true); }
-
-std::string duration(double s) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(s < 120 ? 0 : 1) << (s < 120 ? s : s / 60.0) << (s < 120 ? " s" : " min");
-  return os.str();
-}
 
 void parse_shard(const std::string& text, std::size_t& k, std::size_t& n) {
   const std::size_t slash = text.find('/');
@@ -59,20 +52,20 @@ int run_sweep_command(const SweepCommandOptions& options) {
   so.output_dir = options.output_dir;
   so.threads = options.threads;
   if (!options.shard.empty()) parse_shard(options.shard, so.shard_k, so.shard_n);
-  so.cancel = &g_stop;
+  so.cancel = InterruptGuard::flag();
   const bool tty = isatty(STDERR_FILENO);
   so.progress = [&](const studies::SweepProgress& p) {
     std::ostringstream os;
     os << "runs " << p.done << "/" << p.total << " done (" << p.failed << " failed"
-       << (p.resumed ? ", " + std::to_string(p.resumed) + " resumed" : "") << "), wall " << duration(p.wall_time)
-       << ", left ~" << duration(p.eta);
+       << (p.resumed ? ", " + std::to_string(p.resumed) + " resumed" : "") << "), wall " << format_duration(p.wall_time)
+       << ", left ~" << format_duration(p.eta);
     if (tty) std::cerr << "\r" << os.str() << "   " << std::flush;
     else std::cerr << os.str() << "\n";
   };
-  g_stop.store(false);
-  auto previous = std::signal(SIGINT, on_sigint_sweep);
-  const studies::SweepResult r = studies::run_sweep(study, so);
-  std::signal(SIGINT, previous);
+  const studies::SweepResult r = [&] {
+    const InterruptGuard guard;
+    return studies::run_sweep(study, so);
+  }();
   if (tty) std::cerr << "\n";
   const std::vector<std::string> files =
       studies::write_results(study, r.design, r.runs, options.output_dir, options.plots);
@@ -84,10 +77,10 @@ int run_sweep_command(const SweepCommandOptions& options) {
             << " resumed from an earlier invocation, " << failed << " failed or incomplete)\n"
             << "Wrote " << (options.output_dir / "results.csv").string() << " and " << files.size() - 1
             << " more files\n";
-  if (g_stop.load() && !r.complete) {
+  if (InterruptGuard::interrupted() && !r.complete) {
     std::cerr << "interrupted: the finished runs are recorded in " << (options.output_dir / "runs.jsonl").string()
               << "; run the same command again to resume\n";
-    return 130;
+    return kExitInterrupted;
   }
   return 0;
 }

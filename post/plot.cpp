@@ -177,6 +177,20 @@ std::string style_of(const Series& s, const std::string& auto_color) {
   return st.str();
 }
 
+/// The plot clauses of `series`, whose data blocks are $BLOCK0, $BLOCK1, ...: a series without a colour of its own
+/// takes the next of `palette`. `after_another`: a clause precedes them on the plot line.
+template <std::size_t N>
+void plot_clauses(std::ostream& s, const std::vector<Series>& series, const std::string& block,
+                  const std::array<const char*, N>& palette, bool after_another) {
+  std::size_t auto_index = 0;
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const Series& se = series[i];
+    const std::string color = palette[auto_index % N];
+    if (se.color.empty()) ++auto_index;
+    s << (i || after_another ? ", \\\n     " : "") << "$" << block << i << " using 1:2" << style_of(se, color);
+  }
+}
+
 /// Inline data block of one series; a point with non-finite x or y (or y <= 0 on a log axis) becomes a blank
 /// line, which breaks the line there. Returns the number of points written.
 std::size_t write_series_block(std::string& out, const std::string& name, const Series& s, bool logy,
@@ -294,13 +308,7 @@ std::string line_chart_script(const LineChart& c, const fs::path& png, const fs:
     s << "EOD\n";
   }
   s << "plot ";
-  std::size_t auto_index = 0;
-  for (std::size_t i = 0; i < c.series.size(); ++i) {
-    const Series& se = c.series[i];
-    const std::string color = kLineColors[auto_index % kLineColors.size()];
-    if (se.color.empty()) ++auto_index;
-    s << (i ? ", \\\n     " : "") << "$d" << i << " using 1:2" << style_of(se, color);
-  }
+  plot_clauses(s, c.series, "d", kLineColors, false);
   if (vline_points) s << ", \\\n     $vlines using 1:2 with dots lc rgb '#ff000000' notitle";
   s << "\n";
   return s.str();
@@ -476,13 +484,7 @@ std::string heatmap_script(const Heatmap& m, const fs::path& png, const fs::path
   }
   s << data;
   s << "plot $map using 1:2:3 with image notitle";
-  std::size_t auto_index = 0;
-  for (std::size_t i = 0; i < m.overlays.size(); ++i) {
-    const Series& se = m.overlays[i];
-    const std::string color = kOverlayColors[auto_index % kOverlayColors.size()];
-    if (se.color.empty()) ++auto_index;
-    s << ", \\\n     $o" << i << " using 1:2" << style_of(se, color);
-  }
+  plot_clauses(s, m.overlays, "o", kOverlayColors, true);
   s << "\n";
   return s.str();
 }

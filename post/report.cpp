@@ -41,6 +41,15 @@ void origin(HtmlPage& page, const std::string& model_source, const nlohmann::jso
   if (!command.empty()) page.command(command);
 }
 
+// A page on one model's result, titled "WHAT: <model name>" and opened by the model, its overrides and `command`.
+HtmlPage model_page(const std::string& what, const std::string& kind, const nlohmann::json& j,
+                    const std::string& command) {
+  const nlohmann::json& model = j.at("model");
+  HtmlPage page(what + ": " + text(model, "name"), kind);
+  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), command);
+  return page;
+}
+
 void pictures_and_files(HtmlPage& page, const ReportInputs& in) {
   page.heading("Pictures");
   page.pictures(in.pictures);
@@ -137,9 +146,7 @@ void write_run_report(const std::filesystem::path& dir, const nlohmann::json& j,
 
 void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
   const std::string F = "modal.json";
-  const nlohmann::json& model = j.at("model");
-  HtmlPage page("Modal analysis: " + text(model, "name"), "modal");
-  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), in.command);
+  HtmlPage page = model_page("Modal analysis", "modal", j, in.command);
   page.heading("Rotor");
   page.key_values("rotor", {{"frame", html_escape(text(j, "frame"))},
                             {"nodes", HtmlPage::number(F, j, "/model/n_nodes", 1.0, "", 6)},
@@ -176,9 +183,7 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
 
 void write_response_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
   const std::string F = "response.json";
-  const nlohmann::json& model = j.at("model");
-  HtmlPage page("Unbalance response: " + text(model, "name"), "response");
-  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), in.command);
+  HtmlPage page = model_page("Unbalance response", "response", j, in.command);
   page.heading("Peaks");
   page.paragraph("The largest steady-state 1x response over the speeds computed, and the speed where it occurs.");
   std::vector<Row> rows;
@@ -206,10 +211,7 @@ void write_response_report(const std::filesystem::path& dir, const nlohmann::jso
 
 void write_bearing_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
   const std::string F = "bearing.json";
-  const nlohmann::json& model = j.at("model");
-  const std::string name = text(j.at("bearing"), "name");
-  HtmlPage page("Ball bearing " + name + ": " + text(model, "name"), "bearing");
-  origin(page, text(model, "source"), j.value("overrides", nlohmann::json::array()), in.command);
+  HtmlPage page = model_page("Ball bearing " + text(j.at("bearing"), "name"), "bearing", j, in.command);
   page.heading("Load");
   page.key_values("load", {{"Fx", HtmlPage::number(F, j, "/load_n/0", 1.0, "N")},
                            {"Fy", HtmlPage::number(F, j, "/load_n/1", 1.0, "N")},

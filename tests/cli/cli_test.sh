@@ -91,11 +91,8 @@ EOF2
   run_interrupted)
     # Ctrl-C (SIGINT) ends a long run with everything so far written and marked incomplete, exit code 130.
     "$exe" run "$src/examples/reference_linear.toml" --set speed.duration=400 --no-plots -o "$out" > "$out/log" 2>&1 &
-    pid=$!
     sleep 2
-    kill -INT $pid
-    wait $pid
-    rc=$?
+    stop INT $!
     [ $rc -eq 130 ] || fail "exit $rc, expected 130: $(cat "$out/log")"
     grep -q '"complete": false' "$out/summary.json" || fail "summary not marked incomplete"
     grep -q "interrupted" "$out/log" || fail "no reason given: $(cat "$out/log")"
@@ -127,10 +124,8 @@ EOF2
     # Issue 20: SIGKILL kept only whole 4,096-row blocks of the time series and no summary.json, and `turbodyn plot`
     # refused the directory. Now the samples are flushed each second and the summary is written at the start.
     "$exe" run "$src/examples/reference_linear.toml" --set speed.duration=400 --no-plots -o "$out" > "$out/log" 2>&1 &
-    pid=$!
     sleep 4
-    kill -KILL $pid
-    wait $pid 2>/dev/null
+    stop KILL $! 2>/dev/null
     grep -q '"complete": false' "$out/summary.json" || fail "no summary marked incomplete: $(cat "$out/summary.json")"
     "$exe" plot "$out" > "$out/plot.log" 2>&1 || fail "plot refused the killed run: $(cat "$out/plot.log")"
     grep -q "(the run is incomplete)" "$out/plot.log" || fail "plot: $(cat "$out/plot.log")"
@@ -140,12 +135,8 @@ EOF2
     # A study killed hard (SIGKILL) part-way resumes where it stopped, without redoing finished runs.
     study="$src/examples/study_reference_linear.toml"
     "$exe" sweep "$study" -o "$out" -j 1 --no-plots > "$out/log1" 2>&1 &
-    pid=$!
-    for _ in $(seq 1 600); do
-      [ -f "$out/runs.jsonl" ] && [ "$(wc -l < "$out/runs.jsonl")" -ge 4 ] && break
-      sleep 0.1
-    done
-    kill -KILL $pid; wait $pid 2>/dev/null
+    wait_until has_lines "$out/runs.jsonl" 4
+    stop KILL $! 2>/dev/null
     done_before=$(($(wc -l < "$out/runs.jsonl") - 1))
     [ "$done_before" -ge 3 ] && [ "$done_before" -lt 16 ] || fail "expected a partial study, found $done_before runs"
     "$exe" sweep "$study" -o "$out" --no-plots > "$out/log2" 2>&1 || fail "resume failed: $(cat "$out/log2")"

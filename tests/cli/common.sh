@@ -8,3 +8,9 @@ cli_setup() {
   fail_label="$prefix$case"
 }
 fail() { echo "FAIL ($fail_label): $*"; exit 1; }
+# wait_until COMMAND...: polls every 0.1 s, for up to 3 minutes, until the command succeeds.
+wait_until() { for _ in $(seq 1 1800); do "$@" 2>/dev/null && return 0; sleep 0.1; done; return 1; }
+# has_lines FILE N: FILE exists with at least N lines.
+has_lines() { [ -f "$1" ] && [ "$(wc -l < "$1")" -ge "$2" ]; }
+# stop SIGNAL PID: sends the signal and waits for the process; its exit code is left in rc.
+stop() { kill -"$1" "$2"; wait "$2"; rc=$?; }

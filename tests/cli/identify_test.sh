@@ -26,14 +26,8 @@ case $case in
     # Issue 20: after Ctrl-C, estimates.json held the start values although the message promised the last finished
     # iteration (and the log showed iteration 2 elsewhere), and the run count included the cancelled runs.
     "$exe" identify "$src/examples/identify_bench_rotor.toml" -o "$out" -j 2 --no-plots > "$out/log" 2>&1 &
-    pid=$!
-    for _ in $(seq 1 1800); do
-      grep -q "^iteration   2 " "$out/log" 2>/dev/null && break
-      sleep 0.1
-    done
-    kill -INT $pid
-    wait $pid
-    rc=$?
+    wait_until grep -q "^iteration   2 " "$out/log"
+    stop INT $!
     [ $rc -eq 130 ] || fail "exit $rc, expected 130: $(cat "$out/log")"
     grep -q "interrupted: the results are those of the last finished iteration" "$out/log" || fail "$(cat "$out/log")"
     python3 - "$out/log" "$out/estimates.json" <<'PY' || fail "estimates are not those of the last iteration: $(cat "$out/log")"

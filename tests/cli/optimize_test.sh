@@ -58,14 +58,8 @@ case $case in
     # Ctrl-C after the first evaluation: exit 130, the finished evaluations are kept; the same command continues.
     study="$src/tests/data/optim/cli_damper_study.toml"
     "$exe" optimize "$study" -o "$out/opt" --no-plots > "$out/log1" 2>&1 &
-    pid=$!
-    for _ in $(seq 1 1200); do
-      [ -f "$out/opt/evaluations.jsonl" ] && [ "$(wc -l < "$out/opt/evaluations.jsonl")" -ge 2 ] && break
-      sleep 0.1
-    done
-    kill -INT $pid
-    wait $pid
-    rc=$?
+    wait_until has_lines "$out/opt/evaluations.jsonl" 2
+    stop INT $!
     [ $rc -eq 130 ] || fail "exit $rc, expected 130: $(cat "$out/log1")"
     grep -q "interrupted" "$out/log1" || fail "no reason given: $(cat "$out/log1")"
     done_before=$(($(wc -l < "$out/opt/evaluations.jsonl") - 1))
