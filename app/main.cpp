@@ -119,13 +119,19 @@ int main(int argc, char** argv) {
   response->add_flag("!--no-plots", response_options.plots, "Do not draw PNG pictures");
   add_sets(response);
 
+  // The study commands' common options: the study file, the output directory and the parallel runs.
+  auto add_study_options = [](CLI::App* cmd, const std::string& study_kind, std::filesystem::path& study_file,
+                              std::filesystem::path& output_dir, const std::string& output_help, int& threads) {
+    cmd->add_option("STUDY", study_file, study_kind + " file (TOML)")->required();
+    cmd->add_option("-o,--output", output_dir, output_help)->capture_default_str();
+    cmd->add_option("-j,--threads", threads, "Parallel runs (default: the study's, else all cores)")
+        ->check(CLI::NonNegativeNumber);
+  };
+
   turbodyn::app::SweepCommandOptions sweep_options;
   CLI::App* sweep = app.add_subcommand("sweep", "Parameter study: runs of a design in parallel, table and pictures");
-  sweep->add_option("STUDY", sweep_options.study_file, "Study file (TOML)")->required();
-  sweep->add_option("-o,--output", sweep_options.output_dir, "Output directory (resumes the runs found there)")
-      ->capture_default_str();
-  sweep->add_option("-j,--threads", sweep_options.threads, "Parallel runs (default: the study's, else all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_study_options(sweep, "Study", sweep_options.study_file, sweep_options.output_dir,
+                    "Output directory (resumes the runs found there)", sweep_options.threads);
   sweep->add_option("--shard", sweep_options.shard, "Run only the slice K/N of the design (runs i with i % N == K)");
   sweep->add_flag("!--no-plots", sweep_options.plots, "Do not draw PNG pictures");
 
@@ -160,21 +166,16 @@ int main(int argc, char** argv) {
 
   turbodyn::app::OptimizeCommandOptions optimize_options;
   CLI::App* optimize = app.add_subcommand("optimize", "Design optimisation (NLopt) of model parameters on run metrics");
-  optimize->add_option("STUDY", optimize_options.study_file, "Optimisation study file (TOML)")->required();
-  optimize->add_option("-o,--output", optimize_options.output_dir, "Output directory (restarts from the evaluations found there)")
-      ->capture_default_str();
-  optimize->add_option("-j,--threads", optimize_options.threads, "Parallel runs (default: the study's, else all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_study_options(optimize, "Optimisation study", optimize_options.study_file, optimize_options.output_dir,
+                    "Output directory (restarts from the evaluations found there)", optimize_options.threads);
   optimize->add_option("--maxeval", optimize_options.maxeval, "Replace the study's maxeval (e.g. a quick trial)")
       ->check(CLI::PositiveNumber);
   optimize->add_flag("!--no-plots", optimize_options.plots, "No pictures (and no final run-ups for the spectrograms)");
 
   turbodyn::app::IdentifyCommandOptions identify_options;
   CLI::App* identify = app.add_subcommand("identify", "Fit bearing and unbalance parameters to a measured run-up (Ceres)");
-  identify->add_option("STUDY", identify_options.study_file, "Identification study file (TOML)")->required();
-  identify->add_option("-o,--output", identify_options.output_dir, "Output directory")->capture_default_str();
-  identify->add_option("-j,--threads", identify_options.threads, "Parallel model runs (default: the study's, else all cores)")
-      ->check(CLI::NonNegativeNumber);
+  add_study_options(identify, "Identification study", identify_options.study_file, identify_options.output_dir,
+                    "Output directory", identify_options.threads);
   identify->add_flag("!--no-plots", identify_options.plots, "Do not draw PNG pictures");
 
   CLI11_PARSE(app, argc, argv);
