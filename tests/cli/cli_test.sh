@@ -159,6 +159,24 @@ assert r[-1]["cage_speed_ratio"] > r[1]["cage_speed_ratio"] > 0.3
 assert len(r[-1]["balls"]) == 8
 EOF2
     ;;
+  bearing_floating_ring)
+    # turbodyn bearing on the reference floating ring with thermal films: files, pictures, the ring speed ratio
+    # falling with speed below the isothermal Petroff value, the inner film hotter than the outer one.
+    "$exe" bearing "$src/examples/reference_floating_ring.toml" --bearing compressor --speeds "20000 rpm:150000 rpm:4" \
+      --load "0,-1.6" --set bearings.compressor.thermal=bulk -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    for f in bearing.json bearing.csv ring_speed_ratio.png eccentricity.png temperatures.png power_loss.png; do
+      [ -s "$out/$f" ] || fail "missing $f"
+    done
+    python3 - "$out/bearing.json" <<'EOF2' || fail "bearing.json: $(head -c 2000 "$out/bearing.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+r = j["results"]
+assert j["bearing"]["thermal"] == "bulk" and len(r) == 4, (j["bearing"], len(r))
+assert 0.2 < r[-1]["ring_speed_ratio"] < r[1]["ring_speed_ratio"] < 0.3131, [p["ring_speed_ratio"] for p in r]
+assert all(p["inner_temperature_k"] > p["outer_temperature_k"] > 363.15 for p in r)
+assert abs(r[-1]["inner_power_w"] + r[-1]["outer_power_w"] - r[-1]["heat_to_oil_w"] - r[-1]["heat_conducted_w"]) < 1e-3
+EOF2
+    ;;
   bearing_bad_input)
     # Each bad input: exit 2 and a message naming the file or option and the cause.
     expect_error() {  # expected-message then arguments
@@ -171,7 +189,12 @@ EOF2
     expect_error "bearings.nope: no such bearing\|--bearing 'nope': no such bearing" \
       "$src/examples/reference_ball.toml" --bearing nope --speeds 0
     expect_error "bearings.compressor is a linear bearing" "$src/examples/reference_linear.toml" --bearing compressor --speeds 0
-    expect_error "the model has no ball bearing" "$src/examples/reference_linear.toml" --speeds 0
+    expect_error "the model has no ball or floating-ring bearing" "$src/examples/reference_linear.toml" --speeds 0
+    expect_error "needs speeds above 0" "$src/examples/reference_floating_ring.toml" --speeds 0
+    expect_error "takes no axial load" "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm" --load "0,-2,5"
+    expect_error "bearings.compressor.ring_conductance: must not be negative" \
+      "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm" --set bearings.compressor.thermal=bulk \
+      --set "bearings.compressor.ring_conductance=-2 W/K"
     expect_error "--speeds '0:1:x'" "$src/examples/reference_ball.toml" --speeds 0:1:x
     expect_error "--load '1;2'" "$src/examples/reference_ball.toml" --speeds 0 --load "1;2"
     expect_error "--load '1,2,3,4'" "$src/examples/reference_ball.toml" --speeds 0 --load "1,2,3,4"
