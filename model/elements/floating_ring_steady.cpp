@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include "model/spec/errors.h"
+
 namespace turbodyn {
 namespace {
 
@@ -234,6 +236,65 @@ std::vector<FloatingRingOperatingPoint> FloatingRingSteady::sweep(const std::vec
   std::vector<FloatingRingOperatingPoint> out;
   for (double w : speeds) out.push_back(solve(w, load, out.empty() ? nullptr : &out.back()));
   return out;
+}
+
+void add_floating_ring_linearisations(const MachineSpec& machine, Rotor& rotor, const std::vector<double>& table_speeds) {
+  std::vector<const BearingSpec*> rings;
+  for (const BearingSpec& b : machine.bearings)
+    if (b.type == BearingType::FloatingRing) rings.push_back(&b);
+  if (rings.empty()) return;
+  const std::string file = machine.source.string();
+  if (rings.size() != 2 || machine.bearings.size() != 2)
+    throw ModelError(file + ": the modal analysis takes floating-ring bearings as a pair carrying the rotor's weight "
+                     "(the static load of each from a rigid beam on two supports): the model needs exactly two "
+                     "bearings, both floating rings");
+  // Weight and centre of gravity of shaft and disks.
+  double mass = 0.0, moment = 0.0;
+  for (const ShaftSection& s : machine.shaft) {
+    const double m = machine.materials.at(s.material).density * M_PI / 4.0 *
+                     (s.outer_diameter * s.outer_diameter - s.inner_diameter * s.inner_diameter) * s.length;
+    mass += m;
+    moment += m * (s.z_start + 0.5 * s.length);
+  }
+  for (const DiskSpec& d : machine.disks) {
+    mass += d.mass;
+    moment += d.mass * d.z;
+  }
+  const double za = rings[0]->z, zb = rings[1]->z, zcg = moment / mass, weight = mass * machine.gravity;
+  if (!(std::abs(zb - za) > 0.0)) throw ModelError(file + ": the two floating-ring bearings sit at the same z");
+  const double load[2] = {weight * (zb - zcg) / (zb - za), weight * (zcg - za) / (zb - za)};
+  const double length = machine.shaft_length();
+  for (int k = 0; k < 2; ++k) {
+    const BearingSpec& b = *rings[k];
+    const std::string where = file + ": bearings." + b.name;
+    if (b.pedestal_mass > 0.0)
+      throw ModelError(where + ".pedestal_mass: pedestal masses are part of the run-up model only");
+    FloatingRingElement element(b.name, b.ring, machine.oil, 0, machine.gravity);
+    std::vector<FloatingRingOperatingPoint> points;
+    try {
+      points = FloatingRingSteady(element).sweep(table_speeds, Eigen::Vector2d(0.0, -load[k]));
+    } catch (const std::runtime_error& e) {
+      throw ModelError(where + ": no steady operating point for the modal analysis (load " + std::to_string(load[k]) +
+                       " N from the rotor's weight): " + e.what());
+    }
+    FloatingRingLinearisation lin;
+    lin.name = b.name;
+    lin.node = rotor.node_at(std::clamp(b.z, 0.0, length));
+    lin.ring_mass = b.ring.ring_mass;
+    lin.films = [points](double speed, Eigen::Matrix2d& ki, Eigen::Matrix2d& ci, Eigen::Matrix2d& ko,
+                         Eigen::Matrix2d& co) {
+      std::size_t i = 0;
+      while (i + 1 < points.size() && points[i + 1].speed <= speed) ++i;
+      const FloatingRingOperatingPoint& a = points[i];
+      const FloatingRingOperatingPoint& c = points[std::min(i + 1, points.size() - 1)];
+      const double w = c.speed > a.speed ? std::clamp((speed - a.speed) / (c.speed - a.speed), 0.0, 1.0) : 0.0;
+      ki = (1 - w) * a.k_inner + w * c.k_inner;
+      ci = (1 - w) * a.c_inner + w * c.c_inner;
+      ko = (1 - w) * a.k_outer + w * c.k_outer;
+      co = (1 - w) * a.c_outer + w * c.c_outer;
+    };
+    rotor.rings.push_back(std::move(lin));
+  }
 }
 
 }  // namespace turbodyn

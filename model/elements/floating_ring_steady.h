@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "model/elements/floating_ring_element.h"
+#include "model/rotor/rotor.h"
 
 namespace turbodyn {
 
@@ -77,5 +78,11 @@ class FloatingRingSteady {
   int n_ = 5;
   double pitch_ = 0.0;
 };
+
+/// The floating-ring bearings of a machine for the modal analysis (Rotor::rings): each bearing's steady operating
+/// points under its share of the rotor's weight (two bearings, both floating rings: the reactions of a rigid beam on
+/// two supports) at `table_speeds` (rad/s, ascending, > 0), and their films' coefficients interpolated linearly in
+/// speed between them (held constant outside). Throws ModelError for other bearing layouts or failed points.
+void add_floating_ring_linearisations(const MachineSpec& machine, Rotor& rotor, const std::vector<double>& table_speeds);
 
 }  // namespace turbodyn

@@ -177,6 +177,22 @@ assert all(p["inner_temperature_k"] > p["outer_temperature_k"] > 363.15 for p in
 assert abs(r[-1]["inner_power_w"] + r[-1]["outer_power_w"] - r[-1]["heat_to_oil_w"] - r[-1]["heat_conducted_w"]) < 1e-3
 EOF2
     ;;
+  modal_floating_ring)
+    # turbodyn modal on variant I: the films linearised at steady points under the rotor's weight, ring masses as
+    # coordinates of their own; the films' forward whirl modes have negative damping ratios (the whirl the run-up
+    # shows), and damping.png is drawn.
+    "$exe" modal "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm:150000 rpm:3" -o "$out" \
+      > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    for f in modal.json campbell.csv campbell.png damping.png; do [ -s "$out/$f" ] || fail "missing $f"; done
+    python3 - "$out/modal.json" <<'EOF2' || fail "modal.json: $(head -c 2000 "$out/modal.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+for p in j["campbell"]:
+    modes = p["modes"]
+    assert any(m["whirl"] == "forward" and m["damping_ratio"] < 0 for m in modes), p
+    assert any(m["damping_ratio"] > 0 for m in modes), p
+EOF2
+    ;;
   bearing_bad_input)
     # Each bad input: exit 2 and a message naming the file or option and the cause.
     expect_error() {  # expected-message then arguments

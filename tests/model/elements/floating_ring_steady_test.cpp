@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "model/rotor/modal.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -64,6 +65,39 @@ TEST(FloatingRingSteady, LoadedPointBalancesForcesTorqueAndHeat) {
   }
   // Hotter inner films as the speed rises: the ratio falls (isothermal films rise towards the Petroff ratio).
   EXPECT_LT(pts[2].ring_speed / pts[2].speed, pts[0].ring_speed / pts[0].speed);
+}
+
+TEST(FloatingRingModal, RingOnAStiffOuterFilmLeavesTheJournalOnItsInnerFilm) {
+  // The modal analysis's ring coordinates: a ring of negligible mass in an outer film 1e4 times stiffer (and more
+  // damping) than its inner film passes the inner film on to the housing, so the rotor's modes are those on linear
+  // bearings with the inner film's coefficients.
+  constexpr double kTolerance = 1e-3;  // the series outer film changes the support by 1e-4
+  const Rotor linear = testing::load_rotor("reference_linear.toml");
+  Rotor rings = linear;
+  rings.bearings.clear();
+  for (const LinearBearing& b : linear.bearings) {
+    FloatingRingLinearisation r;
+    r.name = b.name;
+    r.node = b.node;
+    r.ring_mass = 1e-6;
+    r.films = [b](double speed, Eigen::Matrix2d& ki, Eigen::Matrix2d& ci, Eigen::Matrix2d& ko, Eigen::Matrix2d& co) {
+      b.coefficients(speed, ki, ci);
+      ko = 1e4 * ki;
+      co = 1e4 * ci;
+    };
+    rings.rings.push_back(r);
+  }
+  for (double speed : {0.0, 5000.0, 15000.0}) {
+    ModalOptions o;
+    o.n_modes = 6;
+    const ModalResult a = modal_analysis(linear, speed, o), b = modal_analysis(rings, speed, o);
+    ASSERT_EQ(a.modes.size(), b.modes.size()) << speed;
+    for (std::size_t i = 0; i < a.modes.size(); ++i) {
+      EXPECT_NEAR(b.modes[i].frequency / a.modes[i].frequency, 1.0, kTolerance) << speed << " mode " << i;
+      EXPECT_NEAR(b.modes[i].damping_ratio, a.modes[i].damping_ratio, kTolerance) << speed << " mode " << i;
+      EXPECT_EQ(b.modes[i].whirl, a.modes[i].whirl) << speed << " mode " << i;
+    }
+  }
 }
 
 }  // namespace
