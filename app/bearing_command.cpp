@@ -12,6 +12,7 @@
 
 #include "app/modal_command.h"
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/elements/floating_ring_steady.h"
 #include "model/io/output_file.h"
 #include "model/spec/units.h"
 #include "post/plot.h"
@@ -42,25 +43,214 @@ nlohmann::json matrix_json(const Matrix5d& m) {
   return rows;
 }
 
+bool analysable(BearingType t) { return t == BearingType::Ball || t == BearingType::FloatingRing; }
+
 const BearingSpec& find_bearing(const MachineSpec& spec, const std::string& name) {
   const std::string file = spec.source.string();
   if (name.empty()) {
     for (const BearingSpec& b : spec.bearings)
-      if (b.type == BearingType::Ball) return b;
-    throw ModelError(file + ": the model has no ball bearing (type = \"ball\"); `turbodyn bearing` analyses ball "
-                     "bearings");
+      if (analysable(b.type)) return b;
+    throw ModelError(file + ": the model has no ball or floating-ring bearing (type = \"ball\" or \"floating-ring\"); "
+                     "`turbodyn bearing` analyses those");
   }
   std::string names;
   for (const BearingSpec& b : spec.bearings) {
     if (b.name == name) {
-      if (b.type != BearingType::Ball)
+      if (!analysable(b.type))
         throw ModelError(file + ": bearings." + name + " is a " + to_string(b.type) +
-                         " bearing; --bearing must name a ball bearing (type = \"ball\")");
+                         " bearing; --bearing must name a ball or floating-ring bearing (type = \"ball\" or "
+                         "\"floating-ring\")");
       return b;
     }
     names += (names.empty() ? "" : ", ") + b.name;
   }
   throw ModelError(file + ": --bearing '" + name + "': no such bearing in the model (it has: " + names + ")");
+}
+
+nlohmann::json matrix2_json(const Eigen::Matrix2d& m) {
+  return nlohmann::json::array({{m(0, 0), m(0, 1)}, {m(1, 0), m(1, 1)}});
+}
+
+// A quantity of a steady operating point, for the pictures.
+using PointValue = double (*)(const FloatingRingOperatingPoint&);
+
+void write_ring_pictures(const std::string& title, const std::vector<FloatingRingOperatingPoint>& pts, bool thermal,
+                         const std::filesystem::path& dir) {
+  using plot::Series;
+  std::vector<double> rpm;
+  for (const FloatingRingOperatingPoint& p : pts) rpm.push_back(p.speed * kRadPerSToRpm);
+  const std::string which = " of floating-ring bearing " + title + (thermal ? " (thermal films)" : " (isothermal films)");
+  // One picture against rotor speed: a curve per (label, value), the inner film red and the outer film blue.
+  auto draw = [&](const std::string& what, const std::string& ylabel, const std::string& legend,
+                  const std::vector<std::pair<std::string, PointValue>>& curves, const std::string& file) {
+    plot::LineChart chart;
+    chart.title = what + which;
+    chart.xlabel = "rotor speed [rpm]";
+    chart.ylabel = ylabel;
+    for (const auto& [label, value] : curves) {
+      Series s{label, rpm, {}, Series::Style::LinesPoints, label == "inner film" ? "#d62728" : "#1f77b4", 1.8};
+      for (const FloatingRingOperatingPoint& p : pts) s.y.push_back(value(p));
+      chart.series.push_back(s);
+    }
+    if (!legend.empty()) chart.legend_position = legend;
+    plot::render_png(chart, dir / file);
+  };
+  draw("Ring speed ratio", "ring speed / rotor speed [-]", "bottom left",
+       {{"ring speed ratio", [](const FloatingRingOperatingPoint& p) { return p.ring_speed / p.speed; }}},
+       "ring_speed_ratio.png");
+  draw("Eccentricity ratios", "e/c [-]", "",
+       {{"inner film", [](const FloatingRingOperatingPoint& p) { return p.inner_eccentricity; }},
+        {"outer film", [](const FloatingRingOperatingPoint& p) { return p.outer_eccentricity; }}},
+       "eccentricity.png");
+  draw("Power loss", "power [W]", "top left",
+       {{"inner film", [](const FloatingRingOperatingPoint& p) { return p.inner_power; }},
+        {"outer film", [](const FloatingRingOperatingPoint& p) { return p.outer_power; }}},
+       "power_loss.png");
+  draw("Film temperatures", "temperature [degC]", "top left",
+       {{"inner film", [](const FloatingRingOperatingPoint& p) { return p.inner_temperature - 273.15; }},
+        {"outer film", [](const FloatingRingOperatingPoint& p) { return p.outer_temperature - 273.15; }}},
+       "temperatures.png");
+}
+
+// `turbodyn bearing` for a floating-ring bearing: steady operating points (model/elements/floating_ring_steady.h).
+int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& spec, const BearingSpec& b,
+                      const std::vector<double>& speeds, const std::vector<double>& load,
+                      std::chrono::steady_clock::time_point t0) {
+  const std::string where = spec.source.string() + ": bearings." + b.name;
+  if (load[2] != 0.0)
+    throw ModelError("--load '" + options.load + "': a floating-ring bearing takes no axial load (give \"Fx,Fy\")");
+  std::unique_ptr<FloatingRingElement> element;
+  try {
+    element = std::make_unique<FloatingRingElement>(b.name, b.ring, spec.oil, 0, spec.gravity);
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(where + ": impossible geometry or data: " + e.what());
+  }
+  std::vector<double> positive;
+  for (double w : speeds)
+    if (w > 0.0) positive.push_back(w);
+  if (positive.empty()) throw ModelError("--speeds: a floating-ring bearing needs speeds above 0");
+  const FloatingRingSteady steady(*element);
+  std::vector<FloatingRingOperatingPoint> pts;
+  try {
+    pts = steady.sweep(positive, Eigen::Vector2d(load[0], load[1]));
+  } catch (const SteadyPointError& e) {
+    throw ModelError(where + " with --load '" + options.load + "': " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw ModelError(where + " with --load '" + options.load + "': " + e.what());
+  }
+  const bool thermal = element->thermal();
+  const FloatingRingSpec& f = b.ring;
+  std::filesystem::create_directories(options.output_dir);
+  nlohmann::json j;
+  j["turbodyn_version"] = "0.1.0";
+  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
+  nlohmann::json overrides = nlohmann::json::array();
+  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
+  j["overrides"] = overrides;
+  j["bearing"] = {{"name", b.name},
+                  {"type", "floating-ring"},
+                  {"thermal", to_string(f.thermal.model)},
+                  {"inner_diameter_m", f.inner_diameter},
+                  {"inner_length_m", f.inner_length},
+                  {"inner_clearance_m", f.inner_clearance},
+                  {"outer_diameter_m", f.outer_diameter},
+                  {"outer_length_m", f.outer_length},
+                  {"outer_clearance_m", f.outer_clearance},
+                  {"ring_mass_kg", f.ring_mass},
+                  {"drill_holes", f.drill_holes},
+                  {"supply_pressure_pa", f.supply_pressure},
+                  {"supply_temperature_k", spec.oil.temperature}};
+  if (thermal)
+    j["thermal"] = {{"shaft_temperature_k", f.thermal.shaft_temperature},
+                    {"housing_temperature_k", f.thermal.housing_temperature},
+                    {"oil_specific_heat_j_per_kg_k", f.thermal.oil_specific_heat},
+                    {"inner_shaft_conductance_w_per_k", f.thermal.inner_shaft_conductance},
+                    {"ring_conductance_w_per_k", f.thermal.ring_conductance},
+                    {"outer_housing_conductance_w_per_k", f.thermal.outer_housing_conductance},
+                    {"inner_heat_capacity_j_per_k", f.thermal.inner_heat_capacity},
+                    {"outer_heat_capacity_j_per_k", f.thermal.outer_heat_capacity}};
+  j["assumptions"] = {
+      "steady: ring speed from the torque balance of both films, journal and ring positions from the force balances "
+      "(the ring's weight included), film temperatures from their heat balances (thermal films)",
+      "the balances are averaged over ring angles across one drill-hole pitch (the holes pass the feed hole)",
+      "journal and ring aligned (no tilt); the static load acts on the journal at mid-width",
+      "linearised coefficients: each film's force against its own surfaces' relative motion, ring speed and "
+      "temperatures held (the pair is two such films in series through the ring's mass)"};
+  j["load_n"] = {load[0], load[1]};
+  nlohmann::json points = nlohmann::json::array();
+  for (const FloatingRingOperatingPoint& p : pts)
+    points.push_back({{"speed_rad_s", p.speed},
+                      {"speed_rpm", p.speed * kRadPerSToRpm},
+                      {"ring_speed_rad_s", p.ring_speed},
+                      {"ring_speed_ratio", p.ring_speed / p.speed},
+                      {"journal_m", {p.journal[0], p.journal[1]}},
+                      {"ring_m", {p.ring[0], p.ring[1]}},
+                      {"inner_eccentricity", p.inner_eccentricity},
+                      {"outer_eccentricity", p.outer_eccentricity},
+                      {"inner_attitude_deg", p.inner_attitude * kDeg},
+                      {"outer_attitude_deg", p.outer_attitude * kDeg},
+                      {"inner_temperature_k", p.inner_temperature},
+                      {"outer_temperature_k", p.outer_temperature},
+                      {"inner_power_w", p.inner_power},
+                      {"outer_power_w", p.outer_power},
+                      {"inner_side_flow_m3_s", p.inner_flow},
+                      {"outer_side_flow_m3_s", p.outer_flow},
+                      {"heat_to_oil_w", p.heat_to_oil},
+                      {"heat_conducted_w", p.heat_conducted},
+                      {"inner_stiffness_n_per_m", matrix2_json(p.k_inner)},
+                      {"inner_damping_n_s_per_m", matrix2_json(p.c_inner)},
+                      {"outer_stiffness_n_per_m", matrix2_json(p.k_outer)},
+                      {"outer_damping_n_s_per_m", matrix2_json(p.c_outer)},
+                      {"newton_iterations", p.iterations}});
+  j["results"] = points;
+  write_output_file(options.output_dir / "bearing.json", j.dump(1) + "\n");
+  {
+    OutputFile file(options.output_dir / "bearing.csv");
+    std::ostream& csv = file.stream();
+    csv << "speed_rad_s,speed_rpm,ring_speed_ratio,inner_eccentricity,outer_eccentricity,inner_temperature_k,"
+           "outer_temperature_k,inner_power_w,outer_power_w,inner_side_flow_m3_s,outer_side_flow_m3_s,heat_to_oil_w,"
+           "heat_conducted_w";
+    for (const char* film : {"inner", "outer"})
+      for (const char* m : {"k", "c"})
+        for (const char* rc : {"xx", "xy", "yx", "yy"}) csv << ',' << m << '_' << film << '_' << rc;
+    csv << '\n' << std::setprecision(10);
+    for (const FloatingRingOperatingPoint& p : pts) {
+      csv << p.speed << ',' << p.speed * kRadPerSToRpm << ',' << p.ring_speed / p.speed << ','
+          << p.inner_eccentricity << ',' << p.outer_eccentricity << ',' << p.inner_temperature << ','
+          << p.outer_temperature << ',' << p.inner_power << ',' << p.outer_power << ',' << p.inner_flow << ','
+          << p.outer_flow << ',' << p.heat_to_oil << ',' << p.heat_conducted;
+      for (const Eigen::Matrix2d* m : {&p.k_inner, &p.c_inner, &p.k_outer, &p.c_outer})
+        csv << ',' << (*m)(0, 0) << ',' << (*m)(0, 1) << ',' << (*m)(1, 0) << ',' << (*m)(1, 1);
+      csv << '\n';
+    }
+    file.commit();
+  }
+  std::cout << spec.name << ": floating-ring bearing " << b.name << " (" << to_string(f.thermal.model)
+            << " films), load (" << load[0] << ", " << load[1] << ") N\n";
+  std::cout << "     speed [rpm]  ring/shaft   e_i/c_i   e_o/c_o  T_i [degC]  T_o [degC]  P_i [W]   P_o [W]  "
+               "Q_i [ml/min]  Q_o [ml/min]\n";
+  for (const FloatingRingOperatingPoint& p : pts)
+    std::cout << std::fixed << std::setw(16) << std::setprecision(0) << p.speed * kRadPerSToRpm << std::setw(12)
+              << std::setprecision(4) << p.ring_speed / p.speed << std::setw(10) << std::setprecision(3)
+              << p.inner_eccentricity << std::setw(10) << p.outer_eccentricity << std::setw(12)
+              << std::setprecision(1) << p.inner_temperature - 273.15 << std::setw(12)
+              << p.outer_temperature - 273.15 << std::setw(9) << std::setprecision(2) << p.inner_power
+              << std::setw(10) << p.outer_power << std::setw(14) << p.inner_flow * 6e7 << std::setw(14)
+              << p.outer_flow * 6e7 << "\n";
+  std::cout << std::defaultfloat;
+  if (options.plots) write_ring_pictures(b.name, pts, thermal, options.output_dir);
+  post::write_bearing_report(
+      options.output_dir, j,
+      {command_line(),
+       options.plots ? std::vector<std::string>{"ring_speed_ratio.png", "eccentricity.png", "temperatures.png",
+                                                "power_loss.png"}
+                     : std::vector<std::string>{},
+       {"bearing.json", "bearing.csv"}, {}});
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, report.html"
+            << (options.plots ? ", ring_speed_ratio.png, eccentricity.png, power_loss.png, temperatures.png" : "")
+            << " (" << std::setprecision(3) << wall << " s)\n";
+  return 0;
 }
 
 void write_pictures(const std::string& title, const std::vector<BallBearingEquilibrium>& results,
@@ -118,6 +308,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
   const std::string where = spec.source.string() + ": bearings." + b.name;
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, 11);
   const std::vector<double> load = parse_load(options.load);
+  if (b.type == BearingType::FloatingRing) return run_floating_ring(options, spec, b, speeds, load, t0);
 
   std::unique_ptr<BallBearingElement> element;
   try {

@@ -78,14 +78,16 @@ int main(int argc, char** argv) {
 
   turbodyn::app::BearingCommandOptions bearing_options;
   CLI::App* bearing = app.add_subcommand(
-      "bearing", "Quasi-static equilibrium of one ball bearing at speed: contact loads and angles, stiffness, damping");
+      "bearing", "Quasi-static equilibrium of one ball bearing, or steady operating points of one floating-ring "
+                 "bearing, at speeds: loads, ring speed, temperatures, power loss, stiffness, damping");
   bearing->add_option("MODEL", bearing_options.model_file, "Model file (TOML)")->required();
-  bearing->add_option("--bearing", bearing_options.bearing, "Name of a ball bearing (default: the model's first)");
+  bearing->add_option("--bearing", bearing_options.bearing, "Name of a ball or floating-ring bearing (default: the model's first)");
   bearing->add_option("--speeds", bearing_options.speeds,
                       "Speeds: START:END:COUNT or a comma list, units allowed (\"0:150000 rpm:16\"); "
                       "default: 11 speeds over [modal]");
   bearing->add_option("--load", bearing_options.load,
-                      "Static load on the inner ring \"Fx,Fy[,Fz]\" (N, units allowed); Fz adds to the preload")
+                      "Static load on the inner ring or journal \"Fx,Fy[,Fz]\" (N, units allowed); Fz adds to a ball "
+                      "bearing's preload")
       ->capture_default_str();
   bearing->add_option("-o,--output", bearing_options.output_dir, "Output directory")->capture_default_str();
   bearing->add_flag("!--no-plots", bearing_options.plots, "Do not draw PNG pictures");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/elements/floating_ring_steady.h"
 #include "model/io/output_file.h"
 #include "post/plot.h"
 #include "post/plot_style.h"
@@ -88,6 +89,35 @@ std::string speed_tag(double speed) {
   std::ostringstream os;
   os << std::llround(speed * kRadPerSToRpm) << "rpm";
   return os.str();
+}
+
+// Damping ratio of each lateral mode below fmax against speed: the stability of the whirl modes (floating rings:
+// negative for the films' whirl).
+void write_damping_picture(const MachineSpec& spec, const Campbell& campbell, double fmax,
+                           const std::filesystem::path& png) {
+  using plot::Series;
+  plot::LineChart chart;
+  chart.title = "Damping ratios of the modes below " + std::to_string(static_cast<int>(fmax)) + " Hz: " + spec.name;
+  chart.xlabel = "rotor speed [rpm]";
+  chart.ylabel = "damping ratio zeta [-] (< 0: unstable)";
+  Series fw{"forward whirl", {}, {}, Series::Style::Points, "#1f77b4", 1.2};
+  Series bw{"backward whirl", {}, {}, Series::Style::Points, "#d62728", 1.2};
+  Series other{"mixed / planar", {}, {}, Series::Style::Points, "#7f7f7f", 1.2};
+  for (const ModalResult& r : campbell.points)
+    for (const Mode& m : r.modes) {
+      if (m.frequency > fmax || m.whirl == Whirl::Torsional) continue;
+      Series& s = m.whirl == Whirl::Forward ? fw : m.whirl == Whirl::Backward ? bw : other;
+      s.x.push_back(r.speed * kRadPerSToRpm);
+      s.y.push_back(m.damping_ratio);
+    }
+  const double smin = campbell.points.front().speed, smax = campbell.points.back().speed;
+  chart.series.push_back(Series{"zeta = 0", {smin * kRadPerSToRpm, smax * kRadPerSToRpm}, {0.0, 0.0},
+                                Series::Style::Lines, "black", 1.0});
+  for (Series* s : {&fw, &bw, &other})
+    if (!s->x.empty()) chart.series.push_back(*s);
+  chart.xrange = std::make_pair(smin * kRadPerSToRpm, smax * kRadPerSToRpm);
+  chart.legend_position = "bottom right";
+  plot::render_png(chart, png);
 }
 
 void write_campbell_picture(const MachineSpec& spec, const Campbell& campbell, const std::vector<double>& orders,
@@ -172,9 +202,10 @@ void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const
 
 }  // namespace
 
-void require_linear_supports(const MachineSpec& spec, bool ball_bearings) {
+void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings) {
   for (const BearingSpec& b : spec.bearings)
-    if (b.type != BearingType::Linear && !(ball_bearings && b.type == BearingType::Ball))
+    if (b.type != BearingType::Linear &&
+        !(nonlinear_bearings && (b.type == BearingType::Ball || b.type == BearingType::FloatingRing)))
       throw ModelError(spec.source.string() + ": bearings." + b.name + ": a " + to_string(b.type) +
                        " bearing is nonlinear; the linear analyses (modal, response) need linear bearings "
                        "(linearised coefficients, e.g. from `turbodyn journal`, as type = \"linear\")");
@@ -241,6 +272,16 @@ int run_modal_command(const ModalCommandOptions& options) {
   add_ball_bearing_linearisations(spec, rotor);
 
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, spec.modal.n_speeds);
+  // Floating rings: their films linearised at steady operating points under the rotor's weight, tabulated over the
+  // speed range (kRingTableSpeeds, from a fiftieth of the top speed: films at rest carry nothing) and interpolated
+  // (docs/thermal-films.md, "Linear analyses").
+  constexpr int kRingTableSpeeds = 25;
+  {
+    const double top = speeds.back(), low = std::max(speeds.front(), top / 50.0);
+    std::vector<double> table;
+    for (int i = 0; i < kRingTableSpeeds; ++i) table.push_back(low + (top - low) * i / (kRingTableSpeeds - 1));
+    if (top > 0.0) add_floating_ring_linearisations(spec, rotor, table);
+  }
   ModalOptions mo;
   mo.n_modes = options.n_modes > 0 ? options.n_modes : spec.modal.n_modes;
   mo.frame = options.frame;
@@ -348,6 +389,8 @@ int run_modal_command(const ModalCommandOptions& options) {
     }
     write_campbell_picture(spec, campbell, spec.modal.orders, fmax, options.output_dir / "campbell.png");
     pictures.push_back("campbell.png");
+    write_damping_picture(spec, campbell, fmax, options.output_dir / "damping.png");
+    pictures.push_back("damping.png");
     for (const ModalResult& r : shapes) {
       pictures.push_back("modes_" + speed_tag(r.speed) + ".png");
       write_mode_shape_picture(spec, rotor, r, options.output_dir / pictures.back());
@@ -356,7 +399,7 @@ int run_modal_command(const ModalCommandOptions& options) {
   post::write_modal_report(options.output_dir, j, {command_line(), pictures, {"modal.json", "campbell.csv"}, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv, report.html"
-            << (options.plots ? ", campbell.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall
+            << (options.plots ? ", campbell.png, damping.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall
             << " s)\n";
   return 0;
 }

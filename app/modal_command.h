@@ -29,8 +29,9 @@ int run_modal_command(const ModalCommandOptions& options);
 std::vector<double> analysis_speeds(const MachineSpec& spec, const std::string& option, int count);
 
 /// Throws ModelError if the machine has supports the linear analyses do not model: nonlinear bearings (ball
-/// bearings are accepted if `ball_bearings`: modal linearises them), squeeze-film dampers, pedestal masses.
-void require_linear_supports(const MachineSpec& spec, bool ball_bearings = false);
+/// bearings and floating-ring bearings are accepted if `nonlinear_bearings`: modal linearises them), squeeze-film
+/// dampers, pedestal masses.
+void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings = false);
 
 /// Parses a speed list: "0:150000 rpm:31" (start:end:count, units on the numbers) or "0, 50000 rpm, 2500 Hz".
 /// Throws ModelError naming the option.

@@ -209,7 +209,38 @@ void write_response_report(const std::filesystem::path& dir, const nlohmann::jso
   page.write(dir);
 }
 
+// The steady operating points of a floating-ring bearing (turbodyn bearing on a type = "floating-ring" bearing).
+void write_floating_ring_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "bearing.json";
+  const nlohmann::json& b = j.at("bearing");
+  HtmlPage page = model_page("Floating-ring bearing " + text(b, "name") + " (" + text(b, "thermal") + " films)",
+                             "bearing", j, in.command);
+  page.heading("Load");
+  page.key_values("load", {{"Fx", HtmlPage::number(F, j, "/load_n/0", 1.0, "N")},
+                           {"Fy", HtmlPage::number(F, j, "/load_n/1", 1.0, "N")}});
+  page.heading("Steady operating points against rotor speed");
+  std::vector<Row> rows;
+  const nlohmann::json& res = j.at("results");
+  for (std::size_t i = 0; i < res.size(); ++i) {
+    const std::string at = json_pointer("/results", i);
+    rows.push_back({HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
+                    HtmlPage::number(F, j, at + "/ring_speed_ratio", 1.0, "", 4),
+                    HtmlPage::number(F, j, at + "/inner_eccentricity", 1.0, "", 3),
+                    HtmlPage::number(F, j, at + "/outer_eccentricity", 1.0, "", 3),
+                    HtmlPage::number(F, j, at + "/inner_temperature_k", 1.0, "K", 5),
+                    HtmlPage::number(F, j, at + "/outer_temperature_k", 1.0, "K", 5),
+                    HtmlPage::number(F, j, at + "/inner_power_w", 1.0, "W"),
+                    HtmlPage::number(F, j, at + "/outer_power_w", 1.0, "W")});
+  }
+  page.table("bearing", {"rotor speed", "ring / shaft speed", "e/c inner", "e/c outer", "T inner", "T outer",
+                         "power loss inner", "power loss outer"},
+             rows);
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
 void write_bearing_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  if (text(j.at("bearing"), "type") == "floating-ring") return write_floating_ring_report(dir, j, in);
   const std::string F = "bearing.json";
   HtmlPage page = model_page("Ball bearing " + text(j.at("bearing"), "name"), "bearing", j, in.command);
   page.heading("Load");

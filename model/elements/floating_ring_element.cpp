@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace turbodyn {
@@ -24,6 +25,10 @@ struct RingWorkspace : ElementWorkspace {
   }
   reynolds::FilmSolver inner, outer;
   FloatingRingElement::Films films;
+  RingWorkspace(reynolds::FilmSolver i, reynolds::FilmSolver o, int states)
+      : RingWorkspace(std::move(i), std::move(o)) {
+    key = EvaluationKey(4, states);
+  }
   EvaluationKey key{4, FloatingRingElement::kStates};  // the state of `films`
   bool solvers_at_key = false;  // the solvers' last solves (factorisations, pressures) are those of `films`
   // Jacobian scratch: perturbed films, and the outer films and drill-hole pressures of the ring's rate columns.
@@ -58,8 +63,11 @@ double midwidth_pressure(const reynolds::FilmSolver& solver, double theta) {
 
 FloatingRingElement::FloatingRingElement(const std::string& name, const FloatingRingSpec& spec, const OilSpec& oil,
                                          int node_dof, double gravity)
-    : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3}, kStates),
+    : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3},
+                   spec.thermal.model == FilmThermal::Bulk ? kMaxStates : kStates),
       spec_(spec),
+      oil_(oil),
+      thermal_(spec.thermal.model == FilmThermal::Bulk),
       gravity_(gravity),
       density_(oil.density) {
   inner_.radius = 0.5 * spec.inner_diameter;
@@ -81,6 +89,17 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
   options_.cavitation = spec.cavitation;
   eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
   eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
+  if (thermal_) {
+    const RingThermalSpec& t = spec.thermal;
+    if (oil.viscosity > 0.0)
+      throw std::invalid_argument("thermal films need a temperature-dependent viscosity (the [oil] Vogel law), not "
+                                  "a fixed [oil] viscosity");
+    if (!(t.inner_heat_capacity > 0.0 && t.outer_heat_capacity > 0.0 && t.oil_specific_heat > 0.0))
+      throw std::invalid_argument("thermal films need positive heat capacities");
+    if (!(t.inner_shaft_conductance >= 0.0 && t.ring_conductance >= 0.0 && t.outer_housing_conductance >= 0.0))
+      throw std::invalid_argument("thermal films need non-negative conductances");
+    eta_inner_ = eta_outer_ = oil.viscosity_at(t.supply_temperature);
+  }
   inertia_diametral_ = spec.ring_diametral_inertia;
   if (inertia_diametral_ <= 0.0) {
     // Thick-walled cylinder: bore D_i + 2 c_i, outside D_o - 2 c_o, width of the outer film.
@@ -94,12 +113,37 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
 
 std::unique_ptr<ElementWorkspace> FloatingRingElement::make_workspace() const {
   return std::make_unique<RingWorkspace>(reynolds::FilmSolver(inner_, eta_inner_, options_),
-                                         reynolds::FilmSolver(outer_, eta_outer_, options_));
+                                         reynolds::FilmSolver(outer_, eta_outer_, options_), n_states());
+}
+
+void FloatingRingElement::initial_states(double* z) const {
+  std::fill(z, z + n_states(), 0.0);
+  if (thermal_) z[kInnerTemperature] = z[kOuterTemperature] = spec_.thermal.supply_temperature;
 }
 
 double FloatingRingElement::state_scale(int i) const {
-  static constexpr double kScale[kStates] = {1e-6, 1e-6, 1e-3, 1e-3, 1e-5, 1e-5, 1e-2, 1e-2, 10.0, 1.0};
+  // Temperatures: 1 K.
+  static constexpr double kScale[kMaxStates] = {1e-6, 1e-6, 1e-3, 1e-3, 1e-5, 1e-5, 1e-2, 1e-2, 10.0, 1.0, 1.0, 1.0};
   return kScale[i];
+}
+
+double FloatingRingElement::film_viscosity(double T, const char* which) const {
+  if (!(T <= spec_.thermal.max_temperature) || !(T - 273.15 + oil_.vogel_c > 0.0)) {
+    std::ostringstream os;
+    os << "floating-ring bearing '" << name() << "': the " << which << " film's temperature " << T - 273.15
+       << " degC lies outside the oil's viscosity law (above [oil] max_temperature = "
+       << spec_.thermal.max_temperature - 273.15 << " degC, or at its Vogel pole); the film overheats: more oil "
+       << "flow or conduction (docs/thermal-films.md)";
+    throw std::runtime_error(os.str());
+  }
+  return oil_.viscosity_at(T);
+}
+
+void FloatingRingElement::set_viscosities(reynolds::FilmSolver& inner, reynolds::FilmSolver& outer,
+                                          const double* z) const {
+  if (!thermal_) return;
+  inner.set_viscosity(film_viscosity(z[kInnerTemperature], "inner"));
+  outer.set_viscosity(film_viscosity(z[kOuterTemperature], "outer"));
 }
 
 double FloatingRingElement::centrifugal_head(double w_r) const {
@@ -169,6 +213,7 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   auto& w = static_cast<RingWorkspace&>(ws);
   if (w.key.matches(s.speed, q, v, z)) return w.films;
   w.key.invalidate();
+  set_viscosities(w.inner, w.outer, z);
   if (!w.outer.solve(outer_state(z), w.films.outer))
     throw std::runtime_error("floating-ring bearing '" + name() + "', outer film: " + w.outer.last_error());
   double holes[8];
@@ -187,8 +232,29 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   return w.films;
 }
 
-void FloatingRingElement::loads(const reynolds::FilmResult& i, const reynolds::FilmResult& o, const double* z,
-                                double* f, double* zdot) const {
+thermal::FilmHeatInputs FloatingRingElement::film_heat(const SpinState& s, const double* v,
+                                                      const reynolds::FilmResult& i, const reynolds::FilmResult& o,
+                                                      const double* z) const {
+  // Each film turns into heat the power of its forces, moments and torques on the bodies it separates, with the
+  // sign reversed (the housing is fixed): the split of dissipated_power() by film.
+  thermal::FilmHeatInputs h;
+  h.inner_power = -(i.fx * v[0] + i.fy * v[1] + i.mx * v[2] + i.my * v[3] + i.torque_inner * s.speed -
+                    i.fx * z[kVx] - i.fy * z[kVy] - i.mx * z[kWx] - i.my * z[kWy] + i.torque_outer * z[kSpin]);
+  h.outer_power = -(o.fx * z[kVx] + o.fy * z[kVy] + o.mx * z[kWx] + o.my * z[kWy] + o.torque_inner * z[kSpin]);
+  h.inner_flow = i.flow_ends;
+  h.outer_flow = o.flow_ends;
+  if (thermal_) {
+    h.inner_temperature = z[kInnerTemperature];
+    h.outer_temperature = z[kOuterTemperature];
+  } else {
+    h.inner_temperature = spec_.inner_oil_temperature > 0 ? spec_.inner_oil_temperature : oil_.temperature;
+    h.outer_temperature = spec_.outer_oil_temperature > 0 ? spec_.outer_oil_temperature : oil_.temperature;
+  }
+  return h;
+}
+
+void FloatingRingElement::loads(const SpinState& s, const double* v, const reynolds::FilmResult& i,
+                                const reynolds::FilmResult& o, const double* z, double* f, double* zdot) const {
   f[0] += i.fx;
   f[1] += i.fy;
   f[2] += i.mx;
@@ -211,30 +277,37 @@ void FloatingRingElement::loads(const reynolds::FilmResult& i, const reynolds::F
   } else {
     zdot[kAx] = zdot[kAy] = zdot[kWx] = zdot[kWy] = 0.0;
   }
+  if (thermal_) {
+    const thermal::FilmHeatFlows h =
+        thermal::film_heat_balance(spec_.thermal, density_, !inner_.holes.empty(), film_heat(s, v, i, o, z));
+    zdot[kInnerTemperature] = h.inner_rate;
+    zdot[kOuterTemperature] = h.outer_rate;
+  }
 }
 
 void FloatingRingElement::do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z,
                                              ElementWorkspace& ws, double* f, double* zdot) const {
   const Films& films = Solve(s, q, v, z, ws);
-  loads(films.inner, films.outer, z, f, zdot);
+  loads(s, v, films.inner, films.outer, z, f, zdot);
 }
 
 void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, const double* v, const double* z,
                                        ElementWorkspace& ws, double* J) const {
   auto& w = static_cast<RingWorkspace&>(ws);
-  constexpr int d = 4, rows = d + kStates, cols = 2 * d + kStates;
+  constexpr int d = 4, kMaxRows = d + kMaxStates, kMaxCols = 2 * d + kMaxStates;
+  const int m = n_states(), rows = d + m, cols = 2 * d + m;
   // The films at the state, with the solvers holding their factorisations (a Jacobian at the same state before
   // left them at perturbed states).
   if (!w.solvers_at_key) w.key.invalidate();
   const Films& base = Solve(s, q, v, z, ws);
-  double out0[rows] = {};
-  loads(base.inner, base.outer, z, out0, out0 + d);
+  double out0[kMaxRows] = {};
+  loads(s, v, base.inner, base.outer, z, out0, out0 + d);
   double holes0[8], holes_angle[8];
   drill_hole_pressures(w.outer, z, holes0);
   // Inputs [q; v; z] and their steps.
-  double in[cols], step[cols];
+  double in[kMaxCols], step[kMaxCols];
   for (int k = 0; k < d; ++k) in[k] = q[k], in[d + k] = v[k];
-  for (int k = 0; k < kStates; ++k) in[2 * d + k] = z[k];
+  for (int k = 0; k < m; ++k) in[2 * d + k] = z[k];
   for (int j = 0; j < cols; ++j) step[j] = fd_step(j, d, in[j]);
   const double* qp = in;
   const double* vp = in + d;
@@ -258,8 +331,8 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
       throw std::runtime_error("floating-ring bearing '" + name() + "', " + which + " film: " + solver.last_error());
   };
   auto column = [&](int j, const reynolds::FilmResult& inner, const reynolds::FilmResult& outer) {
-    double out[rows] = {};
-    loads(inner, outer, zp, out, out + d);
+    double out[kMaxRows] = {};
+    loads(s, vp, inner, outer, zp, out, out + d);
     for (int r = 0; r < rows; ++r) J[j * rows + r] += (out[r] - out0[r]) / step[j];
   };
   // The inner film at the perturbed inputs, rotated into the housing frame, into w.jac_inner.
@@ -331,16 +404,61 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
     column(j, inner(holes, false), w.jac_outer);
     in[j] = saved;
   }
+  // 5. The film temperatures change one film's viscosity each (and through the drill holes' pressures the outer
+  //    one changes the inner film too): new solves, at the perturbed viscosity, then the base viscosity back.
+  if (thermal_) {
+    for (const int k : {kInnerTemperature, kOuterTemperature}) {
+      const int j = 2 * d + k;
+      const double saved = in[j];
+      in[j] = saved + step[j];
+      set_viscosities(w.inner, w.outer, zp);
+      const reynolds::FilmResult* outer = &base.outer;
+      double holes[8];
+      std::copy(holes0, holes0 + inner_.holes.size(), holes);
+      if (k == kOuterTemperature) {
+        film(w.outer, outer_base, outer_state(zp), false, w.jac_outer, "outer");
+        drill_hole_pressures(w.outer, zp, holes);
+        outer = &w.jac_outer;
+      }
+      column(j, inner(holes, false), *outer);
+      in[j] = saved;
+    }
+    set_viscosities(w.inner, w.outer, z);
+  }
 }
 
 std::vector<ProbeInfo> FloatingRingElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return housing_force_probes(who, "", {{"ring_speed_ratio", "1", "ring speed / rotor speed"},
-                                        {"inner_eccentricity", "1", "inner-film eccentricity ratio at mid-width"},
-                                        {"outer_eccentricity", "1", "outer-film eccentricity ratio at mid-width"},
-                                        {"ring_tilt", "rad", "ring tilt against the housing (magnitude)"},
-                                        {"drill_hole_pressure", "Pa",
-                                         "pressure at the drill holes' inner mouths, mean over the holes"}});
+  std::vector<ProbeInfo> p =
+      housing_force_probes(who, "", {{"ring_speed_ratio", "1", "ring speed / rotor speed"},
+                                     {"inner_eccentricity", "1", "inner-film eccentricity ratio at mid-width"},
+                                     {"outer_eccentricity", "1", "outer-film eccentricity ratio at mid-width"},
+                                     {"ring_tilt", "rad", "ring tilt against the housing (magnitude)"},
+                                     {"drill_hole_pressure", "Pa",
+                                      "pressure at the drill holes' inner mouths, mean over the holes"}});
+  if (thermal_) {
+    const std::vector<ProbeInfo> more = {
+        {"inner_temperature", "K", "inner-film temperature"},
+        {"outer_temperature", "K", "outer-film temperature"},
+        {"inner_power_loss", "W", "power dissipated in the inner film"},
+        {"outer_power_loss", "W", "power dissipated in the outer film"},
+        {"inner_side_flow", "m^3/s", "oil leaving the inner film at its ends"},
+        {"outer_side_flow", "m^3/s", "oil leaving the outer film at its ends"},
+        {"heat_to_oil", "W", "heat the oil carries out of the bearing (over the supply temperature)"},
+        {"heat_conducted", "W", "heat conducted from the films into shaft and housing"},
+        {"stored_heat", "J", "heat stored in the films and the ring above the supply temperature"}};
+    for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description});
+  }
+  return p;
+}
+
+FloatingRingElement::Heat FloatingRingElement::heat(const SpinState& s, const double* q, const double* v,
+                                                    const double* z, ElementWorkspace& ws) const {
+  const Films& films = Solve(s, q, v, z, ws);
+  Heat h;
+  h.films = film_heat(s, v, films.inner, films.outer, z);
+  if (thermal_) h.flows = thermal::film_heat_balance(spec_.thermal, density_, !inner_.holes.empty(), h.films);
+  return h;
 }
 
 void FloatingRingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
@@ -353,6 +471,19 @@ void FloatingRingElement::eval_probes(const SpinState& s, const double* q, const
   out[4] = std::hypot(z[kX], z[kY]) / spec_.outer_clearance;
   out[5] = std::hypot(z[kAx], z[kAy]);
   out[6] = films.hole_pressure;
+  if (thermal_) {
+    const thermal::FilmHeatInputs h = film_heat(s, v, films.inner, films.outer, z);
+    const thermal::FilmHeatFlows b = thermal::film_heat_balance(spec_.thermal, density_, !inner_.holes.empty(), h);
+    out[7] = h.inner_temperature;
+    out[8] = h.outer_temperature;
+    out[9] = h.inner_power;
+    out[10] = h.outer_power;
+    out[11] = h.inner_flow;
+    out[12] = h.outer_flow;
+    out[13] = b.oil();
+    out[14] = b.conducted();
+    out[15] = thermal::stored_heat(spec_.thermal, h.inner_temperature, h.outer_temperature);
+  }
 }
 
 double FloatingRingElement::kinetic_energy(const double* z) const {

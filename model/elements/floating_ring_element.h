@@ -17,11 +17,18 @@
 // spinning with the ring, rho w_r^2 (R_o^2 - R_i^2) / 2, and not below the cavitation pressure (a starved hole).
 // The hole's flow resistance is neglected and the outer film is solved as if its drill-hole mouths were closed
 // (the holes draw oil from it without changing its pressure): docs/model-format.md and docs/validation.md.
+//
+// Thermal films (spec.thermal.model = Bulk, docs/thermal-films.md): two more states, the effective temperatures T_i,
+// T_o of the inner and outer film, which set each film's viscosity through the [oil] viscosity law and follow the
+// lumped energy balances of model/films/ring_heat_balance.h (heated by the power each film dissipates, cooled by
+// its side leakage, the oil the drill holes carry and conduction to shaft, ring and housing). Isothermal films
+// (the default) keep 10 states and the fixed temperatures of the spec: the same numbers as before thermal films.
 #pragma once
 
 #include "model/elements/force_element.h"
 #include "model/spec/model_spec.h"
 #include "model/films/reynolds.h"
+#include "model/films/ring_heat_balance.h"
 
 namespace turbodyn {
 
@@ -29,13 +36,16 @@ class FloatingRingElement final : public ForceElement {
  public:
   /// States (10): ring x, y (m), vx, vy (m/s), tilts ax, ay (rad), their rates (rad/s), spin w_r (rad/s) and spin
   /// angle phi_r (rad, the ring frame's orientation; the drill holes sit at phi_r + drill_hole_angle + k 2pi/n).
-  static constexpr int kStates = 10;
-  enum State { kX, kY, kVx, kVy, kAx, kAy, kWx, kWy, kSpin, kAngle };
+  /// With thermal films (spec.thermal.model = Bulk) two more: the inner and outer film temperatures (K).
+  static constexpr int kStates = 10, kMaxStates = 12;
+  enum State { kX, kY, kVx, kVy, kAx, kAy, kWx, kWy, kSpin, kAngle, kInnerTemperature, kOuterTemperature };
 
   FloatingRingElement(const std::string& name, const FloatingRingSpec& spec, const OilSpec& oil, int node_dof,
                       double gravity);
 
   std::unique_ptr<ElementWorkspace> make_workspace() const override;
+  /// At rest and centred; thermal films at the supply temperature.
+  void initial_states(double* z) const override;
   double state_scale(int i) const override;
   double fd_relative_step() const override { return 1e-6; }
   /// Own Jacobian (forward differences, fd_step()), built on two facts about the films: the outer film does not
@@ -63,6 +73,17 @@ class FloatingRingElement final : public ForceElement {
 
   /// Centrifugal pressure drop across a drill hole at ring speed w_r (Pa).
   double centrifugal_head(double w_r) const;
+  /// True with thermal films (12 states), false for isothermal ones (10).
+  bool thermal() const { return thermal_; }
+  const FloatingRingSpec& spec() const { return spec_; }
+  /// What the films dissipate, carry off and conduct at a state (W; flows m^3/s), with both temperatures' rates
+  /// (zero for isothermal films, whose temperatures are the spec's): the powers are those of dissipated_power()
+  /// split by film.
+  struct Heat {
+    thermal::FilmHeatInputs films;  ///< powers, side leakages and temperatures of both films
+    thermal::FilmHeatFlows flows;   ///< the energy balance (zero for isothermal films)
+  };
+  Heat heat(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws) const;
   /// Diametral inertia of the ring used (the spec's, or the thick-walled cylinder's if the spec gives none).
   double diametral_inertia() const { return inertia_diametral_; }
 
@@ -82,9 +103,19 @@ class FloatingRingElement final : public ForceElement {
   /// Pressures at the drill holes' inner mouths from the solved outer film at ring angle z[kAngle] and spin z[kSpin].
   void drill_hole_pressures(const reynolds::FilmSolver& outer, const double* z, double* holes) const;
   /// [f; zdot] from the two films' results (the inner film's force and moment already in the housing frame).
-  void loads(const reynolds::FilmResult& inner, const reynolds::FilmResult& outer, const double* z, double* f,
-             double* zdot) const;
+  void loads(const SpinState& s, const double* v, const reynolds::FilmResult& inner,
+             const reynolds::FilmResult& outer, const double* z, double* f, double* zdot) const;
+  /// Powers, flows and temperatures of both films from their results (the inner one in the housing frame).
+  thermal::FilmHeatInputs film_heat(const SpinState& s, const double* v,
+                                    const reynolds::FilmResult& inner, const reynolds::FilmResult& outer,
+                                    const double* z) const;
+  /// Sets both solvers' viscosities to those at the film temperatures of z (thermal films only); throws naming
+  /// [oil] max_temperature when a film is hotter than the viscosity law is used for.
+  void set_viscosities(reynolds::FilmSolver& inner, reynolds::FilmSolver& outer, const double* z) const;
+  double film_viscosity(double T, const char* which) const;
   FloatingRingSpec spec_;
+  OilSpec oil_;
+  bool thermal_ = false;
   reynolds::FilmGeometry inner_, outer_;
   reynolds::SolverOptions options_;
   double eta_inner_ = 0.0, eta_outer_ = 0.0, gravity_ = 0.0, density_ = 0.0, inertia_diametral_ = 0.0;

@@ -1110,6 +1110,15 @@ const std::vector<double>& FilmSolver::film_fraction() const { return impl_->ff;
 std::vector<double> FilmSolver::theta_nodes() const { return impl_->th; }
 std::vector<double> FilmSolver::z_nodes() const { return impl_->zn; }
 void FilmSolver::reset_warm_start() { impl_->warm = false; }
+bool FilmSolver::set_viscosity(double viscosity) {
+  Impl& d = *impl_;
+  if (!(viscosity > 0.0) || !std::isfinite(viscosity)) return false;
+  if (viscosity == d.eta) return true;
+  if (d.seal_conductance > 0.0) d.seal_conductance *= d.eta / viscosity;  // gap^3 / (12 eta length)
+  d.eta = viscosity;
+  d.factored = false;
+  return true;
+}
 const FilmGeometry& FilmSolver::geometry() const { return impl_->g; }
 double FilmSolver::viscosity() const { return impl_->eta; }
 const SolverOptions& FilmSolver::options() const { return impl_->o; }

@@ -157,6 +157,11 @@ class FilmSolver {
   /// Forget the warm-start state (the next solve starts cold).
   void reset_warm_start();
 
+  /// Sets the film's viscosity (Pa s, > 0 and finite; false and nothing changed otherwise) for the following
+  /// solves: a film whose temperature is a state of the run (FloatingRingElement's thermal films). A new value
+  /// drops the factorisation solve_same_matrix() reuses; the same value changes nothing. Allocation-free.
+  bool set_viscosity(double viscosity);
+
   const FilmGeometry& geometry() const;
   double viscosity() const;
   const SolverOptions& options() const;

@@ -202,6 +202,60 @@ void read_damper(Reader& r, const OilSpec& oil, DamperSpec& d, bool needs_ring_m
   r.finish();
 }
 
+// The thermal keys of a floating-ring bearing (docs/thermal-films.md): thermal = "isothermal" (default: the films at
+// fixed temperatures) or "bulk" (lumped energy balances of both films). The parameters' defaults are derived from the
+// geometry (derive_ring_thermal); they are refused with isothermal films, where nothing would use them.
+void read_ring_thermal(Reader& r, const OilSpec& oil, FloatingRingSpec& f) {
+  RingThermalSpec& t = f.thermal;
+  t.model = read_choice<FilmThermal>(r, "thermal", {"isothermal", "bulk"}, "isothermal");
+  const bool bulk = t.model == FilmThermal::Bulk;
+  static const char* const kThermalKeys[] = {"oil_specific_heat", "oil_thermal_conductivity",
+                                             "ring_thermal_conductivity", "ring_specific_heat", "shaft_temperature",
+                                             "housing_temperature", "inner_shaft_conductance", "ring_conductance",
+                                             "outer_housing_conductance"};
+  if (!bulk) {
+    for (const char* k : kThermalKeys)
+      if (r.has(k)) r.fail(k, "is a parameter of thermal films: it needs thermal = \"bulk\" (isothermal films use "
+                              "inner_oil_temperature and outer_oil_temperature)");
+  }
+  t.oil_specific_heat = r.quantity_or("oil_specific_heat", dim::specific_heat, t.oil_specific_heat, Bound::Positive);
+  t.oil_thermal_conductivity =
+      r.quantity_or("oil_thermal_conductivity", dim::thermal_conductivity, t.oil_thermal_conductivity, Bound::Positive);
+  t.ring_thermal_conductivity = r.quantity_or("ring_thermal_conductivity", dim::thermal_conductivity,
+                                              t.ring_thermal_conductivity, Bound::Positive);
+  t.ring_specific_heat = r.quantity_or("ring_specific_heat", dim::specific_heat, t.ring_specific_heat, Bound::Positive);
+  derive_ring_thermal(f, oil);
+  t.shaft_temperature = r.quantity_or("shaft_temperature", dim::temperature, t.shaft_temperature, Bound::Positive);
+  t.housing_temperature = r.quantity_or("housing_temperature", dim::temperature, t.housing_temperature, Bound::Positive);
+  t.inner_shaft_conductance = r.quantity_or("inner_shaft_conductance", dim::thermal_conductance,
+                                            t.inner_shaft_conductance, Bound::NonNegative);
+  t.ring_conductance = r.quantity_or("ring_conductance", dim::thermal_conductance, t.ring_conductance, Bound::NonNegative);
+  t.outer_housing_conductance = r.quantity_or("outer_housing_conductance", dim::thermal_conductance,
+                                              t.outer_housing_conductance, Bound::NonNegative);
+  if (!bulk) return;
+  if (oil.viscosity > 0.0)
+    r.fail("thermal", "\"bulk\" films need a viscosity that depends on temperature: remove the fixed [oil] viscosity "
+                      "(the Vogel constants vogel_a, vogel_b, vogel_c give the law)");
+  for (const char* k : {"inner_oil_temperature", "outer_oil_temperature"})
+    if (r.has(k))
+      r.fail(k, "with thermal = \"bulk\" the film temperatures are states of the run (supplied at the [oil] "
+                "temperature): remove it, or use thermal = \"isothermal\"");
+  auto above = [&](double T) {
+    std::ostringstream os;
+    os << T - 273.15 << " degC is above [oil] max_temperature = " << oil.max_temperature - 273.15
+       << " degC, the highest temperature the oil's viscosity law is used at";
+    return os.str();
+  };
+  if (t.supply_temperature >= oil.max_temperature)
+    r.fail("thermal", "the supply (the [oil] temperature) at " + above(t.supply_temperature) +
+                          ": the films, hotter still, would leave the viscosity law");
+  for (const char* k : {"shaft_temperature", "housing_temperature"}) {
+    const double T = std::string_view(k) == "shaft_temperature" ? t.shaft_temperature : t.housing_temperature;
+    if (T >= oil.max_temperature) r.fail(k, above(T));
+    check_viscosity(r, k, oil, T);
+  }
+}
+
 void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   FloatingRingSpec& f = b.ring;
   f.inner_diameter = r.quantity("inner_diameter", dim::length, Bound::Positive);
@@ -247,6 +301,7 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   if (f.cavitation == Cavitation::MassConserving && (f.supply_pressure == 0.0 || f.drill_holes == 0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply in each film: a supply_pressure at the feed "
                          "hole (outer film) and drill_holes through the ring (inner film)");
+  read_ring_thermal(r, oil, f);
 }
 
 void read_ball_bearing(Reader& r, BearingSpec& b) {
@@ -494,6 +549,8 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     o.viscosity = r.quantity_or("viscosity", dim::viscosity, 0.0, Bound::NonNegative);
     o.density = r.quantity_or("density", dim::density, o.density, Bound::Positive);
     o.temperature = r.quantity_or("temperature", dim::temperature, o.temperature, Bound::Positive);
+    o.max_temperature = r.quantity_or("max_temperature", dim::temperature, o.max_temperature, Bound::Positive);
+    if (o.max_temperature - 273.15 + o.vogel_c <= 0.0) r.fail("max_temperature", "lies below the Vogel pole T = -C");
     for (const char* key : {"vogel_b", "vogel_c"})
       if (r.has(key) && r.get(key)->is_string() && r.get(key)->value<std::string>()->find("degC") != std::string::npos)
         r.fail(key, "is a temperature difference: write it in K (or as a plain number)");

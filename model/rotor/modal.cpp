@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include <Eigen/Eigenvalues>
 
@@ -111,13 +112,45 @@ ModalResult modes_at(const Rotor& rotor, double speed, const ModalOptions& optio
     Cg = C + speed * rotor.rotating_frame_gyroscopic();
     K += speed * speed * rotor.spin_softening() + speed * C * J;
   }
+  // Floating rings: two coordinates each (the ring's x, y) after the rotor's, the inner film between the journal's
+  // x, y and the ring, the outer film between the ring and the housing.
+  Eigen::MatrixXd Mx = rotor.M;
+  const int nr = 2 * static_cast<int>(rotor.rings.size());
+  if (nr > 0) {
+    if (options.frame == Frame::Rotating)
+      throw std::runtime_error("floating-ring bearings are analysed in the inertial frame only");
+    const int nt = n + nr;
+    auto grow = [&](Eigen::MatrixXd& A) {
+      Eigen::MatrixXd B = Eigen::MatrixXd::Zero(nt, nt);
+      B.topLeftCorner(n, n) = A;
+      A = std::move(B);
+    };
+    grow(Mx);
+    grow(K);
+    grow(Cg);
+    for (std::size_t r = 0; r < rotor.rings.size(); ++r) {
+      const FloatingRingLinearisation& ring = rotor.rings[r];
+      Eigen::Matrix2d ki, ci, ko, co;
+      ring.films(speed, ki, ci, ko, co);
+      const int j = rotor.dof(ring.node, kX), b = n + 2 * static_cast<int>(r);
+      Mx.block<2, 2>(b, b) = ring.ring_mass * Eigen::Matrix2d::Identity();
+      for (auto [A, a, o] : {std::tuple<Eigen::MatrixXd*, const Eigen::Matrix2d*, const Eigen::Matrix2d*>{&K, &ki, &ko},
+                             {&Cg, &ci, &co}}) {
+        A->block<2, 2>(j, j) += *a;
+        A->block<2, 2>(j, b) -= *a;
+        A->block<2, 2>(b, j) -= *a;
+        A->block<2, 2>(b, b) += *a + *o;
+      }
+    }
+  }
+  const int nx = n + nr;
   // First-order form z = [q; q'], z' = A z with A = [0 I; -M^-1 K, -M^-1 Cg].
-  const Eigen::LLT<Eigen::MatrixXd> llt(rotor.M);
+  const Eigen::LLT<Eigen::MatrixXd> llt(Mx);
   if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix is not positive definite");
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  A.topRightCorner(n, n).setIdentity();
-  A.bottomLeftCorner(n, n) = -llt.solve(K);
-  A.bottomRightCorner(n, n) = -llt.solve(Cg);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * nx, 2 * nx);
+  A.topRightCorner(nx, nx).setIdentity();
+  A.bottomLeftCorner(nx, nx) = -llt.solve(K);
+  A.bottomRightCorner(nx, nx) = -llt.solve(Cg);
   if (!A.allFinite()) throw std::runtime_error("the rotor's matrices are not finite (check masses and stiffnesses)");
   // Rotations, displacements and velocities differ by many orders of magnitude in A; without balancing the
   // low eigenvalues lose all accuracy (errors ~ eps * ||A||).

@@ -48,6 +48,18 @@ struct LinearBearing {
   void coefficients(double speed, Eigen::Matrix4d& k, Eigen::Matrix4d& c) const;
 };
 
+/// A floating-ring bearing in the linear analyses: its ring a point mass (x, y; no tilt) between the inner film
+/// (journal at `node` to ring) and the outer film (ring to housing), each film linearised at the bearing's steady
+/// operating point at the rotor speed (FloatingRingSteady). The ring adds two coordinates to the modal problem.
+using FilmPairLinearisation = std::function<void(double speed, Eigen::Matrix2d& k_inner, Eigen::Matrix2d& c_inner,
+                                                 Eigen::Matrix2d& k_outer, Eigen::Matrix2d& c_outer)>;
+struct FloatingRingLinearisation {
+  std::string name;
+  int node = 0;
+  double ring_mass = 0.0;  ///< kg
+  FilmPairLinearisation films;  ///< called from several threads at once
+};
+
 struct BeamElement {
   int node1 = 0;           ///< first node; the second is node1 + 1
   int section = 0;         ///< index into MachineSpec::shaft
@@ -59,6 +71,9 @@ struct Rotor {
   std::vector<BeamElement> elements;
   std::vector<RigidDisk> disks;
   std::vector<LinearBearing> bearings;
+  /// Floating-ring bearings of the linear analyses (modal only): two ring coordinates each after the n_dof of the
+  /// nodes.
+  std::vector<FloatingRingLinearisation> rings;
   int n_dof = 0;                   ///< 4 per node
 
   // Inertial-frame matrices of shaft + disks (n_dof x n_dof); bearings are added per speed (add_bearings).

@@ -41,6 +41,9 @@ inline Magnitude plausible_magnitude(const Dimension& d) {
   if (d == dim::acceleration) return {1e-9, 1e7};          // m/s^2
   if (d == dim::force) return {1e-9, 1e10};                // N
   if (d == dim::dimensionless) return {1e-20, 1e12};       // ratios, tolerances, orders
+  if (d == dim::thermal_conductance) return {1e-9, 1e6};   // W/K
+  if (d == dim::thermal_conductivity) return {1e-4, 1e4};  // W/(m K): gases to diamond
+  if (d == dim::specific_heat) return {1.0, 1e5};          // J/(kg K)
   return {1e-30, 1e30};
 }
 

@@ -12,6 +12,7 @@
 
 #include "model/spec/ball_bearing_spec.h"
 #include "model/spec/cavitation.h"
+#include "model/spec/ring_thermal_spec.h"
 
 namespace turbodyn {
 
@@ -72,6 +73,7 @@ struct OilSpec {
   double viscosity = 0.0;        ///< Pa s; > 0 overrides the Vogel equation
   double density = 850.0;        ///< kg/m^3
   double temperature = 363.15;   ///< K
+  double max_temperature = 473.15;  ///< K, highest temperature the viscosity law is used at (thermal films)
   /// Dynamic viscosity at temperature T (K), Pa s.
   double viscosity_at(double T) const;
 };
@@ -110,7 +112,19 @@ struct FloatingRingSpec {
   double drill_hole_diameter = 0.0;  ///< m
   double drill_hole_angle = 0.0;     ///< rad, first hole in the ring frame
   bool drill_hole_centrifugal = true;  ///< the oil column spinning in the holes lowers the inner-mouth pressure
+  RingThermalSpec thermal;           ///< isothermal films (default) or bulk energy balances of both films
 };
+
+/// Nusselt number h c / k of a film to each of its walls: plane Couette flow with uniform viscous heating between
+/// walls at one temperature has a parabolic profile whose mean lies q''' c^2 / (12 k) above the walls, which each
+/// take q''' c / 2 (Bird, Stewart & Lightfoot, Transport Phenomena, 2nd ed. 2002, §10.4): h = 6 k / c.
+inline constexpr double kFilmWallNusselt = 6.0;
+
+/// Sets the derived parameters of f.thermal from the ring's geometry, mass and the thermal properties already in
+/// f.thermal (docs/thermal-films.md): the conductances to shaft and housing (film-to-wall, kFilmWallNusselt), the
+/// conductance from film to film through the ring (film, ring wall, film in series) and the heat capacities (the oil
+/// in each film and half the ring each). The temperatures default to the oil's.
+void derive_ring_thermal(FloatingRingSpec& f, const OilSpec& oil);
 
 /// Squeeze-film damper around a linear bearing: the bearing's outer ring is a mass that moves in a non-rotating
 /// oil film towards the housing, optionally held by a centring spring (run-up only).

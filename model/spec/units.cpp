@@ -50,6 +50,10 @@ constexpr DimensionName dimension_names[] = {
     {dim::moment, "a moment", "N*m"},
     {dim::rotational_stiffness, "a rotational stiffness", "N*m/rad"},
     {dim::rotational_damping, "a rotational damping coefficient", "N*m*s/rad"},
+    {dim::power, "a power", "W"},
+    {dim::thermal_conductance, "a thermal conductance", "W/K"},
+    {dim::thermal_conductivity, "a thermal conductivity", "W/m/K"},
+    {dim::specific_heat, "a specific heat capacity", "J/kg/K"},
 };
 
 const DimensionName* find_name(const Dimension& d) {

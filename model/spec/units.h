@@ -80,6 +80,10 @@ inline constexpr Dimension viscosity = pressure * time;                       //
 inline constexpr Dimension moment = force * length;                           // N*m
 inline constexpr Dimension rotational_stiffness = moment / angle;             // N*m/rad
 inline constexpr Dimension rotational_damping = rotational_stiffness * time;  // N*m*s/rad
+inline constexpr Dimension power = force * velocity;                         // W
+inline constexpr Dimension thermal_conductance = power / temperature;         // W/K
+inline constexpr Dimension thermal_conductivity = thermal_conductance / length;  // W/(m*K)
+inline constexpr Dimension specific_heat = power * time / (mass * temperature);  // J/(kg*K)
 }  // namespace dim
 
 // Human-readable name with article and SI unit: "a length (m)", "a stiffness (N/m)", "an angular speed (rad/s)";

@@ -25,7 +25,7 @@ case $case in
     ;;
   modal_friswell)
     "$exe" modal "$src/examples/friswell_5_9_1.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
-    for f in modal.json campbell.csv campbell.png modes_0rpm.png; do [ -s "$out/$f" ] || fail "missing $f"; done
+    expect_files "$out" modal.json campbell.csv campbell.png modes_0rpm.png
     ;;
   modal_reference)
     "$exe" modal "$src/examples/reference_linear.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
@@ -33,15 +33,14 @@ case $case in
     ;;
   response_reference)
     "$exe" response "$src/examples/reference_linear.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
-    for f in response.csv response.json response.png; do [ -s "$out/$f" ] || fail "missing $f"; done
+    expect_files "$out" response.csv response.json response.png
     ;;
   run_short)
     "$exe" run "$src/examples/reference_linear.toml" --set "speed.end=40000 rpm" --set speed.duration=0.5 \
       -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
     grep -q '"complete": true' "$out/summary.json" || fail "summary not complete"
-    for f in timeseries.h5 spectrogram_disk.compressor.x.png order1x_disk.compressor.png orbits_disk.compressor.png; do
-      [ -s "$out/$f" ] || fail "missing $f"
-    done
+    expect_files "$out" timeseries.h5 spectrogram_disk.compressor.x.png order1x_disk.compressor.png \
+      orbits_disk.compressor.png
     # The largest spectral line of each spectrogram drawn: here the vibration at the first forward natural
     # frequency (512 Hz in the Campbell diagram) while and just after the rotor passes it.
     python3 - "$out/summary.json" <<'EOF2' || fail "spectrogram_maxima: $(grep -A3 spectrogram_maxima "$out/summary.json")"
@@ -171,9 +170,7 @@ EOF2
     # 4.96e7 N/m (the element's static value) and a cage speed ratio that rises with speed.
     "$exe" bearing "$src/examples/reference_ball.toml" --bearing turbine --speeds "0:100000 rpm:5" --load "20,-10" \
       -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
-    for f in bearing.json bearing.csv bearing_balls.csv stiffness.png tilt_stiffness.png; do
-      [ -s "$out/$f" ] || fail "missing $f"
-    done
+    expect_files "$out" bearing.json bearing.csv bearing_balls.csv stiffness.png tilt_stiffness.png
     python3 - "$out/bearing.json" <<'EOF2' || fail "bearing.json: $(head -c 2000 "$out/bearing.json")"
 import json, sys
 j = json.load(open(sys.argv[1]))
@@ -183,6 +180,38 @@ assert abs(r[0]["force_on_inner_ring"][0] + 20) < 1e-6 and abs(r[0]["force_on_in
 assert 4.5e7 < r[0]["stiffness"][0][0] < 5.5e7, r[0]["stiffness"][0][0]
 assert r[-1]["cage_speed_ratio"] > r[1]["cage_speed_ratio"] > 0.3
 assert len(r[-1]["balls"]) == 8
+EOF2
+    ;;
+  bearing_floating_ring)
+    # turbodyn bearing on the reference floating ring with thermal films: files, pictures, the ring speed ratio
+    # falling with speed below the isothermal Petroff value, the inner film hotter than the outer one.
+    "$exe" bearing "$src/examples/reference_floating_ring.toml" --bearing compressor --speeds "20000 rpm:150000 rpm:4" \
+      --load "0,-1.6" --set bearings.compressor.thermal=bulk -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    expect_files "$out" bearing.json bearing.csv ring_speed_ratio.png eccentricity.png temperatures.png power_loss.png
+    python3 - "$out/bearing.json" <<'EOF2' || fail "bearing.json: $(head -c 2000 "$out/bearing.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+r = j["results"]
+assert j["bearing"]["thermal"] == "bulk" and len(r) == 4, (j["bearing"], len(r))
+assert 0.2 < r[-1]["ring_speed_ratio"] < r[1]["ring_speed_ratio"] < 0.3131, [p["ring_speed_ratio"] for p in r]
+assert all(p["inner_temperature_k"] > p["outer_temperature_k"] > 363.15 for p in r)
+assert abs(r[-1]["inner_power_w"] + r[-1]["outer_power_w"] - r[-1]["heat_to_oil_w"] - r[-1]["heat_conducted_w"]) < 1e-3
+EOF2
+    ;;
+  modal_floating_ring)
+    # turbodyn modal on variant I: the films linearised at steady points under the rotor's weight, ring masses as
+    # coordinates of their own; the films' forward whirl modes have negative damping ratios (the whirl the run-up
+    # shows), and damping.png is drawn.
+    "$exe" modal "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm:150000 rpm:3" -o "$out" \
+      > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    expect_files "$out" modal.json campbell.csv campbell.png damping.png
+    python3 - "$out/modal.json" <<'EOF2' || fail "modal.json: $(head -c 2000 "$out/modal.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+for p in j["campbell"]:
+    modes = p["modes"]
+    assert any(m["whirl"] == "forward" and m["damping_ratio"] < 0 for m in modes), p
+    assert any(m["damping_ratio"] > 0 for m in modes), p
 EOF2
     ;;
   bearing_bad_input)
@@ -197,7 +226,12 @@ EOF2
     expect_error "bearings.nope: no such bearing\|--bearing 'nope': no such bearing" \
       "$src/examples/reference_ball.toml" --bearing nope --speeds 0
     expect_error "bearings.compressor is a linear bearing" "$src/examples/reference_linear.toml" --bearing compressor --speeds 0
-    expect_error "the model has no ball bearing" "$src/examples/reference_linear.toml" --speeds 0
+    expect_error "the model has no ball or floating-ring bearing" "$src/examples/reference_linear.toml" --speeds 0
+    expect_error "needs speeds above 0" "$src/examples/reference_floating_ring.toml" --speeds 0
+    expect_error "takes no axial load" "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm" --load "0,-2,5"
+    expect_error "bearings.compressor.ring_conductance: must not be negative" \
+      "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm" --set bearings.compressor.thermal=bulk \
+      --set "bearings.compressor.ring_conductance=-2 W/K"
     expect_error "--speeds '0:1:x'" "$src/examples/reference_ball.toml" --speeds 0:1:x
     expect_error "--load '1;2'" "$src/examples/reference_ball.toml" --speeds 0 --load "1;2"
     expect_error "--load '1,2,3,4'" "$src/examples/reference_ball.toml" --speeds 0 --load "1,2,3,4"

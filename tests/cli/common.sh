@@ -8,6 +8,8 @@ cli_setup() {
   fail_label="$prefix$case"
 }
 fail() { echo "FAIL ($fail_label): $*"; exit 1; }
+# expect_files DIR FILE...: each FILE exists in DIR and is not empty.
+expect_files() { local d=$1; shift; for f in "$@"; do [ -s "$d/$f" ] || fail "missing $f in $d"; done; }
 # wait_until COMMAND...: polls every 0.1 s, for up to 3 minutes, until the command succeeds.
 wait_until() { for _ in $(seq 1 1800); do "$@" 2>/dev/null && return 0; sleep 0.1; done; return 1; }
 # has_lines FILE N: FILE exists with at least N lines.

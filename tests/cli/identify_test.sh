@@ -9,10 +9,8 @@ case $case in
     # The example study recovers the true values of its synthetic measurement within 3 standard deviations, and
     # the fitted model file runs.
     "$exe" identify "$src/examples/identify_bench_rotor.toml" -o "$out" -j 2 > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
-    for f in estimates.json ceres_summary.txt fitted.toml features.csv feature_order1x_x_mid_amplitude.png \
-             spectrogram_measured_x_mid.png spectrogram_fitted_x_mid.png; do
-      [ -s "$out/$f" ] || fail "missing $f"
-    done
+    expect_files "$out" estimates.json ceres_summary.txt fitted.toml features.csv \
+      feature_order1x_x_mid_amplitude.png spectrogram_measured_x_mid.png spectrogram_fitted_x_mid.png
     grep -Eq "Termination: +CONVERGENCE" "$out/ceres_summary.txt" || fail "not converged: $(head -40 "$out/ceres_summary.txt")"
     # |error_in_std_devs| < 3 for every parameter (the JSON is indented two spaces per level).
     n=$(grep -c '"error_in_std_devs"' "$out/estimates.json")

@@ -19,11 +19,9 @@ case $case in
     # A tiny run-up optimisation end to end: every output, and best.toml is a model file that loads.
     "$exe" optimize "$src/tests/data/optim/cli_damper_study.toml" -o "$out/opt" > "$out/log" 2>&1 \
       || fail "exit $?: $(cat "$out/log")"
-    for f in history.csv evaluations.jsonl result.json best.toml convergence.png \
-             spectrogram_bearing.compressor.fx_initial.png spectrogram_bearing.compressor.fx_best.png \
-             spectrogram_bearing.compressor.fx_comparison.png; do
-      [ -s "$out/opt/$f" ] || fail "missing $f: $(cat "$out/log")"
-    done
+    expect_files "$out/opt" history.csv evaluations.jsonl result.json best.toml convergence.png \
+      spectrogram_bearing.compressor.fx_initial.png spectrogram_bearing.compressor.fx_best.png \
+      spectrogram_bearing.compressor.fx_comparison.png
     [ "$(wc -l < "$out/opt/history.csv")" -eq 4 ] || fail "history.csv: expected 3 evaluations: $(cat "$out/opt/history.csv")"
     grep -q '"nlopt_result": "MAXEVAL_REACHED"' "$out/opt/result.json" || fail "result.json: $(head -20 "$out/opt/result.json")"
     head -1 "$out/opt/best.toml" | grep -q "^# Optimised by \`turbodyn optimize" || fail "best.toml header"

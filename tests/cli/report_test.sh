@@ -25,13 +25,13 @@ case $case in
   modal) check "$work/modal_friswell" modal 10 ;;
   response) check "$work/response_reference" response 4 ;;
   bearing) check "$work/bearing_reference_ball" bearing 20 ;;
+  bearing_floating_ring) check "$work/bearing_floating_ring" bearing 20 ;;
+  modal_floating_ring) check "$work/modal_floating_ring" modal 10 ;;
   sweep)
     "$exe" sweep "$src/tests/data/studies/two_parameter_study.toml" -o "$out/study" -j 2 > "$out/log" 2>&1 \
       || fail "sweep: exit $?: $(cat "$out/log")"
-    for f in sensitivity_compressor_max.png map_compressor_max.png \
-             metric_compressor_max_vs_bearings.compressor.k.png; do
-      [ -s "$out/study/$f" ] || fail "missing $f"
-    done
+    expect_files "$out/study" sensitivity_compressor_max.png map_compressor_max.png \
+      metric_compressor_max_vs_bearings.compressor.k.png
     check "$out/study" sweep 40
     ;;
   merge) check "$work/sweep_shards_merge/merged" merge 40 ;;

@@ -1,6 +1,7 @@
 // Pictures: the files are real PNGs of the requested size; bad data, a missing gnuplot and a failing gnuplot give
 // clear errors; rendering from several threads at once works; text is passed to gnuplot literally.
 #include "post/plot.h"
+#include "tests/support/text_checks.h"
 
 #include <algorithm>
 #include <array>
@@ -287,22 +288,26 @@ TEST(PlotScript, TextIsQuotedAndNumbersAreExact) {
   c.series[0].x[1] = 0.1;
   c.series[0].y[1] = 1.0 / 3.0;
   const std::string s = gnuplot_script(c, "/tmp/out.png");
-  EXPECT_THAT(s, HasSubstr("set xlabel 'it''s `date` [Hz]' noenhanced"));
-  EXPECT_THAT(s, HasSubstr("\n0.1 0.3333333333333333\n"));
-  EXPECT_THAT(s, HasSubstr("set output '/tmp/out.png'"));
-  EXPECT_THAT(s, HasSubstr("pngcairo size 1000,700"));
-  EXPECT_THAT(s, HasSubstr("title 'forward whirl'"));
+  turbodyn::testing::expect_contains(s, {
+      "set xlabel 'it''s `date` [Hz]' noenhanced",
+      "\n0.1 0.3333333333333333\n",
+      "set output '/tmp/out.png'",
+      "pngcairo size 1000,700",
+      "title 'forward whirl'",
+  });
   // The NaN of the second series breaks its line with a blank line.
   EXPECT_THAT(s, HasSubstr("\n0 40\n\n20 36\n"));
 }
 
 TEST(PlotScript, HeatmapUsesImageWithPaletteAndColourBarLabel) {
   const std::string s = gnuplot_script(ridge(), "/tmp/h.png");
-  EXPECT_THAT(s, HasSubstr("with image"));
-  EXPECT_THAT(s, HasSubstr("set palette defined"));
-  EXPECT_THAT(s, HasSubstr("set cblabel 'amplitude [µm]'"));
-  EXPECT_THAT(s, HasSubstr("set logscale cb"));
-  EXPECT_THAT(s, HasSubstr("title '1x'"));
+  turbodyn::testing::expect_contains(s, {
+      "with image",
+      "set palette defined",
+      "set cblabel 'amplitude [µm]'",
+      "set logscale cb",
+      "title '1x'",
+  });
   // Pixels are centred on the cell centres: the range reaches half a cell beyond the outer centres.
   EXPECT_THAT(s, HasSubstr("set xrange [-0.5:59.5]"));
   EXPECT_THAT(s, HasSubstr("set yrange [-1:79]"));
@@ -328,9 +333,11 @@ TEST(PlotScript, StepsCrossesTrianglesLevelsAndDefaultLegend) {
   c.series[0].style = Series::Style::Steps;
   c.series[1].style = Series::Style::Crosses;
   std::string s = gnuplot_script(c, "/tmp/s.png");
-  EXPECT_THAT(s, HasSubstr("with steps lw"));
-  EXPECT_THAT(s, HasSubstr("with points pt 2"));
-  EXPECT_THAT(s, HasSubstr("set key below"));
+  turbodyn::testing::expect_contains(s, {
+      "with steps lw",
+      "with points pt 2",
+      "set key below",
+  });
   c.series[0].style = Series::Style::Triangles;
   s = gnuplot_script(c, "/tmp/s.png");
   EXPECT_THAT(s, HasSubstr("with points pt 9"));
@@ -349,11 +356,13 @@ TEST(PlotScript, BarChartDrawsHorizontalBarsTopDownWithLabelsAndLegend) {
   b.bars = {{"stiffness\n2e7 … 4e7 N/m", -0.8, "#ff7f0e", "-0.80"}, {"unbalance", 0.3, "#1f77b4", "+0.30"}};
   b.legend = {{"#1f77b4", "raises the metric"}};
   const std::string s = gnuplot_script(b, "/tmp/b.png");
-  EXPECT_THAT(s, HasSubstr("with boxxyerror lc rgb variable"));
-  EXPECT_THAT(s, HasSubstr("set ytics scale 0 ('stiffness'.\"\\n\".'2e7 … 4e7 N/m' 2, 'unbalance' 1)"));
-  EXPECT_THAT(s, HasSubstr("\n-0.8 2 -0.8 0 "));  // first bar on top, from -0.8 to 0
-  EXPECT_THAT(s, HasSubstr(" 16744206\n"));      // #ff7f0e as an integer
-  EXPECT_THAT(s, HasSubstr("set xrange [-"));  // symmetric about 0
+  turbodyn::testing::expect_contains(s, {
+      "with boxxyerror lc rgb variable",
+      "set ytics scale 0 ('stiffness'.\"\\n\".'2e7 … 4e7 N/m' 2, 'unbalance' 1)",
+      "\n-0.8 2 -0.8 0 ",  // first bar on top, from -0.8 to 0
+      " 16744206\n",      // #ff7f0e as an integer
+      "set xrange [-",  // symmetric about 0
+  });
   b.xrange = std::make_pair(-1.0, 1.0);
   EXPECT_THAT(gnuplot_script(b, "/tmp/b.png"), HasSubstr("set xrange [-1:1]"));
   EXPECT_THAT(s, HasSubstr("keyentry with boxes fc rgb '#1f77b4' title 'raises the metric'"));
@@ -393,10 +402,12 @@ TEST_F(PlotTest, SizeMismatchIsAnError) {
   LineChart c = two_series();
   c.series[1].y.pop_back();
   const std::string msg = error_of([&] { render_png(c, file("bad.png")); });
-  EXPECT_THAT(msg, HasSubstr("size mismatch"));
-  EXPECT_THAT(msg, HasSubstr("backward whirl"));
-  EXPECT_THAT(msg, HasSubstr("4 x values but 3 y values"));
-  EXPECT_THAT(msg, HasSubstr("bad.png"));
+  turbodyn::testing::expect_contains(msg, {
+      "size mismatch",
+      "backward whirl",
+      "4 x values but 3 y values",
+      "bad.png",
+  });
   EXPECT_FALSE(fs::exists(file("bad.png")));
 
   Heatmap m = ridge();
@@ -461,9 +472,11 @@ TEST_F(PlotTest, MissingGnuplotIsAClearError) {
   EXPECT_FALSE(gnuplot_available());
   EXPECT_THROW(gnuplot_executable(), PlotError);
   const std::string msg = error_of([&] { render_png(two_series(), file("none.png")); });
-  EXPECT_THAT(msg, HasSubstr("gnuplot not found"));
-  EXPECT_THAT(msg, HasSubstr("/nonexistent/gnuplot"));
-  EXPECT_THAT(msg, HasSubstr("none.png"));
+  turbodyn::testing::expect_contains(msg, {
+      "gnuplot not found",
+      "/nonexistent/gnuplot",
+      "none.png",
+  });
   EXPECT_THAT(error_of([&] { render_png(ridge(), file("none.png")); }), HasSubstr("gnuplot"));
   EXPECT_FALSE(fs::exists(file("none.png")));
 }
@@ -480,10 +493,12 @@ TEST_F(PlotTest, GnuplotFailureReportsItsMessages) {
   LineChart c = two_series();
   c.series[0].color = "no-such-colour";
   const std::string msg = error_of([&] { render_png(c, file("fail.png")); });
-  EXPECT_THAT(msg, HasSubstr("fail.png"));
-  EXPECT_THAT(msg, HasSubstr("gnuplot"));
-  EXPECT_THAT(msg, HasSubstr("exited with status"));
-  EXPECT_THAT(msg, HasSubstr("no-such-colour"));  // gnuplot's own message quotes the script line
+  turbodyn::testing::expect_contains(msg, {
+      "fail.png",
+      "gnuplot",
+      "exited with status",
+      "no-such-colour",  // gnuplot's own message quotes the script line
+  });
   EXPECT_FALSE(fs::exists(file("fail.png")));
   EXPECT_EQ(leftover_temp_dirs(), 0);
 }

@@ -2,6 +2,7 @@
 // maxima in µm, command, warnings, pictures) and a study's (incomplete and failed runs marked, numbers tied to
 // results.json).
 #include "post/report.h"
+#include "tests/support/text_checks.h"
 
 #include <filesystem>
 #include <fstream>
@@ -47,12 +48,14 @@ TEST(Report, RunReportFromASummary) {
   j["warnings"] = {"no spectrogram of y"};
   write_run_report(dir, j, {});
   const std::string html = read(dir / "report.html");
-  EXPECT_THAT(html, HasSubstr("Rotor &amp; &lt;co&gt;"));
-  EXPECT_THAT(html, HasSubstr("INCOMPLETE"));
-  EXPECT_THAT(html, HasSubstr(">30.00 µm</span>"));
-  EXPECT_THAT(html, HasSubstr("turbodyn run m.toml -o out"));
-  EXPECT_THAT(html, HasSubstr("no spectrogram of y"));
-  EXPECT_THAT(html, HasSubstr("<img src=\"spectrogram_disk.c.x.png\""));
+  turbodyn::testing::expect_contains(html, {
+      "Rotor &amp; &lt;co&gt;",
+      "INCOMPLETE",
+      ">30.00 µm</span>",
+      "turbodyn run m.toml -o out",
+      "no spectrogram of y",
+      "<img src=\"spectrogram_disk.c.x.png\"",
+  });
   EXPECT_FALSE(std::filesystem::exists(dir / "report.html.tmp"));
   std::filesystem::remove_all(dir);
 }
@@ -73,12 +76,14 @@ TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
   j["sensitivity"] = nlohmann::json::object();
   write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}});
   const std::string html = read(dir / "report.html");
-  EXPECT_THAT(html, HasSubstr("INCOMPLETE STUDY: 2 of 3 runs"));
-  EXPECT_THAT(html, HasSubstr("0 run(s) incomplete"));
-  EXPECT_THAT(html, HasSubstr("data-pointer=\"/runs/0/metrics/0\""));
-  EXPECT_THAT(html, HasSubstr(">25.00</span>"));  // in µm, as the column header says
-  EXPECT_THAT(html, HasSubstr("max_x [µm]"));
-  EXPECT_THAT(html, HasSubstr("boom &lt;x&gt;"));
+  turbodyn::testing::expect_contains(html, {
+      "INCOMPLETE STUDY: 2 of 3 runs",
+      "0 run(s) incomplete",
+      "data-pointer=\"/runs/0/metrics/0\"",
+      ">25.00</span>",  // in µm, as the column header says
+      "max_x [µm]",
+      "boom &lt;x&gt;",
+  });
   std::filesystem::remove_all(dir);
 }
 

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/test_support.h"
+#include "tests/support/element_differences.h"
+#include "tests/support/floating_ring_fixtures.h"
 
 namespace turbodyn {
 namespace {
@@ -28,21 +30,7 @@ Eval evaluate(const FloatingRingElement& e, ElementWorkspace& ws, double W, cons
 }
 
 // A general state: journal off-centre, moving and tilted in the ring; the ring off-centre, moving, tilted, spinning.
-void general_state(double* q, double* v, double* z) {
-  using E = FloatingRingElement;
-  const double qq[4] = {4e-6, -3e-6, 2e-4, -1.5e-4}, vv[4] = {2e-3, 1e-3, 0.05, -0.08};
-  for (int k = 0; k < 4; ++k) q[k] = qq[k], v[k] = vv[k];
-  for (int k = 0; k < E::kStates; ++k) z[k] = 0.0;
-  z[E::kX] = 1e-5;
-  z[E::kY] = -6e-6;
-  z[E::kVx] = -1e-3;
-  z[E::kVy] = 3e-3;
-  z[E::kAx] = 1e-4;
-  z[E::kAy] = 5e-5;
-  z[E::kWx] = 0.02;
-  z[E::kWy] = -0.03;
-  z[E::kSpin] = 900.0;
-}
+void general_state(double* q, double* v, double* z) { testing::general_ring_state(q, v, z); }
 
 TEST(FloatingRing, FilmForcesActOnShaftAndRingInOpposition) {
   // Journal displaced in +x inside a centred ring: the inner film pushes the journal back (-x) and the ring the
@@ -68,7 +56,7 @@ TEST(FloatingRing, InnerFilmInTheRingFrameGivesTheSameForcesAtAnyRingAngle) {
   OilSpec oil;
   const FloatingRingElement e("test", f, oil, 0, 0.0);
   auto ws = e.make_workspace();
-  double q[4], v[4], z[FloatingRingElement::kStates];
+  double q[4], v[4], z[FloatingRingElement::kMaxStates];
   general_state(q, v, z);
   const double W = 3000.0;
   const Eval a = evaluate(e, *ws, W, q, v, z);
@@ -97,7 +85,7 @@ TEST(FloatingRing, FourDrillHolesRepeatEveryQuarterTurnOfTheRing) {
   OilSpec oil;
   const FloatingRingElement e("test", f, oil, 0, 0.0);
   auto ws = e.make_workspace();
-  double q[4], v[4], z[FloatingRingElement::kStates];
+  double q[4], v[4], z[FloatingRingElement::kMaxStates];
   general_state(q, v, z);
   z[FloatingRingElement::kAngle] = 0.4;
   const Eval a = evaluate(e, *ws, 3000.0, q, v, z);
@@ -129,55 +117,31 @@ TEST(FloatingRing, OwnJacobianMatchesPlainFiniteDifferences) {
     const FloatingRingElement e("test", f, oil, 0, 9.81);
     ASSERT_TRUE(e.has_jacobian());
     auto ws = e.make_workspace();
-    double q[4], v[4], z[FloatingRingElement::kStates];
+    double q[4], v[4], z[FloatingRingElement::kMaxStates];
     general_state(q, v, z);
     z[FloatingRingElement::kAngle] = 0.4;
     const SpinState s{0.0, 3000.0, 50.0, 0.0};
     constexpr int d = 4, m = FloatingRingElement::kStates, rows = d + m, cols = 2 * d + m;
     // Plain forward differences with the element's own steps.
-    double in[cols];
-    for (int k = 0; k < d; ++k) in[k] = q[k], in[d + k] = v[k];
-    for (int k = 0; k < m; ++k) in[2 * d + k] = z[k];
-    auto eval = [&](double* out) {
-      std::fill(out, out + rows, 0.0);
-      e.calc_and_add_forces(s, in, in + d, in + 2 * d, *ws, out, out + d);
-    };
-    double out0[rows], out1[rows], fd[rows * cols];
-    eval(out0);
-    for (int j = 0; j < cols; ++j) {
-      const double saved = in[j], h = e.fd_step(j, d, saved);
-      in[j] = saved + h;
-      eval(out1);
-      in[j] = saved;
-      for (int r = 0; r < rows; ++r) fd[j * rows + r] = (out1[r] - out0[r]) / h;
-    }
+    const std::vector<double> out0 = testing::element_outputs(e, s, q, v, z, m, *ws);
+    const std::vector<double> fd = testing::forward_differences(e, s, q, v, z, m, *ws);
     // Own Jacobian at the same state, twice (the second call must not be disturbed by the first's perturbations).
     std::vector<double> own(rows * cols, 0.0), again(rows * cols, 0.0);
     e.add_jacobian(s, q, v, z, *ws, own.data());
     e.add_jacobian(s, q, v, z, *ws, again.data());
-    auto typical = [&](int j) { return e.fd_step(j, d, 0.0) / e.fd_relative_step(); };
     constexpr double kTolerance = 1e-3;  // sqrt of the relative step
-    for (int r = 0; r < rows; ++r) {
-      double row_scale = 0.0;
-      for (int j = 0; j < cols; ++j) row_scale = std::max(row_scale, std::abs(fd[j * rows + r]) * typical(j));
-      if (row_scale == 0.0) continue;
-      for (int j = 0; j < cols; ++j) {
-        const bool skipped_tilt = !tilt && (j == 2 * d + FloatingRingElement::kAx || j == 2 * d + FloatingRingElement::kAy ||
-                                            j == 2 * d + FloatingRingElement::kWx || j == 2 * d + FloatingRingElement::kWy);
-        if (skipped_tilt) {  // never used: the tilt states do not move
-          EXPECT_EQ(own[j * rows + r], 0.0);
-          continue;
-        }
-        EXPECT_NEAR(own[j * rows + r] * typical(j), fd[j * rows + r] * typical(j), kTolerance * row_scale)
-            << "row " << r << ", column " << j << (tilt ? "" : ", no tilt");
-        EXPECT_NEAR(again[j * rows + r] * typical(j), own[j * rows + r] * typical(j), 1e-8 * row_scale)
-            << "row " << r << ", column " << j << ", second call";
-      }
+    auto skipped_tilt = [&](int j) {  // never used without tilt: the tilt states do not move
+      return !tilt && (j == 2 * d + FloatingRingElement::kAx || j == 2 * d + FloatingRingElement::kAy ||
+                       j == 2 * d + FloatingRingElement::kWx || j == 2 * d + FloatingRingElement::kWy);
+    };
+    for (int j = 0; j < cols; ++j) {
+      if (!skipped_tilt(j)) continue;
+      for (int r = 0; r < rows; ++r) EXPECT_EQ(own[j * rows + r], 0.0) << "row " << r << ", column " << j;
     }
+    testing::expect_jacobian_near(e, own, fd, m, kTolerance, skipped_tilt, tilt ? "" : ", no tilt");
+    testing::expect_jacobian_near(e, again, own, m, 1e-8, skipped_tilt, ", second call");
     // The forces at the state are still those of the state after the Jacobian's perturbed solves.
-    double out2[rows];
-    eval(out2);
-    for (int r = 0; r < rows; ++r) EXPECT_EQ(out2[r], out0[r]) << r;
+    EXPECT_EQ(testing::element_outputs(e, s, q, v, z, m, *ws), out0);
   }
 }
 

@@ -32,7 +32,7 @@ TEST(RemainingTime, ForACostOfTheModelsFormItPredictsTheRestOfTheRamp) {
     const double left = estimate.update(t, wall(t));
     if (k == 20 || k == 100 || k == 180) {
       EXPECT_NEAR(left, total - wall(t), 5e-3 * (total - wall(t))) << "at t " << t;
-      if (k == 20) EXPECT_GT((total - wall(t)) / (wall(t) * (4.0 - t) / t), 2.8);
+      if (k == 20) { EXPECT_GT((total - wall(t)) / (wall(t) * (4.0 - t) / t), 2.8); }
     }
   }
 }

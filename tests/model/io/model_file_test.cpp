@@ -122,6 +122,39 @@ TEST(ModelFile, FloatingRingDrillHolesAndMassConservingFilms) {
               HasSubstr("smaller than inner_length"));
 }
 
+TEST(ModelFile, FloatingRingThermalFilmsAndTheirErrors) {
+  // Isothermal by default; "bulk" derives its conductances from the geometry and refuses what it cannot use.
+  const std::filesystem::path f = example("reference_floating_ring.toml");
+  const MachineSpec iso = load_model(f);
+  EXPECT_EQ(iso.bearings[0].ring.thermal.model, FilmThermal::Isothermal);
+  const Override bulk = parse_override("bearings.compressor.thermal=bulk");
+  const MachineSpec s = load_model(f, {bulk, parse_override("bearings.compressor.shaft_temperature=120 degC")});
+  const RingThermalSpec& t = s.bearings[0].ring.thermal;
+  EXPECT_EQ(t.model, FilmThermal::Bulk);
+  EXPECT_DOUBLE_EQ(t.shaft_temperature, 393.15);
+  EXPECT_DOUBLE_EQ(t.housing_temperature, 363.15);
+  // 6 k pi D L / c for the inner film: 6 * 0.13 * pi * 10 mm * 7 mm / 15 um.
+  EXPECT_NEAR(t.inner_shaft_conductance, 6 * 0.13 * M_PI * 0.010 * 0.007 / 15e-6, 1e-12);
+  EXPECT_GT(t.ring_conductance, 0.0);
+  EXPECT_LT(t.ring_conductance, t.inner_shaft_conductance);
+  EXPECT_THAT(error_of(f, {bulk, parse_override("bearings.compressor.ring_conductance=-1 W/K")}),
+              AllOf(HasSubstr("bearings.compressor.ring_conductance"), HasSubstr("negative")));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.shaft_temperature=400 K")}),
+              AllOf(HasSubstr("bearings.compressor.shaft_temperature"), HasSubstr("thermal = \"bulk\"")));
+  EXPECT_THAT(error_of(f, {bulk, parse_override("oil.temperature=210 degC")}),
+              AllOf(HasSubstr("bearings.compressor.thermal"), HasSubstr("max_temperature")));
+  EXPECT_THAT(error_of(f, {bulk, parse_override("bearings.compressor.housing_temperature=250 degC")}),
+              AllOf(HasSubstr("bearings.compressor.housing_temperature"), HasSubstr("max_temperature")));
+  EXPECT_THAT(error_of(f, {bulk, parse_override("oil.viscosity=10 mPa*s")}),
+              AllOf(HasSubstr("bearings.compressor.thermal"), HasSubstr("fixed [oil] viscosity")));
+  EXPECT_THAT(error_of(f, {bulk, parse_override("bearings.compressor.inner_oil_temperature=100 degC")}),
+              AllOf(HasSubstr("bearings.compressor.inner_oil_temperature"), HasSubstr("states of the run")));
+  EXPECT_THAT(error_of(f, {bulk, parse_override("bearings.compressor.oil_specific_heat=2 kJ/kg")}),
+              HasSubstr("bearings.compressor.oil_specific_heat"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.thermal=adiabatic")}),
+              AllOf(HasSubstr("bearings.compressor.thermal"), HasSubstr("'isothermal', 'bulk'")));
+}
+
 TEST(ModelFile, MissingFile) {
   EXPECT_THAT(error_of(bad("does_not_exist.toml")), HasSubstr("cannot open"));
 }

@@ -332,7 +332,11 @@ TEST(Dimension, SiUnit) {
   EXPECT_EQ(dim::stiffness.si_unit(), "N/m");
   EXPECT_EQ(dim::rotational_damping.si_unit(), "N*m*s/rad");
   EXPECT_EQ((Dimension{0, 0, -2}).si_unit(), "1/s^2");
-  EXPECT_EQ((Dimension{1, 2, -3}).si_unit(), "kg*m^2/s^3");
+  EXPECT_EQ((Dimension{1, 2, -4}).si_unit(), "kg*m^2/s^4");
+  EXPECT_EQ(dim::power.si_unit(), "W");  // the thermal films' quantities have names of their own
+  EXPECT_EQ(dim::thermal_conductance.si_unit(), "W/K");
+  EXPECT_EQ(dim::thermal_conductivity.si_unit(), "W/m/K");
+  EXPECT_EQ(dim::specific_heat.si_unit(), "J/kg/K");
   EXPECT_EQ((Dimension{0, 1, -1, -1}).si_unit(), "m/s/K");
 }
 
@@ -359,6 +363,9 @@ TEST(Dimension, Constants) {
 TEST(Dimension, SiUnitParsesBackToOne) {
   // Each SI spelling is itself valid input and means exactly one SI unit.
   for (const Dimension& d : {dim::length,
+                             dim::thermal_conductance,
+                             dim::thermal_conductivity,
+                             dim::specific_heat,
                              dim::mass,
                              dim::time,
                              dim::temperature,
