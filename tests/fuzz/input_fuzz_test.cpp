@@ -9,7 +9,7 @@
 // exception, or a ModelError that names no place, is a "raw message" and fails it here.
 //
 // TURBODYN_FUZZ_INPUTS=N sets the number of inputs (default 5,000: about 10 s); the long mode of
-// docs/validation.md runs 50,000.
+// docs/validation.md runs 100,000.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
