@@ -330,7 +330,7 @@ OptimizationSpec load_optimization(const std::filesystem::path& file) {
     if (const toml::array* set = r.array("set"))
       for (const toml::node& o : *set) {
         if (!o.is_string()) r.fail("set", "expected strings \"PATH=VALUE\"");
-        c.overrides.push_back(parse_override(*o.value<std::string>()));
+        c.overrides.push_back(r.parsed("set", *o.value<std::string>(), parse_override));
       }
     r.finish();
     s.cases.push_back(c);

@@ -105,7 +105,7 @@ StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& fil
   if (const toml::array* fixed = r.array("fixed"))
     for (const toml::node& n : *fixed) {
       if (!n.is_string()) r.fail("fixed", "expected strings \"PATH=VALUE\"");
-      s.fixed.push_back(parse_override(*n.value<std::string>()));
+      s.fixed.push_back(r.parsed("fixed", *n.value<std::string>(), parse_override));
     }
   return s;
 }

@@ -276,6 +276,17 @@ class Reader {
     if (numeric_key_record) numeric_key_record->push_back(key_path(key));
   }
 
+  // A "PATH=VALUE" string of the list `key` read by `parse` (overrides.h: parse_override); its error is located at
+  // the key.
+  template <class Parse>
+  auto parsed(std::string_view key, const std::string& text, Parse&& parse) {
+    try {
+      return parse(text);
+    } catch (const ModelError& e) {
+      fail(key, e.what());
+    }
+  }
+
   // Every key of the table must have been asked for.
   void finish() const {
     std::vector<std::string> known(known_.begin(), known_.end());

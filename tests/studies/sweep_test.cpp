@@ -220,6 +220,17 @@ TEST(StudyFile, AFaultInTheStudysOverridesNamesTheStudyFileAndTheOverride) {
   std::string body = one_parameter_study("kind = \"full-factorial\"",
                                          "path = \"disks.turbine.unbalance\"\nlevels = [\"1 mg*mm\"]", "disk.turbine.x");
   body.replace(body.find("\"disks.compressor.unbalance=0\""), 30, "\"disks.compresor.unbalance=0\"");
+  // An override that is no PATH=VALUE is located at the study's key (found by the long input fuzzer).
+  std::string empty = body;
+  const std::string misspelt = "\"disks.compresor.unbalance=0\"";
+  empty.replace(empty.find(misspelt), misspelt.size(), "\"solver.rtol=\"");
+  try {
+    load_study(write_study("empty_fixed", empty));
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("empty_fixed.toml:5:"));
+    EXPECT_THAT(e.what(), HasSubstr("study.fixed: --set solver.rtol=: the value after '=' is empty"));
+  }
   const std::string e = sweep_error("bad_fixed", body);
   EXPECT_THAT(e, HasSubstr("bad_fixed.toml: --set disks.compresor.unbalance=0:"));
   EXPECT_THAT(e, HasSubstr("disks.compresor.z: missing required key"));  // a new disk, not a misspelt one
