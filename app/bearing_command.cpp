@@ -15,6 +15,7 @@
 #include "model/elements/floating_ring_steady.h"
 #include "model/io/output_file.h"
 #include "model/spec/units.h"
+#include "model/spec/constants.h"
 #include "post/plot.h"
 #include "post/report.h"
 #include "app/command_line.h"
@@ -22,7 +23,6 @@
 namespace turbodyn::app {
 namespace {
 
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
 constexpr double kDeg = 180.0 / M_PI;
 constexpr double kPerMetreToPerMicrometre = 1e-6;  // pictures show stiffness in N/µm
 const char* const kDofNames[5] = {"x", "y", "z", "theta_x", "theta_y"};

@@ -20,11 +20,10 @@
 #include "model/rotor/rotor.h"
 #include "model/spec/limits.h"
 #include "model/spec/units.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::app {
 namespace {
-
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
 
 std::string trim(std::string s) {
   s.erase(0, s.find_first_not_of(" \t"));

@@ -24,11 +24,10 @@
 #include "model/engine/remaining_time.h"
 #include "post/run_pictures.h"
 #include "model/io/timeseries_file.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::app {
 namespace {
-
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * M_PI);
 
 // Natural frequencies of a linearised model (campbell.csv of `turbodyn modal`) as point series against rotor speed
 // in Hz, one per whirl direction, for the spectrograms.

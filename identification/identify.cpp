@@ -167,18 +167,18 @@ class Progress final : public ceres::IterationCallback {
   Progress(const IdentifyOptions& o, const ParameterScaling& s, const IdentifyStudy& st, const double* x, const Problem& p)
       : options_(o), scaling_(s), study_(st), x_(x), problem_(p) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
+    last_values_ = scaling_.values(x_);  // the state after this iteration (update_state_every_iteration)
     if (options_.progress) {
       std::ostringstream os;
       os << "iteration " << std::setw(3) << it.iteration << "  cost " << std::scientific << std::setprecision(4)
          << it.cost << "  |gradient| " << it.gradient_max_norm << "  model runs " << problem_.runs() << " ";
-      const std::vector<double> v = scaling_.values(x_);
+      const std::vector<double>& v = last_values_;
       os << std::defaultfloat << std::setprecision(6);
       for (std::size_t i = 0; i < v.size(); ++i)
         os << " " << study_.parameters[i].name << " = " << v[i]
            << (study_.parameters[i].unit.empty() ? "" : " " + study_.parameters[i].unit);
       options_.progress(os.str());
     }
-    last_values_ = scaling_.values(x_);  // the state after this iteration (update_state_every_iteration)
     if (options_.cancel && options_.cancel->load()) return ceres::SOLVER_ABORT;
     return ceres::SOLVER_CONTINUE;
   }

@@ -25,6 +25,7 @@
 #include "identification/identify_study.h"
 #include "model/engine/runup.h"
 #include "model/io/model_file.h"
+#include "model/io/toml_reader.h"
 #include "model/io/overrides.h"
 #include "model/rotor/rotor.h"
 #include "optim/optimization.h"
@@ -43,13 +44,6 @@ FileKind kind_of(const std::string& text) {
   if (text.find("[optimize]") != std::string::npos) return FileKind::Optimization;
   if (text.find("[identify]") != std::string::npos) return FileKind::Identification;
   return FileKind::Model;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -170,16 +164,18 @@ std::size_t fuzz_inputs() {
   return n ? static_cast<std::size_t>(std::strtoul(n, nullptr, 10)) : 5000;
 }
 
-// The examples, copied to a scratch directory so that the mutants sit beside the files they refer to.
+// The examples, copied to a scratch directory so that the mutants sit beside the files they refer to, and read once.
 struct Corpus {
   fs::path dir;
   std::vector<fs::path> files;
+  std::vector<std::string> texts;  // of each file
   explicit Corpus(const std::string& name) {
     dir = testing::fresh_temp_dir("input_fuzz_" + name);  // one per test: CTest runs them in parallel
     fs::copy(fs::path(TURBODYN_SOURCE_DIR) / "examples", dir, fs::copy_options::recursive);
     for (const fs::directory_entry& e : fs::directory_iterator(dir))
       if (e.path().extension() == ".toml") files.push_back(e.path());
     std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) texts.push_back(input::read_text_file(f, "example"));
   }
 };
 
@@ -191,7 +187,7 @@ TEST(InputFuzz, MutatedFilesAreReadOrRefusedWithALocatedMessage) {
   std::size_t refused = 0, raw = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const fs::path& base = corpus.files[k % corpus.files.size()];
-    const std::string text = read_text(base);
+    const std::string& text = corpus.texts[k % corpus.files.size()];
     const std::string mutant = m.mutate(text);
     const fs::path file = corpus.dir / ("mutant_" + base.filename().string());
     std::ofstream(file, std::ios::binary) << mutant;
@@ -213,8 +209,9 @@ TEST(InputFuzz, MutatedOverridesAreAppliedOrRefusedNamingTheOverride) {
   const std::size_t n = fuzz_inputs() / 2;
   std::size_t refused = 0, raw = 0;
   std::vector<std::pair<fs::path, std::vector<std::string>>> models;
-  for (const fs::path& f : corpus.files)
-    if (kind_of(read_text(f)) == FileKind::Model) models.push_back({f, numeric_model_keys(f, {})});
+  for (std::size_t i = 0; i < corpus.files.size(); ++i)
+    if (kind_of(corpus.texts[i]) == FileKind::Model)
+      models.push_back({corpus.files[i], numeric_model_keys(corpus.files[i], {})});
   ASSERT_FALSE(models.empty());
   for (std::size_t k = 0; k < n; ++k) {
     const auto& [file, keys] = models[k % models.size()];

@@ -14,6 +14,7 @@
 #include "identification/measurement.h"
 #include "identification/report.h"
 #include "model/io/model_file.h"
+#include "model/io/toml_reader.h"
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
 #include "model/engine/integrator.h"
@@ -32,13 +33,6 @@ std::filesystem::path source(const std::string& rel) { return std::filesystem::p
 
 std::filesystem::path scratch(const std::string& name) {
   return turbodyn::testing::fresh_temp_dir("identify_test_" + name);
-}
-
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 void write(const std::filesystem::path& file, const std::string& text) {
@@ -69,7 +63,7 @@ std::filesystem::path jeffcott_study(const std::filesystem::path& dir) {
   }
   write(dir / "jeffcott_spectra.csv", csv.str());
   const std::string study = "[identify]\nmodel = \"" + source("tests/data/identification/jeffcott.toml").string() +
-                            "\"\n" + read_text(source("tests/data/identification/jeffcott_study_keys.toml"));
+                            "\"\n" + input::read_text_file(source("tests/data/identification/jeffcott_study_keys.toml"), "study");
   write(dir / "study.toml", study);
   return dir / "study.toml";
 }
