@@ -92,7 +92,7 @@ Metric read_metric(Reader& r, double window_min, double window_max) {
   Metric m;
   studies::MetricSpec& s = m.spec;
   const std::vector<std::string> kinds = {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed",
-                                          "subsync_max", "subsync_ratio", "subsync_onset_speed",
+                                          "subsync_max", "subsync_ratio", "subsync_onset_speed", "subsync_jump_speed",
                                           "subsync_frequency", "summary", "response_peak", "response_peak_speed"};
   s.kind = r.choice("kind", kinds, "");
   if (s.kind.empty()) r.fail_missing("kind", "max, max_radius, peak_1x, ..., response_peak");

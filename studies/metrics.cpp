@@ -52,7 +52,7 @@ SubsyncTrack subsync_track(const std::vector<double>& signal, const std::vector<
 }  // namespace
 
 std::string metric_unit(const MetricSpec& m, const std::vector<ProbeChannel>& channels) {
-  if (m.kind == "peak_1x_speed" || m.kind == "subsync_onset_speed") return "rpm";
+  if (m.kind == "peak_1x_speed" || m.kind == "subsync_onset_speed" || m.kind == "subsync_jump_speed") return "rpm";
   if (m.kind == "subsync_frequency") return "Hz";
   if (m.kind == "subsync_ratio") return "1";
   if (m.kind == "summary") return "";
@@ -183,9 +183,20 @@ double evaluate_metric(const MetricSpec& m, const RunupResult& r, const nlohmann
   }
   // Sub-synchronous metrics.
   const SubsyncTrack t = subsync_track(x, speed, fs);
-  double best = kNaN, ratio = kNaN, freq = kNaN, onset = kNaN;
+  double best = kNaN, ratio = kNaN, freq = kNaN, onset = kNaN, jump = kNaN, largest_jump = 0.0;
+  std::size_t previous = t.speed_hz.size();  // last segment in the window whose line exceeds the threshold
   for (std::size_t s = 0; s < t.speed_hz.size(); ++s) {
     if (!in_window(m, t.speed_hz[s])) continue;
+    if (t.sub[s] > m.threshold) {
+      // Jump: the largest change of the dominant line's frequency between two consecutive segments in which a
+      // sub-synchronous line above the threshold is present (e.g. a floating ring's inner-film whirl jumping to
+      // the next rotor mode). Reported at the later segment's speed.
+      if (previous < t.speed_hz.size()) {
+        const double change = std::abs(t.sub_frequency[s] - t.sub_frequency[previous]);
+        if (change > largest_jump) largest_jump = change, jump = t.speed_hz[s] * kHzToRpm;
+      }
+      previous = s;
+    }
     if (std::isnan(best) || t.sub[s] > best) {
       best = t.sub[s];
       freq = t.sub_frequency[s];
@@ -196,6 +207,7 @@ double evaluate_metric(const MetricSpec& m, const RunupResult& r, const nlohmann
   if (m.kind == "subsync_max") return best;
   if (m.kind == "subsync_ratio") return ratio;
   if (m.kind == "subsync_frequency") return freq;
+  if (m.kind == "subsync_jump_speed") return jump;
   return onset;  // subsync_onset_speed
 }
 

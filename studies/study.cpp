@@ -27,10 +27,19 @@ std::string trim(std::string s) {
 
 
 // Reads one [[parameters]] entry into a Parameter and the unit it is written in.
-Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit) {
+Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit, std::vector<std::string>& also) {
   Parameter p;
   p.path = r.text_or("path", "");
   if (p.path.empty()) r.fail("path", "missing required key (the model-file path of the parameter, e.g. \"disks.turbine.unbalance\")");
+  if (const toml::array* more = r.array("also")) {
+    for (const toml::node& n : *more) {
+      if (!n.is_string()) r.fail("also", "expected model-file paths (strings) that take the parameter's value too");
+      const std::string path = *n.value<std::string>();
+      if (path == p.path || std::find(also.begin(), also.end(), path) != also.end())
+        r.fail("also", "'" + path + "' is given twice");
+      also.push_back(path);
+    }
+  }
   Distribution& d = p.distribution;
   OneUnitValues values(r, "parameter's", "write all values of a parameter in one unit", "580 mg*mm");
   if (const toml::array* levels = r.array("levels")) {
@@ -64,7 +73,7 @@ MetricSpec read_metric(Reader& r) {
   MetricSpec m;
   m.kind = r.choice("kind",
                     {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed", "subsync_max", "subsync_ratio",
-                     "subsync_onset_speed", "subsync_frequency", "summary"},
+                     "subsync_onset_speed", "subsync_jump_speed", "subsync_frequency", "summary"},
                     "");
   if (m.kind.empty()) r.fail("kind", "missing required key (max, max_radius, rms, mean, peak_1x, ...)");
   m.probe = r.text_or("probe", "");
@@ -203,9 +212,11 @@ StudySpec load_study(const std::filesystem::path& file) {
   }
   top.required_tables("parameters", "at least one [[parameters]] entry (path = ...)", [&](Reader& r, std::size_t) {
     std::string unit;
-    Parameter p = read_parameter(r, s.design.kind, unit);
+    std::vector<std::string> also;
+    Parameter p = read_parameter(r, s.design.kind, unit, also);
     s.design.parameters.push_back(p);
     s.parameter_units.push_back(unit);
+    s.parameter_also.push_back(also);
   });
   top.required_tables("metrics", "at least one [[metrics]] entry (kind, probe)", [&](Reader& r, std::size_t i) {
     s.metrics.push_back(read_metric(r));
@@ -225,8 +236,12 @@ StudySpec load_study(const std::filesystem::path& file) {
 
 std::vector<Override> run_overrides(const StudySpec& study, const Design& design, std::size_t i) {
   std::vector<Override> o = study.fixed;
-  for (std::size_t p = 0; p < design.paths.size(); ++p)
-    o.push_back({design.paths[p], value_text(design.values[i][p], study.parameter_units[p])});
+  for (std::size_t p = 0; p < design.paths.size(); ++p) {
+    const std::string value = value_text(design.values[i][p], study.parameter_units[p]);
+    o.push_back({design.paths[p], value});
+    if (p < study.parameter_also.size())
+      for (const std::string& path : study.parameter_also[p]) o.push_back({path, value});
+  }
   return o;
 }
 

@@ -29,11 +29,11 @@ struct UnitValue {
 struct MetricSpec {
   std::string name;   ///< column name in the results
   std::string kind;   ///< max, max_radius, rms, mean, peak_1x, peak_1x_speed, subsync_max, subsync_ratio,
-                      ///< subsync_onset_speed, subsync_frequency, summary
+                      ///< subsync_onset_speed, subsync_jump_speed, subsync_frequency, summary
   std::string probe;  ///< channel name ("disk.compressor.x"), a pair stem for max_radius ("disk.compressor"), or
                       ///< for kind = summary a dotted path into summary-like values ("stats.steps")
   double speed_min = 0.0, speed_max = 0.0;  ///< rad/s window; speed_max = 0 means no upper limit
-  double threshold = 0.0;                   ///< subsync_onset_speed: amplitude in the probe's SI unit
+  double threshold = 0.0;                   ///< subsync_onset/jump_speed: amplitude in the probe's SI unit
 };
 
 /// What every kind of study ([study], [optimize], [identify]) says about its runs: the keys name, model (relative to
@@ -70,6 +70,8 @@ void check_speed_window(const StudyCommon& study, const SpeedProfile& speed);
 
 struct StudySpec : StudyCommon {
   std::vector<std::string> parameter_units;///< unit each parameter is written and sampled in ("" = SI)
+  /// Further model paths each parameter sets to its value (`also = [...]`, e.g. the same clearance in both bearings).
+  std::vector<std::vector<std::string>> parameter_also;
   DesignSpec design;
   std::vector<MetricSpec> metrics;
 };

@@ -61,8 +61,8 @@ void read_metric_window(Reader& r, MetricSpec& m, const std::string& example) {
       }
     }
   }
-  if (m.kind == "subsync_onset_speed" && !(m.threshold > 0.0))
-    r.fail("threshold", "subsync_onset_speed needs a positive threshold (amplitude in the probe's unit)");
+  if ((m.kind == "subsync_onset_speed" || m.kind == "subsync_jump_speed") && !(m.threshold > 0.0))
+    r.fail("threshold", m.kind + " needs a positive threshold (amplitude in the probe's unit)");
 }
 
 }  // namespace turbodyn::studies

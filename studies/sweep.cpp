@@ -34,7 +34,7 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
   nlohmann::json metrics = nlohmann::json::array();
   for (const MetricSpec& m : s.metrics) metrics.push_back(m.name + ":" + m.kind + ":" + m.probe);
   return {{"study", s.name}, {"model", s.model.filename().string()}, {"paths", d.paths},
-          {"units", s.parameter_units}, {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
+          {"units", s.parameter_units}, {"also", s.parameter_also}, {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
 }
 
 nlohmann::json to_json(const RunRecord& r) {
@@ -94,8 +94,11 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
     const std::vector<Override> overrides = run_overrides(study, design, shard.empty() ? 0 : shard[0]);
     const MachineSpec spec = load_study_model(study, overrides);
     std::vector<std::pair<std::string, std::string>> paths;
-    for (std::size_t p = 0; p < design.paths.size(); ++p)
+    for (std::size_t p = 0; p < design.paths.size(); ++p) {
       paths.emplace_back("parameters[" + std::to_string(p) + "].path", design.paths[p]);
+      for (const std::string& also : study.parameter_also[p])
+        paths.emplace_back("parameters[" + std::to_string(p) + "].also", also);
+    }
     check_varied_paths(study, overrides, paths);
     check_speed_window(study, spec.speed);
     const std::unique_ptr<RunupModel> model = make_runup_model(spec);

@@ -215,6 +215,35 @@ runs = 4
               HasSubstr("did you mean 'disk.turbine.x'"));
 }
 
+TEST(StudyFile, AlsoSetsFurtherPathsToTheParametersValue) {
+  // One stiffness for both bearings: the run gets the value at the parameter's path and at each path of `also`.
+  const std::string both = "path = \"bearings.compressor.k\"\nalso = [\"bearings.turbine.k\"]\n"
+                           "levels = [\"2e7 N/m\", \"4e7 N/m\"]";
+  const StudySpec s = load_study(write_study("also", one_parameter_study("kind = \"full-factorial\"", both, "disk.turbine.x")));
+  const Design d = make_design(s.design);
+  const std::vector<Override> o = run_overrides(s, d, 1);
+  auto value_of = [&](const std::string& path) {
+    for (const Override& v : o)
+      if (v.path == path) return v.value;
+    return std::string("(none)");
+  };
+  EXPECT_EQ(value_of("bearings.compressor.k"), value_of("bearings.turbine.k"));
+  EXPECT_THAT(value_of("bearings.turbine.k"), HasSubstr("4e+07"));
+  // A path the model does not read is refused before any run, naming the study file and the path.
+  const std::string wrong = "path = \"bearings.compressor.k\"\nalso = [\"bearings.turbin.k\"]\nlevels = [\"2e7 N/m\"]";
+  EXPECT_THAT(sweep_error("also_wrong", one_parameter_study("kind = \"full-factorial\"", wrong, "disk.turbine.x")),
+              HasSubstr("also_wrong.toml: --set bearings.turbin.k="));
+  // The same path twice is an error of the study file.
+  const std::string twice = "path = \"bearings.compressor.k\"\nalso = [\"bearings.compressor.k\"]\nlevels = [\"2e7 N/m\"]";
+  try {
+    load_study(write_study("also_twice", one_parameter_study("kind = \"full-factorial\"", twice, "disk.turbine.x")));
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("also"));
+    EXPECT_THAT(e.what(), HasSubstr("given twice"));
+  }
+}
+
 TEST(StudyFile, AFaultInTheStudysOverridesNamesTheStudyFileAndTheOverride) {
   // Issue 20 (found by the input fuzzer): the message named the override only, not the study file that holds it.
   std::string body = one_parameter_study("kind = \"full-factorial\"",
