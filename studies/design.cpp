@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/QR>
+
 namespace turbodyn::studies {
 namespace {
 
@@ -727,6 +729,73 @@ Sensitivity standardized_regression(const std::vector<std::vector<double>>& x, c
   for (std::size_t c = 0; c < q; ++c) result.src[active[c]] = beta[c];
   result.r_squared = 1.0 - sse / sst;
   return result;
+}
+
+namespace {
+
+// The quadratic basis at parameters x scaled to [-1, 1]; writes 1 + p + p (p + 1) / 2 values into b.
+void quadratic_basis(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
+                     std::vector<double>& b) {
+  const std::size_t p = x.size();
+  b.assign(1, 1.0);
+  std::vector<double> u(p);
+  for (std::size_t i = 0; i < p; ++i) u[i] = (2.0 * x[i] - lo[i] - hi[i]) / (hi[i] - lo[i]);
+  for (std::size_t i = 0; i < p; ++i) b.push_back(u[i]);
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t j = i; j < p; ++j) b.push_back(u[i] * u[j]);
+}
+
+}  // namespace
+
+double QuadraticSurface::operator()(const std::vector<double>& x) const {
+  std::vector<double> b;
+  quadratic_basis(x, lo, hi, b);
+  double v = 0.0;
+  for (std::size_t k = 0; k < b.size() && k < coef.size(); ++k) v += coef[k] * b[k];
+  return v;
+}
+
+QuadraticSurface fit_quadratic_surface(const std::vector<std::vector<double>>& x, const std::vector<double>& y,
+                                       const std::vector<double>& lo, const std::vector<double>& hi) {
+  const std::string me = "fit_quadratic_surface: ";
+  if (x.size() != y.size()) throw std::invalid_argument(me + "x and y differ in length");
+  const std::size_t p = lo.size();
+  if (p == 0 || hi.size() != p) throw std::invalid_argument(me + "lo and hi must name every parameter");
+  for (std::size_t i = 0; i < p; ++i)
+    if (!(hi[i] > lo[i])) throw std::invalid_argument(me + "parameter " + std::to_string(i) + " has lo >= hi");
+  const std::size_t terms = 1 + p + p * (p + 1) / 2;
+  std::vector<std::size_t> used;
+  for (std::size_t r = 0; r < x.size(); ++r) {
+    if (x[r].size() != p) throw std::invalid_argument(me + "row " + std::to_string(r) + " has the wrong length");
+    bool finite = std::isfinite(y[r]);
+    for (double v : x[r]) finite = finite && std::isfinite(v);
+    if (finite) used.push_back(r);
+  }
+  if (used.size() < terms + 3)
+    throw std::invalid_argument(me + std::to_string(used.size()) + " usable runs for " + std::to_string(terms) +
+                                " terms (need terms + 3)");
+  Eigen::MatrixXd A(used.size(), terms);
+  Eigen::VectorXd b(used.size());
+  std::vector<double> row;
+  for (std::size_t r = 0; r < used.size(); ++r) {
+    quadratic_basis(x[used[r]], lo, hi, row);
+    for (std::size_t k = 0; k < terms; ++k) A(r, k) = row[k];
+    b(r) = y[used[r]];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  if (qr.rank() < static_cast<Eigen::Index>(terms))
+    throw std::invalid_argument(me + "the design does not determine every quadratic term (rank " +
+                                std::to_string(qr.rank()) + " of " + std::to_string(terms) + ")");
+  const Eigen::VectorXd c = qr.solve(b);
+  QuadraticSurface s;
+  s.lo = lo;
+  s.hi = hi;
+  s.coef.assign(c.data(), c.data() + c.size());
+  s.runs = used.size();
+  const double mean = b.mean();
+  const double sst = (b.array() - mean).square().sum(), sse = (A * c - b).squaredNorm();
+  s.r_squared = sst > 0.0 ? 1.0 - sse / sst : std::numeric_limits<double>::quiet_NaN();
+  return s;
 }
 
 }  // namespace turbodyn::studies

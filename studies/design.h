@@ -127,6 +127,21 @@ struct Sensitivity {
 Sensitivity standardized_regression(const std::vector<std::vector<double>>& x /*runs x params*/,
                                     const std::vector<double>& y /*runs*/);
 
+// Response surface: the full quadratic polynomial in all parameters (constant, linear, squares and products),
+// fitted to a metric by least squares on parameters scaled to [-1, 1] over [lo, hi] (Myers & Montgomery, Response
+// Surface Methodology, ch. 2), with its R^2. Runs with a non-finite value are skipped. Throws
+// std::invalid_argument if the sizes differ, lo >= hi for a parameter, or fewer usable runs than terms + 3 remain.
+struct QuadraticSurface {
+  std::vector<double> lo, hi;  ///< scaling of each parameter
+  std::vector<double> coef;    ///< 1, u_i (i < p), u_i u_j (i <= j), in that order
+  double r_squared = 0;
+  std::size_t runs = 0;        ///< runs the fit used
+  double operator()(const std::vector<double>& x) const;
+};
+QuadraticSurface fit_quadratic_surface(const std::vector<std::vector<double>>& x /*runs x params*/,
+                                       const std::vector<double>& y, const std::vector<double>& lo,
+                                       const std::vector<double>& hi);
+
 // ---- Building blocks (also used by the tests) ----
 
 // Standard normal CDF and its inverse (p <= 0 -> -inf, p >= 1 -> +inf, NaN -> NaN).

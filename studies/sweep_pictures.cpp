@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <tuple>
 
 #include "post/plot.h"
 #include "post/plot_style.h"
@@ -121,7 +122,8 @@ double shepard(const std::vector<double>& xs, const std::vector<double>& ys, con
 
 bool draw_metric_map(const StudySpec& study, const Design& design, const std::vector<RunRecord>& runs,
                      std::size_t metric, const std::string& unit, const std::filesystem::path& png) {
-  if (design.paths.size() != 2) return false;
+  const std::size_t n_par = design.paths.size();
+  if (n_par < 2) return false;
   const post::Display d = post::display_of(unit);
   std::vector<double> xs, ys, zs;
   plot::Series ok{"complete run", {}, {}, plot::Series::Style::Points, plot::style::kRunOnMap, 2.2};
@@ -141,9 +143,38 @@ bool draw_metric_map(const StudySpec& study, const Design& design, const std::ve
   const auto [x0, x1] = span(design, 0);
   const auto [y0, y1] = span(design, 1);
   if (!(x1 > x0) || !(y1 > y0)) return false;
+  // More than two parameters: the map is a quadratic response surface in all of them, drawn over the first two
+  // with the others at the centre of their ranges; the runs are shown at their first two parameters.
+  QuadraticSurface surface;
+  std::vector<double> at(n_par);
+  if (n_par > 2) {
+    std::vector<std::vector<double>> xs_all;
+    std::vector<double> ys_all;
+    std::vector<double> lo(n_par), hi(n_par);
+    for (std::size_t p = 0; p < n_par; ++p) {
+      std::tie(lo[p], hi[p]) = span(design, p);
+      if (!(hi[p] > lo[p])) return false;
+      at[p] = 0.5 * (lo[p] + hi[p]);
+    }
+    for (const RunRecord& r : runs) {
+      xs_all.push_back(r.parameters);
+      ys_all.push_back(r.metrics[metric] * d.factor);
+    }
+    try {
+      surface = fit_quadratic_surface(xs_all, ys_all, lo, hi);
+    } catch (const std::invalid_argument&) {
+      return false;  // too few runs for the quadratic terms: no map
+    }
+  }
 
   plot::Heatmap hm;
   hm.title = study.metrics[metric].name + " over " + design.paths[0] + " and " + design.paths[1];
+  if (n_par > 2) {
+    std::ostringstream os;
+    os << std::setprecision(2) << std::fixed << surface.r_squared;
+    hm.title += " (quadratic response surface of " + std::to_string(surface.runs) + " runs, R² " + os.str() +
+                "; other parameters at the centre of their ranges)";
+  }
   hm.xlabel = param_label(study, design, 0);
   hm.ylabel = param_label(study, design, 1);
   hm.zlabel = with_unit(study.metrics[metric].name, d.unit);
@@ -177,7 +208,11 @@ bool draw_metric_map(const StudySpec& study, const Design& design, const std::ve
         hm.z[j * hm.x.size() + i] = v;
         continue;
       }
-      if (full_grid) {
+      if (n_par > 2) {
+        at[0] = x;
+        at[1] = y;
+        v = surface(at);
+      } else if (full_grid) {
         const std::size_t a = std::clamp<std::size_t>(std::upper_bound(gx.begin(), gx.end(), x) - gx.begin(), 1,
                                                        gx.size() - 1);
         const std::size_t b = std::clamp<std::size_t>(std::upper_bound(gy.begin(), gy.end(), y) - gy.begin(), 1,
