@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
-# The two long validation studies on the paper's ball-bearing variants, with the pictures their documents show:
+# The long validation studies on the paper's variants, with the pictures their documents show:
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~15 min on 2 cores),
-#   damper optimisation of variant III (docs/optimization.md, ~30 min on 2 cores).
-# Usage: bench/validation_studies.sh [identify] [optimize]   (default: both). Build first (scripts/build.sh).
+#   damper optimisation of variant III (docs/optimization.md, ~30 min on 2 cores),
+#   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature
+#   (docs/studies.md, ~25 min on 2 cores).
+# Usage: bench/validation_studies.sh [identify] [optimize] [floating_ring]   (default: all). Build first
+# (scripts/build.sh).
 # Results in out/validation_studies/; an interrupted optimisation resumes from its cache when run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "validation_studies: build first (scripts/build.sh)" >&2; exit 1; }
 which=("$@")
-((${#which[@]})) || which=(identify optimize)
+((${#which[@]})) || which=(identify optimize floating_ring)
 out=out/validation_studies
 mkdir -p "$out" docs/images
 for w in "${which[@]}"; do
@@ -28,6 +31,18 @@ for w in "${which[@]}"; do
       cp "$out/optimize_ball_sfd/spectrogram_disk.compressor.x_comparison.png" \
         docs/images/optimize_ball_sfd_spectrogram_compressor_x.png
       ;;
-    *) echo "validation_studies: unknown study '$w' (identify, optimize)" >&2; exit 2 ;;
+    floating_ring)
+      rm -rf "$out/study_floating_ring"
+      start=$(date +%s)
+      "$exe" sweep examples/study_reference_floating_ring.toml -o "$out/study_floating_ring" | tee "$out/floating_ring.log"
+      echo "study_floating_ring: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/floating_ring.log"
+      for f in sensitivity_max_compressor_orbit.png map_max_compressor_orbit.png \
+               map_max_compressor_bearing_force.png; do
+        cp "$out/study_floating_ring/$f" "docs/images/study_floating_ring_$f"
+      done
+      cp "$out/study_floating_ring/metric_subsync_frequency_vs_bearings.compressor.outer_clearance.png" \
+        docs/images/study_floating_ring_subsync_frequency_vs_outer_clearance.png
+      ;;
+    *) echo "validation_studies: unknown study '$w' (identify, optimize, floating_ring)" >&2; exit 2 ;;
   esac
 done
