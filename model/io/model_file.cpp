@@ -436,6 +436,16 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
   const std::string& file = src.file;
   MachineSpec spec;
   spec.source = file;
+  // A study, optimisation or identification file given where a model file belongs: say so and name the command.
+  struct OtherFile {
+    const char *table, *kind, *command;
+  };
+  for (const OtherFile& o : {OtherFile{"study", "a study", "turbodyn sweep"},
+                             OtherFile{"optimize", "an optimisation", "turbodyn optimize"},
+                             OtherFile{"identify", "an identification", "turbodyn identify"}})
+    if (root.contains(o.table) && !root.contains("materials") && !root.contains("shaft"))
+      throw ModelError(file + ": this is " + o.kind + " file ([" + o.table + "]), not a model file: run it with " +
+                       o.command + " " + file);
   Reader top(root, "", src);
   spec.name = top.text_or("name", std::filesystem::path(file).stem().string());
   spec.description = top.text_or("description", "");

@@ -288,6 +288,10 @@ EOF2
       "$out/log" || fail "tiny mesh message: $(cat "$out/log")"
     "$exe" check "$src/examples" > "$out/log" 2>&1
     [ $? -eq 2 ] && grep -q "examples: is a directory, not a model file" "$out/log" || fail "directory: $(cat "$out/log")"
+    # A study file where a model file belongs names the command that runs it.
+    "$exe" run "$src/examples/study_reference_linear.toml" -o "$out/study" > "$out/log" 2>&1
+    [ $? -eq 2 ] && grep -q "study_reference_linear.toml: this is a study file (\[study\]), not a model file: run it with turbodyn sweep" \
+      "$out/log" || fail "study file: $(cat "$out/log")"
     for set in "shaft[0].length=1e308" "shaft[0].outer_diameter=1e-299 mm" "materials.steel.rho=1.8e308"; do
       "$exe" check "$src/examples/reference_linear.toml" --set "$set" > "$out/log" 2>&1
       [ $? -eq 2 ] || fail "$set accepted: $(cat "$out/log")"
