@@ -3,16 +3,18 @@
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~15 min on 2 cores),
 #   damper optimisation of variant III (docs/optimization.md, ~30 min on 2 cores),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature
-#   (docs/studies.md, ~25 min on 2 cores).
-# Usage: bench/validation_studies.sh [identify] [optimize] [floating_ring]   (default: all). Build first
-# (scripts/build.sh).
+#   (docs/studies.md, ~25 min on 2 cores),
+#   the 16-run design on variant II's preload, contact angle and unbalance (docs/studies.md, ~16 min),
+#   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~4 min).
+# Usage: bench/validation_studies.sh [identify] [optimize] [floating_ring] [ball] [ball_sfd]   (default: all).
+# Build first (scripts/build.sh).
 # Results in out/validation_studies/; an interrupted optimisation resumes from its cache when run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "validation_studies: build first (scripts/build.sh)" >&2; exit 1; }
 which=("$@")
-((${#which[@]})) || which=(identify optimize floating_ring)
+((${#which[@]})) || which=(identify optimize floating_ring ball ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
 for w in "${which[@]}"; do
@@ -43,6 +45,25 @@ for w in "${which[@]}"; do
       cp "$out/study_floating_ring/metric_subsync_frequency_vs_bearings.compressor.outer_clearance.png" \
         docs/images/study_floating_ring_subsync_frequency_vs_outer_clearance.png
       ;;
-    *) echo "validation_studies: unknown study '$w' (identify, optimize, floating_ring)" >&2; exit 2 ;;
+    ball)
+      rm -rf "$out/study_ball"
+      start=$(date +%s)
+      "$exe" sweep examples/study_reference_ball.toml -o "$out/study_ball" | tee "$out/ball.log"
+      echo "study_ball: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/ball.log"
+      cp "$out/study_ball/metric_resonance_force_compressor_vs_bearings.compressor.preload.png" \
+        docs/images/study_ball_resonance_force_vs_preload.png
+      cp "$out/study_ball/metric_resonance_speed_compressor_vs_bearings.compressor.preload.png" \
+        docs/images/study_ball_resonance_speed_vs_preload.png
+      cp "$out/study_ball/map_force_at_window_end.png" docs/images/study_ball_map_force_at_window_end.png
+      ;;
+    ball_sfd)
+      rm -rf "$out/study_ball_sfd"
+      start=$(date +%s)
+      "$exe" sweep examples/study_reference_ball_sfd.toml -o "$out/study_ball_sfd" | tee "$out/ball_sfd.log"
+      echo "study_ball_sfd: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/ball_sfd.log"
+      cp "$out/study_ball_sfd/map_force_1x_compressor.png" docs/images/study_ball_sfd_map_force_1x_compressor.png
+      cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
+      ;;
+    *) echo "validation_studies: unknown study '$w' (identify, optimize, floating_ring, ball, ball_sfd)" >&2; exit 2 ;;
   esac
 done

@@ -150,8 +150,10 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   std::vector<std::string> files;
   std::vector<std::string> metric_units;
   {
-    // Units of the metrics need the channel list: build the base model once.
-    const MachineSpec spec = load_model(study.model, study.fixed);
+    // Units of the metrics need the channel list: build the model of the first run once (the fixed overrides
+    // alone need not make a valid model, e.g. an end seal's length fixed while the design varies its gap).
+    const MachineSpec spec =
+        load_study_model(study, design.values.empty() ? study.fixed : run_overrides(study, design, 0));
     const auto model = make_runup_model(spec);
     for (const MetricSpec& m : study.metrics) metric_units.push_back(metric_unit(m, model->channels()));
   }

@@ -244,6 +244,33 @@ TEST(StudyFile, AlsoSetsFurtherPathsToTheParametersValue) {
   }
 }
 
+TEST(Sweep, FixedOverridesNeedNotMakeAModelWithoutTheParameters) {
+  // The fixed overrides add a disk whose position only the design gives (as an end seal's fixed length needs the
+  // varied gap): the runs and the results table are made with the parameters applied.
+  const std::string body = R"(
+[study]
+model = "reference_linear.toml"
+speed_window = ["0 rpm", "20000 rpm"]
+fixed = ["output.sample_rate=5 kHz", "disks.extra.mass=0.05 kg"]
+[design]
+kind = "full-factorial"
+[[parameters]]
+path = "disks.extra.z"
+levels = ["60 mm", "70 mm"]
+[[metrics]]
+kind = "max"
+probe = "disk.turbine.x"
+)";
+  const StudySpec s = load_study(write_study("fixed_needs_design", body));
+  SweepOptions o;
+  o.output_dir = temp_dir("fixed_needs_design_out");
+  const SweepResult r = run_sweep(s, o);
+  ASSERT_EQ(r.runs.size(), 2u);
+  for (const RunRecord& run : r.runs) EXPECT_EQ(run.status, "ok") << run.error;
+  EXPECT_NO_THROW(write_results(s, r.design, r.runs, o.output_dir, false));
+  EXPECT_TRUE(std::filesystem::exists(o.output_dir / "results.csv"));
+}
+
 TEST(StudyFile, AFaultInTheStudysOverridesNamesTheStudyFileAndTheOverride) {
   // Issue 20 (found by the input fuzzer): the message named the override only, not the study file that holds it.
   std::string body = one_parameter_study("kind = \"full-factorial\"",

@@ -595,7 +595,11 @@ std::vector<ProbeInfo> BallBearingElement::probes() const {
                                          "power of the inner-race friction on the shaft's lateral motion"},
                                         {"friction_loss_inner", "W", "friction loss at the inner-race contacts"},
                                         {"friction_loss_outer", "W", "friction loss at the outer-race contacts"},
-                                        {"friction_loss_pocket", "W", "friction loss at the cage pockets"}});
+                                        {"friction_loss_pocket", "W", "friction loss at the cage pockets"},
+                                        {"cage_x", "m", "cage centre, x"},
+                                        {"cage_y", "m", "cage centre, y"},
+                                        {"ball_set_offset", "m",
+                                         "distance of the balls' mass centre from the bearing axis (uneven spacing)"}});
 }
 
 void BallBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
@@ -619,6 +623,18 @@ void BallBearingElement::eval_probes(const SpinState& s, const double* q, const 
   out[9] = loads.friction_loss_inner;
   out[10] = loads.friction_loss_outer;
   out[11] = loads.friction_loss_pocket;
+  out[12] = z[cage_offset()];
+  out[13] = z[cage_offset() + 1];
+  // Mass centre of the ball set: zero for equally spaced balls on one radius; a ball set that bunches in its
+  // pockets is a rotating unbalance of Z m times this offset, turning with the balls.
+  double sx = 0.0, sy = 0.0;
+  for (int j = 0; j < spec_.n_balls; ++j) {
+    const double* b = z + ball_offset(j);
+    const double r = pitch_radius_ + b[1];
+    sx += r * std::cos(b[0]);
+    sy += r * std::sin(b[0]);
+  }
+  out[14] = std::hypot(sx, sy) / spec_.n_balls;
 }
 
 double BallBearingElement::core_kinetic_energy(const double* z) const {

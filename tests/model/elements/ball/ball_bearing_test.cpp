@@ -186,6 +186,17 @@ TEST(BallBearing, PowerFlowProbesSplitTheShaftPowerAndTheLosses) {
   EXPECT_EQ(probe("friction_loss_inner"), loads.friction_loss_inner);
   EXPECT_EQ(probe("friction_loss_outer"), loads.friction_loss_outer);
   EXPECT_EQ(probe("friction_loss_pocket"), loads.friction_loss_pocket);
+  // Ball set: ball 2 moved along its orbit by the angle d, all others equally spaced on the pitch radius R (their
+  // rho is the preload equilibrium's, the same for all): the mass centre lies |R (e(psi + d) - e(psi))| / Z =
+  // 2 R sin(d / 2) / Z off the axis. The cage probes are its centre's states.
+  const double R = 0.5 * spec.pitch_diameter + z[e.ball_offset(0) + 1];
+  const double d = 1.2 * spec.pocket_clearance / (0.5 * spec.pitch_diameter);
+  EXPECT_NEAR(probe("ball_set_offset"), 2.0 * R * std::sin(0.5 * d) / spec.n_balls, 1e-12);
+  z[e.cage_offset() + 0] = 3e-6;
+  z[e.cage_offset() + 1] = -2e-6;
+  e.eval_probes(s, q, v, z.data(), *ws, out.data());
+  EXPECT_EQ(probe("cage_x"), 3e-6);
+  EXPECT_EQ(probe("cage_y"), -2e-6);
 }
 
 TEST(BallBearing, PlanarTractionIgnoresSlipAcrossTheRollingDirection) {
