@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The long validation studies on the paper's variants, with the pictures their documents show:
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~15 min on 2 cores),
-#   damper optimisation of variant III (docs/optimization.md, ~30 min on 2 cores),
+#   damper optimisation of variant III to convergence (docs/optimization.md, ~14 min on 2 cores),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature
 #   (docs/studies.md, ~25 min on 2 cores),
 #   the 16-run design on variant II's preload, contact angle and unbalance (docs/studies.md, ~16 min),
