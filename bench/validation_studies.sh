@@ -6,7 +6,10 @@
 #   (docs/studies.md, ~25 min on 2 cores),
 #   the 16-run design on variant II's preload, contact angle and unbalance (docs/studies.md, ~16 min),
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~4 min).
-# Usage: bench/validation_studies.sh [identify] [optimize] [floating_ring] [ball] [ball_sfd]   (default: all).
+#   identification of variant I's clearances and oil temperature with model error, and its held-out check
+#   (docs/identification.md, ~15 min on 2 cores).
+# Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [floating_ring] [ball] [ball_sfd]
+#   (default: all).
 # Build first (scripts/build.sh).
 # Results in out/validation_studies/; an interrupted optimisation resumes from its cache when run again.
 set -euo pipefail
@@ -14,7 +17,7 @@ cd "$(dirname "$0")/.."
 exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "validation_studies: build first (scripts/build.sh)" >&2; exit 1; }
 which=("$@")
-((${#which[@]})) || which=(identify optimize floating_ring ball ball_sfd)
+((${#which[@]})) || which=(identify identify_floating_ring optimize floating_ring ball ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
 for w in "${which[@]}"; do
@@ -24,6 +27,18 @@ for w in "${which[@]}"; do
       "$exe" identify examples/identify_reference_ball.toml -o "$out/identify_reference_ball" | tee "$out/identify.log"
       cp "$out/identify_reference_ball/feature_order1x_x_turb_amplitude.png" \
         docs/images/identify_ball_feature_order1x_x_turb_amplitude.png
+      ;;
+    identify_floating_ring)
+      rm -rf "$out/identify_floating_ring" "$out/identify_floating_ring_heldout"
+      "$exe" identify examples/identify_reference_floating_ring.toml -o "$out/identify_floating_ring" \
+        | tee "$out/identify_floating_ring.log"
+      cp "$out/identify_floating_ring/feature_subsync_x_comp_frequency.png" \
+        docs/images/identify_floating_ring_subsync_x_comp_frequency.png
+      # The held-out file's start values are the fitted values documented in docs/identification.md.
+      "$exe" identify examples/identify_reference_floating_ring_heldout.toml -o "$out/identify_floating_ring_heldout" \
+        | tee "$out/identify_floating_ring_heldout.log"
+      cp "$out/identify_floating_ring_heldout/feature_order1x_x_turb_amplitude.png" \
+        docs/images/identify_floating_ring_heldout_order1x_x_turb_amplitude.png
       ;;
     optimize)
       "$exe" optimize examples/optimize_reference_ball_sfd.toml -o "$out/optimize_ball_sfd" | tee "$out/optimize.log"
@@ -64,6 +79,6 @@ for w in "${which[@]}"; do
       cp "$out/study_ball_sfd/map_force_1x_compressor.png" docs/images/study_ball_sfd_map_force_1x_compressor.png
       cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
       ;;
-    *) echo "validation_studies: unknown study '$w' (identify, optimize, floating_ring, ball, ball_sfd)" >&2; exit 2 ;;
+    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, floating_ring, ball, ball_sfd)" >&2; exit 2 ;;
   esac
 done
