@@ -20,6 +20,14 @@ which=("$@")
 ((${#which[@]})) || which=(identify identify_floating_ring optimize floating_ring ball ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
+# Runs examples/study_reference_NAME.toml afresh into $out/study_NAME and logs its wall time to $out/NAME.log.
+run_study() {
+  local name=$1 start
+  rm -rf "$out/study_$name"
+  start=$(date +%s)
+  "$exe" sweep "examples/study_reference_$name.toml" -o "$out/study_$name" | tee "$out/$name.log"
+  echo "study_$name: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/$name.log"
+}
 for w in "${which[@]}"; do
   case $w in
     identify)
@@ -49,10 +57,7 @@ for w in "${which[@]}"; do
         docs/images/optimize_ball_sfd_spectrogram_compressor_x.png
       ;;
     floating_ring)
-      rm -rf "$out/study_floating_ring"
-      start=$(date +%s)
-      "$exe" sweep examples/study_reference_floating_ring.toml -o "$out/study_floating_ring" | tee "$out/floating_ring.log"
-      echo "study_floating_ring: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/floating_ring.log"
+      run_study floating_ring
       for f in sensitivity_max_compressor_orbit.png map_max_compressor_orbit.png \
                map_max_compressor_bearing_force.png; do
         cp "$out/study_floating_ring/$f" "docs/images/study_floating_ring_$f"
@@ -61,10 +66,7 @@ for w in "${which[@]}"; do
         docs/images/study_floating_ring_subsync_frequency_vs_outer_clearance.png
       ;;
     ball)
-      rm -rf "$out/study_ball"
-      start=$(date +%s)
-      "$exe" sweep examples/study_reference_ball.toml -o "$out/study_ball" | tee "$out/ball.log"
-      echo "study_ball: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/ball.log"
+      run_study ball
       cp "$out/study_ball/metric_resonance_force_compressor_vs_bearings.compressor.preload.png" \
         docs/images/study_ball_resonance_force_vs_preload.png
       cp "$out/study_ball/metric_resonance_speed_compressor_vs_bearings.compressor.preload.png" \
@@ -72,10 +74,7 @@ for w in "${which[@]}"; do
       cp "$out/study_ball/map_force_at_window_end.png" docs/images/study_ball_map_force_at_window_end.png
       ;;
     ball_sfd)
-      rm -rf "$out/study_ball_sfd"
-      start=$(date +%s)
-      "$exe" sweep examples/study_reference_ball_sfd.toml -o "$out/study_ball_sfd" | tee "$out/ball_sfd.log"
-      echo "study_ball_sfd: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/ball_sfd.log"
+      run_study ball_sfd
       cp "$out/study_ball_sfd/map_force_1x_compressor.png" docs/images/study_ball_sfd_map_force_1x_compressor.png
       cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
       ;;

@@ -96,8 +96,9 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
     std::vector<std::pair<std::string, std::string>> paths;
     for (std::size_t p = 0; p < design.paths.size(); ++p) {
       paths.emplace_back("parameters[" + std::to_string(p) + "].path", design.paths[p]);
-      for (const std::string& also : study.parameter_also[p])
-        paths.emplace_back("parameters[" + std::to_string(p) + "].also", also);
+      if (p < study.parameter_also.size())
+        for (const std::string& also : study.parameter_also[p])
+          paths.emplace_back("parameters[" + std::to_string(p) + "].also", also);
     }
     check_varied_paths(study, overrides, paths);
     check_speed_window(study, spec.speed);
