@@ -18,12 +18,14 @@ bool in_window(const MetricSpec& m, double speed_hz) {
   return w >= m.speed_min && (m.speed_max <= 0.0 || w <= m.speed_max);
 }
 
-// Sub-synchronous content per STFT segment: band [max(5 Hz, 0.05 f_d), 0.9 f_d]; synchronous: +-2 bins at f_d.
+// Sub-synchronous content per STFT segment: band [max(5 Hz, order_min f_d), order_max f_d] (by default 0.05 and
+// 0.9); synchronous: +-2 bins at f_d.
 struct SubsyncTrack {
   std::vector<double> speed_hz, sync, sub, sub_frequency;
 };
 
-SubsyncTrack subsync_track(const std::vector<double>& signal, const std::vector<double>& speed, double fs) {
+SubsyncTrack subsync_track(const std::vector<double>& signal, const std::vector<double>& speed, double fs,
+                           double order_min, double order_max) {
   SubsyncTrack t;
   signal::StftOptions so;
   so.segment_length = std::min<std::size_t>(2048, signal.size());
@@ -36,7 +38,7 @@ SubsyncTrack subsync_track(const std::vector<double>& signal, const std::vector<
     for (std::size_t k = 0; k < sg.n_bins(); ++k) {
       const double f = sg.frequencies[k], a = sg.at(s, k);
       if (std::abs(f - fd[s]) <= 2.0 * df) sync = std::max(sync, a);
-      if (f >= std::max(5.0, 0.05 * fd[s]) && f <= 0.9 * fd[s] && a > sub) {
+      if (f >= std::max(5.0, order_min * fd[s]) && f <= order_max * fd[s] && a > sub) {
         sub = a;
         fsub = f;
       }
@@ -182,7 +184,7 @@ double evaluate_metric(const MetricSpec& m, const RunupResult& r, const nlohmann
     return m.kind == "peak_1x" ? best : at;
   }
   // Sub-synchronous metrics.
-  const SubsyncTrack t = subsync_track(x, speed, fs);
+  const SubsyncTrack t = subsync_track(x, speed, fs, m.order_min, m.order_max);
   double best = kNaN, ratio = kNaN, freq = kNaN, onset = kNaN, jump = kNaN, largest_jump = 0.0;
   std::size_t previous = t.speed_hz.size();  // last segment in the window whose line exceeds the threshold
   for (std::size_t s = 0; s < t.speed_hz.size(); ++s) {

@@ -34,6 +34,10 @@ struct MetricSpec {
                       ///< for kind = summary a dotted path into summary-like values ("stats.steps")
   double speed_min = 0.0, speed_max = 0.0;  ///< rad/s window; speed_max = 0 means no upper limit
   double threshold = 0.0;                   ///< subsync_onset/jump_speed: amplitude in the probe's SI unit
+  /// subsync_* metrics: the band searched for the sub-synchronous line, as fractions of the rotor speed f_d
+  /// (order_band = [low, high]; never below 5 Hz). Narrowing it picks one whirl, e.g. a floating ring's outer-film
+  /// whirl near half the ring speed ([0.05, 0.3]) apart from the inner-film whirl near 0.5-0.6 f_d.
+  double order_min = 0.05, order_max = 0.9;
 };
 
 /// What every kind of study ([study], [optimize], [identify]) says about its runs: the keys name, model (relative to

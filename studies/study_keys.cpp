@@ -61,6 +61,15 @@ void read_metric_window(Reader& r, MetricSpec& m, const std::string& example) {
       }
     }
   }
+  if (r.has("order_band")) {
+    if (m.kind.rfind("subsync_", 0) != 0)
+      r.fail("order_band", "applies to the subsync_* metrics only, not to kind = \"" + m.kind + "\"");
+    const std::vector<double> band = r.quantity_list("order_band", dim::dimensionless, Bound::Positive);
+    if (band.size() != 2 || !(band[0] < band[1]) || !(band[1] < 1.0))
+      r.fail("order_band", "expected [low, high] as fractions of the rotor speed with 0 < low < high < 1");
+    m.order_min = band[0];
+    m.order_max = band[1];
+  }
   if ((m.kind == "subsync_onset_speed" || m.kind == "subsync_jump_speed") && !(m.threshold > 0.0))
     r.fail("threshold", m.kind + " needs a positive threshold (amplitude in the probe's unit)");
 }

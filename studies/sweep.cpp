@@ -32,7 +32,20 @@ constexpr const char* kOtherStudy =
 // Identifies the study a runs.jsonl belongs to: same parameters, design and metrics.
 nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
   nlohmann::json metrics = nlohmann::json::array();
-  for (const MetricSpec& m : s.metrics) metrics.push_back(m.name + ":" + m.kind + ":" + m.probe);
+  // A metric's window, threshold and band are part of it (only where set, so that a log of a study without them
+  // still resumes).
+  const MetricSpec plain;
+  for (const MetricSpec& m : s.metrics) {
+    std::ostringstream id;
+    id.precision(17);
+    id << m.name << ":" << m.kind << ":" << m.probe;
+    if (m.speed_min != plain.speed_min || m.speed_max != plain.speed_max)
+      id << ":window=" << m.speed_min << "," << m.speed_max;
+    if (m.threshold != plain.threshold) id << ":threshold=" << m.threshold;
+    if (m.order_min != plain.order_min || m.order_max != plain.order_max)
+      id << ":order_band=" << m.order_min << "," << m.order_max;
+    metrics.push_back(id.str());
+  }
   return {{"study", s.name}, {"model", s.model.filename().string()}, {"paths", d.paths},
           {"units", s.parameter_units}, {"also", s.parameter_also}, {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
 }

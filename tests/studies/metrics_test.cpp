@@ -69,5 +69,42 @@ TEST(Metrics, JumpSpeedNeedsALineAboveTheThreshold) {
   EXPECT_NEAR(evaluate_metric(metric("subsync_jump_speed", 0.1e-6), r, {}, 20000.0), 30000.0, 3000.0);
 }
 
+// Two whirls at once, as in a floating-ring bearing: an inner-film whirl at 0.55 f_d from the start (2 um) and an
+// outer-film whirl at 0.15 f_d from f_d = 600 Hz (36,000 rpm) on (1.5 um), on the ramp 100 -> 900 Hz in 2 s.
+RunupResult two_whirls() {
+  RunupResult r = jumping_whirl(0.0);
+  double inner = 0.0, outer = 0.0;
+  for (std::size_t i = 0; i < r.time.size(); ++i) {
+    const double fd = r.columns[0][i];
+    inner += 2.0 * kPi * 0.55 * fd / 20000.0;
+    outer += 2.0 * kPi * 0.15 * fd / 20000.0;
+    r.columns[2][i] += 2e-6 * std::cos(inner) + (fd >= 600.0 ? 1.5e-6 * std::cos(outer) : 0.0);
+  }
+  return r;
+}
+
+TEST(Metrics, AnOrderBandPicksOneOfTwoWhirls) {
+  const RunupResult r = two_whirls();
+  MetricSpec onset = metric("subsync_onset_speed", 0.5e-6);
+  EXPECT_LT(evaluate_metric(onset, r, {}, 20000.0), 9000.0);  // the default band sees the inner whirl at once
+  onset.order_min = 0.05;
+  onset.order_max = 0.3;
+  // One STFT segment spans 2,400 rpm; the segment that first holds enough of the new line is within one of 36,000.
+  EXPECT_NEAR(evaluate_metric(onset, r, {}, 20000.0), 36000.0, 2500.0);
+  MetricSpec frequency = metric("subsync_frequency", 0.0);
+  frequency.order_min = 0.05;
+  frequency.order_max = 0.3;
+  frequency.speed_min = 2.0 * kPi * 800.0;  // near 800 Hz rotor speed: 0.15 f_d = 120 Hz
+  frequency.speed_max = 2.0 * kPi * 810.0;
+  EXPECT_NEAR(evaluate_metric(frequency, r, {}, 20000.0), 120.0, 6.0);
+  MetricSpec top = metric("subsync_max", 0.0);
+  top.order_min = 0.05;
+  top.order_max = 0.3;
+  EXPECT_NEAR(evaluate_metric(top, r, {}, 20000.0), 1.5e-6, 0.3e-6);
+  top.order_min = 0.4;  // the inner whirl alone
+  top.order_max = 0.7;
+  EXPECT_NEAR(evaluate_metric(top, r, {}, 20000.0), 2e-6, 0.4e-6);
+}
+
 }  // namespace
 }  // namespace turbodyn::studies

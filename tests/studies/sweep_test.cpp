@@ -185,6 +185,11 @@ TEST(Sweep, AnotherStudysDirectoryIsRefused) {
   o.shard_n = 4;  // one run only
   run_sweep(s1, o);
   EXPECT_THROW(run_sweep(s2, o), ModelError);
+  // A metric read over another speed window is another study too: its finished runs hold other numbers.
+  std::string windowed = std::string(kCheap) + kSmallLhs;
+  windowed.replace(windowed.find("probe = "), 0, "speed_window = [\"0 rpm\", \"20000 rpm\"]\n");
+  const StudySpec s3 = load_study(write_study("third", windowed));
+  EXPECT_THROW(run_sweep(s3, o), ModelError);
 }
 
 TEST(StudyFile, ClearErrors) {
@@ -213,6 +218,16 @@ runs = 4
   EXPECT_THAT(sweep_error("probe", one_parameter_study("kind = \"full-factorial\"",
                                                        unbalance + "levels = [\"1 mg*mm\"]", "disk.turbine.z")),
               HasSubstr("did you mean 'disk.turbine.x'"));
+  // order_band: sub-synchronous metrics only, as fractions of the rotor speed below 1.
+  const std::string levels = unbalance + "levels = [\"1 mg*mm\"]";
+  const std::string factorial = "kind = \"full-factorial\"";
+  EXPECT_THAT(error_of(one_parameter_study(factorial, levels, "disk.turbine.x") + "order_band = [0.05, 0.3]\n"),
+              HasSubstr("order_band: applies to the subsync_* metrics only"));
+  std::string subsync = one_parameter_study(factorial, levels, "disk.turbine.x");
+  subsync.replace(subsync.find("kind = \"max\""), 12, "kind = \"subsync_max\"");
+  EXPECT_THAT(error_of(subsync + "order_band = [0.3, 1.2]\n"), HasSubstr("0 < low < high < 1"));
+  EXPECT_THAT(error_of(subsync + "order_band = [0.3]\n"), HasSubstr("0 < low < high < 1"));
+  EXPECT_EQ(error_of(subsync + "order_band = [0.05, 0.3]\n"), "");
 }
 
 TEST(StudyFile, AlsoSetsFurtherPathsToTheParametersValue) {
