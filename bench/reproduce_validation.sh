@@ -7,7 +7,8 @@
 # Usage: bench/reproduce_validation.sh [N] [VARIANT ...]     (after scripts/build.sh)
 #   N        runs per variant (default 1; 3 for the medians quoted in bench/README.md). The pictures of the last
 #            run are copied into docs/images/ under the names docs/validation.md uses.
-#   VARIANT  any of floating_ring ball ball_sfd linear oil_whirl (default: all five)
+#   VARIANT  any of floating_ring ball ball_sfd linear oil_whirl (default: all five), or floating_ring_thermal:
+#            variant I with thermal films in both bearings (docs/thermal-films.md)
 # Output: out/validation/<variant>/ (time series, summary.json, all pictures), out/validation/<variant>.timing
 # (one line per variant: median and single integration wall times, CPU times, steps, calls), and a table of all
 # variants timed so far on stdout and in out/validation/timings.txt. Expect 5-10 minutes per run of a paper
@@ -32,12 +33,20 @@ model_of() {
   case $1 in
     linear) echo examples/reference_linear.toml ;;
     oil_whirl) echo examples/rigid_rotor_oil_whirl.toml ;;
+    floating_ring_thermal) echo examples/reference_floating_ring.toml ;;
     *) echo "examples/reference_$1.toml" ;;
+  esac
+}
+
+sets_of() {  # the overrides that make a variant out of its model file
+  case $1 in
+    floating_ring_thermal) echo "--set bearings.compressor.thermal=bulk --set bearings.turbine.thermal=bulk" ;;
   esac
 }
 
 for v in "${variants[@]}"; do
   model=$(model_of "$v")
+  read -r -a sets <<< "$(sets_of "$v")"
   [[ -f $model ]] || { echo "reproduce_validation: no $model" >&2; exit 2; }
   dir=out/validation/$v
   walls=() cpus=()
@@ -48,7 +57,7 @@ for v in "${variants[@]}"; do
     ((i == n)) && plots=()
     status=0
     TIMEFORMAT=%U
-    { time "$exe" run "$model" "${plots[@]}" -o "$dir" > "out/validation/$v.log" 2>&1 || status=$?; } 2> "$dir.cpu"
+    { time "$exe" run "$model" "${sets[@]}" "${plots[@]}" -o "$dir" > "out/validation/$v.log" 2>&1 || status=$?; } 2> "$dir.cpu"
     ((status == 0)) || echo "reproduce_validation: $v run $i ended with exit code $status (see out/validation/$v.log)" >&2
     walls+=("$(summary_field "$dir/summary.json" "s['stats']['wall_time_s']")")
     cpus+=("$(cat "$dir.cpu")")
@@ -89,7 +98,7 @@ done
 {
   printf "%-15s %10s %24s %24s %10s %10s %12s %9s\n" variant "wall [s]" "runs, wall [s]" "runs, CPU [s]" steps \
     "rhs calls" "elem calls" complete
-  for v in floating_ring ball ball_sfd linear oil_whirl; do
+  for v in floating_ring floating_ring_thermal ball ball_sfd linear oil_whirl; do
     [[ -f out/validation/$v.timing ]] && cat "out/validation/$v.timing"
   done
 } | tee out/validation/timings.txt

@@ -112,6 +112,33 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
   return hm;
 }
 
+std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
+                                                   std::size_t block, double scale, double offset) {
+  const int speed_col = column_of(r, ProbeChannel::Kind::Speed);
+  if (speed_col < 0 || block == 0 || r.time.size() < 2 * block) return std::nullopt;
+  const std::vector<double>& speed_hz = r.columns[speed_col];
+  plot::LineChart chart;
+  chart.xlabel = "rotor speed f_d [Hz]";
+  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+    const std::string& name = r.channels[c].name;
+    const bool match = std::any_of(suffixes.begin(), suffixes.end(), [&](const std::string& s) {
+      return name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+    });
+    if (!match) continue;
+    plot::Series s;
+    s.label = name;
+    for (std::size_t i0 = 0; i0 + block <= r.time.size(); i0 += block) {
+      double w = 0.0, v = 0.0;
+      for (std::size_t i = i0; i < i0 + block; ++i) w += speed_hz[i], v += r.columns[c][i];
+      s.x.push_back(w / static_cast<double>(block));
+      s.y.push_back(v / static_cast<double>(block) * scale + offset);
+    }
+    chart.series.push_back(std::move(s));
+  }
+  if (chart.series.empty()) return std::nullopt;
+  return chart;
+}
+
 void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
                        std::vector<std::string>& written, std::vector<std::string>& warnings,
                        nlohmann::json& spectral, const std::vector<plot::Series>& campbell) {
@@ -233,6 +260,30 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     const std::string file = "orbits_" + stem + ".png";
     plot::render_png(chart, dir / file, plot::Size{900, 800});
     written.push_back(file);
+  }
+
+  // Floating rings' operating point against speed, as turbocharger rigs report it: block means over 10 ms.
+  if (!ascending) return;
+  const std::size_t block = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.01 * fs)));
+  struct Slow {
+    std::vector<std::string> suffixes;
+    double scale, offset;
+    const char *title, *ylabel, *file;
+  };
+  const Slow slow[] = {
+      {{".ring_speed_ratio"}, 1.0, 0.0, "Ring speed ratio against rotor speed (10-ms means)",
+       "ring speed / rotor speed [1]", "ring_speed_ratio.png"},
+      {{".inner_temperature", ".outer_temperature"}, 1.0, -273.15, "Film temperatures against rotor speed",
+       "film temperature [°C]", "film_temperatures.png"},
+      {{".inner_power_loss", ".outer_power_loss"}, 1.0, 0.0, "Film power losses against rotor speed (10-ms means)",
+       "power loss [W]", "film_power_loss.png"}};
+  for (const Slow& q : slow) {
+    std::optional<plot::LineChart> chart = against_speed_chart(r, q.suffixes, block, q.scale, q.offset);
+    if (!chart) continue;
+    chart->title = q.title;
+    chart->ylabel = q.ylabel;
+    plot::render_png(*chart, dir / q.file);
+    written.push_back(q.file);
   }
 }
 

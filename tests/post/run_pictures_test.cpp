@@ -130,5 +130,58 @@ TEST(RunPictures, DrawsSpectrogramsOrderTracksAndOrbits) {
               2 * 2000.0 / 256);
 }
 
+// The synthetic run-up with two floating rings' slow channels: ring speed ratios 0.30 and 0.25 with a whirl ripple
+// of +-0.05 at 37 Hz, and an inner-film temperature rising from 363.15 K (90 degC) by 10 K per 100 Hz of speed.
+RunupResult with_floating_rings() {
+  RunupResult r = synthetic_runup();
+  r.channels.push_back({"bearing.c.ring_speed_ratio", "1", "", ProbeChannel::Kind::Element, 0, 0});
+  r.channels.push_back({"bearing.t.ring_speed_ratio", "1", "", ProbeChannel::Kind::Element, 0, 0});
+  r.channels.push_back({"bearing.c.inner_temperature", "K", "", ProbeChannel::Kind::Element, 0, 0});
+  r.columns.resize(r.channels.size());
+  for (std::size_t i = 0; i < r.time.size(); ++i) {
+    const double ripple = 0.05 * std::sin(2.0 * M_PI * 37.0 * r.time[i]);
+    r.columns[4].push_back(0.30 + ripple);
+    r.columns[5].push_back(0.25 + ripple);
+    r.columns[6].push_back(363.15 + 0.1 * r.columns[0][i]);
+  }
+  return r;
+}
+
+TEST(RunPictures, SlowChannelsAgainstSpeedAreBlockMeans) {
+  const RunupResult r = with_floating_rings();
+  // Blocks of 1000 samples (0.5 s, 18.5 ripple periods): the ripple averages out to within 0.05 / 18.5 / pi.
+  const std::optional<plot::LineChart> ratio = against_speed_chart(r, {".ring_speed_ratio"}, 1000);
+  ASSERT_TRUE(ratio);
+  ASSERT_EQ(ratio->series.size(), 2u);
+  EXPECT_EQ(ratio->series[0].label, "bearing.c.ring_speed_ratio");
+  EXPECT_EQ(ratio->xlabel, "rotor speed f_d [Hz]");
+  ASSERT_EQ(ratio->series[0].x.size(), 4u);  // 4001 samples: 4 whole blocks
+  for (std::size_t b = 0; b < 4; ++b) {
+    EXPECT_NEAR(ratio->series[0].x[b], 25.0 * b + 12.4875, 1e-9);  // mean speed of samples 1000 b .. 1000 b + 999
+    EXPECT_NEAR(ratio->series[0].y[b], 0.30, 1e-3);
+    EXPECT_NEAR(ratio->series[1].y[b], 0.25, 1e-3);
+  }
+  const std::optional<plot::LineChart> temperature =
+      against_speed_chart(r, {".inner_temperature", ".outer_temperature"}, 1000, 1.0, -273.15);
+  ASSERT_TRUE(temperature);
+  ASSERT_EQ(temperature->series.size(), 1u);
+  EXPECT_NEAR(temperature->series[0].y[3], 90.0 + 0.1 * 87.4875, 1e-9);  // degC, linear in speed
+  EXPECT_FALSE(against_speed_chart(r, {".outer_power_loss"}, 1000));    // no such channel
+  EXPECT_FALSE(against_speed_chart(r, {".ring_speed_ratio"}, 3000));    // fewer than two blocks
+}
+
+TEST(RunPictures, FloatingRingsGetTheirOperatingPointAgainstSpeed) {
+  if (!plot::gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const fs::path dir = turbodyn::testing::fresh_temp_dir("run_pictures_rings");
+  MachineSpec spec;
+  spec.output = output();
+  std::vector<std::string> written, warnings;
+  nlohmann::json spectral = nlohmann::json::object();
+  draw_run_pictures(spec, with_floating_rings(), dir, written, warnings, spectral);
+  EXPECT_THAT(written, ::testing::IsSupersetOf({"ring_speed_ratio.png", "film_temperatures.png"}));
+  EXPECT_THAT(written, ::testing::Not(::testing::Contains("film_power_loss.png")));
+  EXPECT_GT(fs::file_size(dir / "ring_speed_ratio.png"), 1000u);
+}
+
 }  // namespace
 }  // namespace turbodyn::post
