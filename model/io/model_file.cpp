@@ -202,12 +202,15 @@ void read_damper(Reader& r, const OilSpec& oil, DamperSpec& d, bool needs_ring_m
   r.finish();
 }
 
-// The thermal keys of a floating-ring bearing (docs/thermal-films.md): thermal = "isothermal" (default: the films at
-// fixed temperatures) or "bulk" (lumped energy balances of both films). The parameters' defaults are derived from the
-// geometry (derive_ring_thermal); they are refused with isothermal films, where nothing would use them.
+// The thermal keys of a floating-ring bearing (docs/thermal-films.md): thermal = "bulk" (lumped energy balances of
+// both films) or "isothermal" (the films at fixed temperatures, the run-up paper's model). Without the key the films
+// are bulk, unless the file fixes their viscosity (a fixed [oil] viscosity) or temperatures (inner_oil_temperature,
+// outer_oil_temperature): then they are isothermal. The parameters' defaults are derived from the geometry
+// (derive_ring_thermal); they are refused with isothermal films, where nothing would use them.
 void read_ring_thermal(Reader& r, const OilSpec& oil, FloatingRingSpec& f) {
   RingThermalSpec& t = f.thermal;
-  t.model = read_choice<FilmThermal>(r, "thermal", {"isothermal", "bulk"}, "isothermal");
+  const bool fixed_films = oil.viscosity > 0.0 || r.has("inner_oil_temperature") || r.has("outer_oil_temperature");
+  t.model = read_choice<FilmThermal>(r, "thermal", {"isothermal", "bulk"}, fixed_films ? "isothermal" : "bulk");
   const bool bulk = t.model == FilmThermal::Bulk;
   static const char* const kThermalKeys[] = {"oil_specific_heat", "oil_thermal_conductivity",
                                              "ring_thermal_conductivity", "ring_specific_heat", "shaft_temperature",

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/support/temp_dir.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -123,7 +125,7 @@ TEST(ModelFile, FloatingRingDrillHolesAndMassConservingFilms) {
 }
 
 TEST(ModelFile, FloatingRingThermalFilmsAndTheirErrors) {
-  // Isothermal by default; "bulk" derives its conductances from the geometry and refuses what it cannot use.
+  // The example's isothermal films; "bulk" derives its conductances from the geometry and refuses what it cannot use.
   const std::filesystem::path f = example("reference_floating_ring.toml");
   const MachineSpec iso = load_model(f);
   EXPECT_EQ(iso.bearings[0].ring.thermal.model, FilmThermal::Isothermal);
@@ -153,6 +155,28 @@ TEST(ModelFile, FloatingRingThermalFilmsAndTheirErrors) {
               HasSubstr("bearings.compressor.oil_specific_heat"));
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.thermal=adiabatic")}),
               AllOf(HasSubstr("bearings.compressor.thermal"), HasSubstr("'isothermal', 'bulk'")));
+}
+
+// Without the key the films are bulk, unless the file fixes their viscosity or temperatures (docs/thermal-films.md).
+TEST(ModelFile, FloatingRingFilmsAreThermalUnlessTheFileFixesThem) {
+  std::ifstream in(example("reference_floating_ring.toml"));
+  std::string text, line;
+  while (std::getline(in, line))
+    if (line.rfind("thermal = ", 0) != 0 && line.rfind("                                   #", 0) != 0)
+      text += line + "\n";
+  const std::filesystem::path f = turbodyn::testing::fresh_temp_dir("thermal_default") / "no_thermal_key.toml";
+  std::ofstream(f) << text;
+  EXPECT_EQ(load_model(f).bearings[0].ring.thermal.model, FilmThermal::Bulk);
+  EXPECT_EQ(load_model(f).bearings[1].ring.thermal.model, FilmThermal::Bulk);
+  const MachineSpec fixed_viscosity = load_model(f, {parse_override("oil.viscosity=10 mPa*s")});
+  EXPECT_EQ(fixed_viscosity.bearings[0].ring.thermal.model, FilmThermal::Isothermal);
+  const MachineSpec fixed_temperature =
+      load_model(f, {parse_override("bearings.compressor.inner_oil_temperature=100 degC")});
+  EXPECT_EQ(fixed_temperature.bearings[0].ring.thermal.model, FilmThermal::Isothermal);
+  EXPECT_EQ(fixed_temperature.bearings[1].ring.thermal.model, FilmThermal::Bulk);
+  // The example says "isothermal", the paper's model.
+  EXPECT_EQ(load_model(example("reference_floating_ring.toml")).bearings[1].ring.thermal.model,
+            FilmThermal::Isothermal);
 }
 
 TEST(ModelFile, MissingFile) {
