@@ -34,6 +34,8 @@ inline constexpr const char* kInitial = "#8c8c8c";
 inline constexpr const char* kComplete = "#1f77b4";
 inline constexpr const char* kIncomplete = "#ff7f0e";
 inline constexpr const char* kFailed = "#d62728";
+/// A run that ran but whose metric is undefined (nothing above a threshold, an empty window): grey, not red.
+inline constexpr const char* kNoValue = "#7f7f7f";
 inline constexpr const char* kFeasible = "#2ca02c";
 inline constexpr const char* kInfeasible = "#d62728";
 inline constexpr const char* kBestSoFar = "black";

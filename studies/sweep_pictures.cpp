@@ -87,11 +87,14 @@ bool draw_metric_scatter(const StudySpec& study, const Design& design, const std
                     plot::style::kIncomplete, 2.4};
   plot::Series failed{"failed run (no value; drawn at the lower edge)", {}, {}, plot::Series::Style::Crosses,
                       plot::style::kFailed, 2.4};
+  plot::Series undefined{"run without a value of this metric (e.g. nothing above its threshold; drawn at the lower "
+                         "edge)",
+                         {}, {}, plot::Series::Style::Crosses, plot::style::kNoValue, 2.4};
   double ymin = std::numeric_limits<double>::infinity();
   for (const RunRecord& r : runs) {
     const double v = r.metrics[metric] * d.factor;
     if (!std::isfinite(v)) {
-      failed.x.push_back(r.parameters[parameter]);
+      (r.status == "failed" ? failed : undefined).x.push_back(r.parameters[parameter]);
       continue;
     }
     ymin = std::min(ymin, v);
@@ -101,7 +104,8 @@ bool draw_metric_scatter(const StudySpec& study, const Design& design, const std
   }
   if (!std::isfinite(ymin)) return false;
   failed.y.assign(failed.x.size(), ymin);
-  for (plot::Series* s : {&ok, &part, &failed})
+  undefined.y.assign(undefined.x.size(), ymin);
+  for (plot::Series* s : {&ok, &part, &failed, &undefined})
     if (!s->x.empty()) chart.series.push_back(*s);
   plot::render_png(chart, png);
   return true;
@@ -129,9 +133,11 @@ bool draw_metric_map(const StudySpec& study, const Design& design, const std::ve
   plot::Series ok{"complete run", {}, {}, plot::Series::Style::Points, plot::style::kRunOnMap, 2.2};
   plot::Series part{"incomplete run", {}, {}, plot::Series::Style::Triangles, plot::style::kIncomplete, 2.0};
   plot::Series failed{"failed run", {}, {}, plot::Series::Style::Crosses, plot::style::kFailed, 2.4};
+  plot::Series undefined{"run without a value of this metric", {}, {}, plot::Series::Style::Crosses,
+                         plot::style::kNoValue, 2.4};
   for (const RunRecord& r : runs) {
     const double v = r.metrics[metric] * d.factor;
-    plot::Series& s = !std::isfinite(v) ? failed : r.status == "ok" ? ok : part;
+    plot::Series& s = !std::isfinite(v) ? (r.status == "failed" ? failed : undefined) : r.status == "ok" ? ok : part;
     s.x.push_back(r.parameters[0]);
     s.y.push_back(r.parameters[1]);
     if (!std::isfinite(v)) continue;
@@ -228,7 +234,7 @@ bool draw_metric_map(const StudySpec& study, const Design& design, const std::ve
     }
   // White dots with a black rim: seen on the dark and the light colours of the map and on the blank margin.
   if (!ok.x.empty()) hm.overlays.push_back({"", ok.x, ok.y, plot::Series::Style::Points, "black", 2.9});
-  for (plot::Series* s : {&ok, &part, &failed})
+  for (plot::Series* s : {&ok, &part, &failed, &undefined})
     if (!s->x.empty()) hm.overlays.push_back(*s);
   plot::render_png(hm, png);
   return true;

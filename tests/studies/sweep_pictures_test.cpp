@@ -51,6 +51,7 @@ TEST(SweepPictures, TornadoScatterAndMapOfATwoParameterStudy) {
   runs[4].status = "incomplete";
   runs[8].status = "failed";
   runs[8].metrics = {NAN};
+  runs[2].metrics = {NAN};  // ran, but the metric has no value (grey, not a failed run)
   Sensitivity s;
   s.src = {-0.9, 0.2};
   s.r_squared = 0.95;
