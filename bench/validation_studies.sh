@@ -2,9 +2,9 @@
 # The long validation studies on the paper's variants, with the pictures their documents show:
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~15 min on 2 cores),
 #   damper optimisation of variant III to convergence (docs/optimization.md, ~14 min on 2 cores),
-#   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature
-#   (docs/studies.md, ~25 min on 2 cores),
-#   the 16-run design on variant II's preload, contact angle and unbalance (docs/studies.md, ~16 min),
+#   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
+#   the outer-film whirl (docs/studies.md, ~25 min on 2 cores),
+#   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, ~2 h on 2 cores),
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~4 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~15 min on 2 cores).
@@ -64,6 +64,9 @@ for w in "${which[@]}"; do
       done
       cp "$out/study_floating_ring/metric_subsync_frequency_vs_bearings.compressor.outer_clearance.png" \
         docs/images/study_floating_ring_subsync_frequency_vs_outer_clearance.png
+      cp "$out/study_floating_ring/map_outer_whirl_amplitude.png" docs/images/study_floating_ring_map_outer_whirl_amplitude.png
+      cp "$out/study_floating_ring/metric_outer_whirl_onset_vs_bearings.compressor.outer_clearance.png" \
+        docs/images/study_floating_ring_outer_whirl_onset_vs_outer_clearance.png
       ;;
     ball)
       run_study ball
@@ -72,6 +75,7 @@ for w in "${which[@]}"; do
       cp "$out/study_ball/metric_resonance_speed_compressor_vs_bearings.compressor.preload.png" \
         docs/images/study_ball_resonance_speed_vs_preload.png
       cp "$out/study_ball/map_force_at_window_end.png" docs/images/study_ball_map_force_at_window_end.png
+      cp "$out/study_ball/map_force_at_top_speed_compressor.png" docs/images/study_ball_map_force_at_top_speed.png
       ;;
     ball_sfd)
       run_study ball_sfd
