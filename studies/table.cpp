@@ -1,5 +1,7 @@
 #include "studies/table.h"
 
+#include "model/io/output_file.h"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -46,7 +48,9 @@ std::vector<double> from_json_numbers(const nlohmann::json& a) {
   return v;
 }
 
-CsvWriter::CsvWriter(const std::filesystem::path& file) : out_(file) {
+CsvWriter::CsvWriter(const std::filesystem::path& file) {
+  remove_symlink(file);  // a link at the path is replaced, not written through
+  out_.open(file);
   if (!out_) throw ModelError(file.string() + ": cannot write");
 }
 

@@ -53,6 +53,11 @@ void OutputFile::commit() {
   committed_ = true;
 }
 
+void remove_symlink(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(file, ec))) std::filesystem::remove(file, ec);
+}
+
 void write_output_file(const std::filesystem::path& file, const std::string& text) {
   OutputFile out(file);
   out.stream() << text;

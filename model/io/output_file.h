@@ -34,4 +34,9 @@ class OutputFile {
 /// OutputFile in one call: the whole text, checked and renamed into place.
 void write_output_file(const std::filesystem::path& file, const std::string& text);
 
+/// For a file written as a run goes (the time series, a study's tables: streamed, so that a killed run keeps what
+/// it wrote, hence not renamed into place): a symbolic link at `file` is removed before the file is created, so the
+/// file takes the link's place and the link's target stays as it is. Anything else at `file` is left alone.
+void remove_symlink(const std::filesystem::path& file);
+
 }  // namespace turbodyn

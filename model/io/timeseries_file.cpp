@@ -9,6 +9,7 @@
 //   on-disk file equal to the state of the last flush until the next one, whenever the process dies. (The files
 //   are 8 bytes per value: 80,000 rows x 40 channels is 26 MB.)
 #include "model/io/timeseries_file.h"
+#include "model/io/output_file.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -276,6 +277,7 @@ void Hdf5TimeSeriesWriter::Impl::create() {
   cache.decr_mode = H5C_decr__off;
   check(H5Pset_mdc_config(fapl.get(), &cache), context, "H5Pset_mdc_config failed");
 
+  remove_symlink(path);  // a link at the path is replaced, not written through
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
   if (id < 0) {
     const std::string reason = missing_directory_reason(path);
@@ -484,6 +486,7 @@ void write_csv(const std::filesystem::path& file, const std::vector<Channel>& ch
       throw TimeSeriesError(context + ": column " + std::to_string(c) + " ('" + channels[c].name + "') has " +
                             std::to_string(columns[c].size()) + " rows, time has " + std::to_string(time.size()));
 
+  remove_symlink(file);
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   if (!out) {
     const int error = errno;

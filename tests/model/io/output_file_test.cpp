@@ -43,6 +43,19 @@ TEST(OutputFile, WritesAndReplacesASymlinkInsteadOfFollowingIt) {
   fs::remove_all(dir);
 }
 
+TEST(OutputFile, StreamedFilesReplaceASymlinkInsteadOfWritingThroughIt) {
+  const fs::path dir = fresh_dir("remove_symlink");
+  { std::ofstream(dir / "precious.txt") << "keep me"; }
+  fs::create_symlink(dir / "precious.txt", dir / "timeseries.csv");
+  remove_symlink(dir / "timeseries.csv");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "timeseries.csv")));
+  EXPECT_EQ(read(dir / "precious.txt"), "keep me");
+  remove_symlink(dir / "precious.txt");  // a regular file is left alone, a missing one is no error
+  remove_symlink(dir / "missing.txt");
+  EXPECT_EQ(read(dir / "precious.txt"), "keep me");
+  fs::remove_all(dir);
+}
+
 TEST(OutputFile, AFailedWriteIsAnErrorNamingTheFileAndLeavesTheOldOne) {
   const fs::path dir = fresh_dir("fail");
   // A directory in the way of the result file.

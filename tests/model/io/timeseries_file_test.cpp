@@ -118,6 +118,26 @@ std::string error_of(const std::function<void()>& f) {
   return "";
 }
 
+// The time series is streamed, not renamed into place: a symbolic link at its path is replaced, its target kept.
+TEST_F(TimeSeriesFile, ALinkAtThePathIsReplacedNotWrittenThrough) {
+  { std::ofstream(path("precious.txt")) << "keep me"; }
+  std::filesystem::create_symlink(path("precious.txt"), path("run.h5"));
+  std::filesystem::create_symlink(path("precious.txt"), path("run.csv"));
+  {
+    Hdf5TimeSeriesWriter writer(path("run.h5"), three_channels(), 8);
+    append_samples(writer, 0, 20);
+    writer.finish(true);
+  }
+  write_csv(path("run.csv"), {{"x", "m", ""}}, {0.0, 1.0}, {{1.0, 2.0}});
+  EXPECT_FALSE(std::filesystem::is_symlink(path("run.h5")));
+  EXPECT_FALSE(std::filesystem::is_symlink(path("run.csv")));
+  EXPECT_EQ(read_hdf5_timeseries(path("run.h5")).time.size(), 20u);
+  std::ifstream in(path("precious.txt"));
+  std::string text;
+  std::getline(in, text);
+  EXPECT_EQ(text, "keep me");
+}
+
 TEST_F(TimeSeriesFile, RoundTripIsBitwiseExact) {
   constexpr std::size_t kRows = 10000;  // not a multiple of the buffer (512) nor of the chunk (4096)
   const std::filesystem::path file = path("run.h5");
