@@ -26,12 +26,13 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     vars.push_back(paths + " [" + v.unit + "]");
   }
   for (const OperatingCase& c : s.cases) cases.push_back(overrides_json(c.overrides));
+  const studies::MetricSpec plain;
   for (const Metric& m : s.metrics) {
     metrics.push_back({{"name", m.spec.name}, {"kind", m.spec.kind}, {"probe", m.spec.probe},
                        {"window", {m.spec.speed_min, m.spec.speed_max}}, {"threshold", m.spec.threshold},
                        {"points", m.points}});
     // The band only where set, so that a cache written before it existed still resumes.
-    if (m.spec.order_min != studies::MetricSpec{}.order_min || m.spec.order_max != studies::MetricSpec{}.order_max)
+    if (m.spec.order_min != plain.order_min || m.spec.order_max != plain.order_max)
       metrics.back()["order_band"] = nlohmann::json::array({m.spec.order_min, m.spec.order_max});
   }
   return {{"model", s.model.filename().string()}, {"fixed", overrides_json(s.fixed)},

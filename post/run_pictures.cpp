@@ -113,7 +113,7 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
 }
 
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
-                                                   std::size_t block, double scale, double offset) {
+                                                   std::size_t block, double offset) {
   const int speed_col = column_of(r, ProbeChannel::Kind::Speed);
   if (speed_col < 0 || block == 0 || r.time.size() < 2 * block) return std::nullopt;
   const std::vector<double>& speed_hz = r.columns[speed_col];
@@ -131,7 +131,7 @@ std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const s
       double w = 0.0, v = 0.0;
       for (std::size_t i = i0; i < i0 + block; ++i) w += speed_hz[i], v += r.columns[c][i];
       s.x.push_back(w / static_cast<double>(block));
-      s.y.push_back(v / static_cast<double>(block) * scale + offset);
+      s.y.push_back(v / static_cast<double>(block) + offset);
     }
     chart.series.push_back(std::move(s));
   }
@@ -267,18 +267,18 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
   const std::size_t block = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.01 * fs)));
   struct Slow {
     std::vector<std::string> suffixes;
-    double scale, offset;
+    double offset;
     const char *title, *ylabel, *file;
   };
   const Slow slow[] = {
-      {{".ring_speed_ratio"}, 1.0, 0.0, "Ring speed ratio against rotor speed (10-ms means)",
+      {{".ring_speed_ratio"}, 0.0, "Ring speed ratio against rotor speed (10-ms means)",
        "ring speed / rotor speed [1]", "ring_speed_ratio.png"},
-      {{".inner_temperature", ".outer_temperature"}, 1.0, -273.15, "Film temperatures against rotor speed",
+      {{".inner_temperature", ".outer_temperature"}, -273.15, "Film temperatures against rotor speed",
        "film temperature [°C]", "film_temperatures.png"},
-      {{".inner_power_loss", ".outer_power_loss"}, 1.0, 0.0, "Film power losses against rotor speed (10-ms means)",
+      {{".inner_power_loss", ".outer_power_loss"}, 0.0, "Film power losses against rotor speed (10-ms means)",
        "power loss [W]", "film_power_loss.png"}};
   for (const Slow& q : slow) {
-    std::optional<plot::LineChart> chart = against_speed_chart(r, q.suffixes, block, q.scale, q.offset);
+    std::optional<plot::LineChart> chart = against_speed_chart(r, q.suffixes, block, q.offset);
     if (!chart) continue;
     chart->title = q.title;
     chart->ylabel = q.ylabel;

@@ -60,17 +60,17 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
 
 /// A slow quantity against rotor speed, one line per channel whose name ends in one of `suffixes` (e.g.
 /// ".ring_speed_ratio": every floating ring's ring speed ratio): the mean over blocks of `block` samples of the
-/// value x `scale` + `offset` against the block's mean rotor speed f_d [Hz], so that the whirl's ripple does not
-/// hide the operating point. Legend entries are the channel names. std::nullopt when no channel matches, the run has
+/// value + `offset` (e.g. -273.15 for K to degC) against the block's mean rotor speed f_d [Hz], so that the whirl's
+/// ripple does not hide the operating point. Legend entries are the channel names. std::nullopt when no channel matches, the run has
 /// no speed channel or fewer than two blocks.
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
-                                                   std::size_t block, double scale = 1.0, double offset = 0.0);
+                                                   std::size_t block, double offset = 0.0);
 
 /// Draws the pictures of a run into `dir`: a spectrogram of every probe (against speed while the speed does not
 /// fall, else against time), the 1x order track of every x/y probe pair, the orbits of every rotor x/y pair at the
 /// [output] orbit speeds (else at 1/4 .. 4/4 of the top speed), and for floating rings the operating point against
-/// speed (ring_speed_ratio.png; with thermal films film_temperatures.png, film_power_loss.png). Appends the file names to `written` and what was
-/// not drawn to `warnings`; `spectral` receives, per spectrogram, its largest amplitude (SI) and where it lies;
+/// speed (ring_speed_ratio.png; with thermal films film_temperatures.png, film_power_loss.png). Appends the file
+/// names to `written` and what was not drawn to `warnings`; `spectral` receives, per spectrogram, its largest amplitude (SI) and where it lies;
 /// `campbell` (rotor speed [Hz], frequency [Hz]) series are drawn on the spectrograms against speed. Throws
 /// plot::PlotError when gnuplot fails.
 void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,

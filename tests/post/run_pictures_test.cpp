@@ -162,7 +162,7 @@ TEST(RunPictures, SlowChannelsAgainstSpeedAreBlockMeans) {
     EXPECT_NEAR(ratio->series[1].y[b], 0.25, 1e-3);
   }
   const std::optional<plot::LineChart> temperature =
-      against_speed_chart(r, {".inner_temperature", ".outer_temperature"}, 1000, 1.0, -273.15);
+      against_speed_chart(r, {".inner_temperature", ".outer_temperature"}, 1000, -273.15);
   ASSERT_TRUE(temperature);
   ASSERT_EQ(temperature->series.size(), 1u);
   EXPECT_NEAR(temperature->series[0].y[3], 90.0 + 0.1 * 87.4875, 1e-9);  // degC, linear in speed
