@@ -320,12 +320,16 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
   }
   w.solvers_at_key = false;
 
-  // A film re-solved for a perturbed state: with the base factorisation if only velocities, speeds or hole
-  // pressures changed (`same_matrix`) and the solver still holds it, else anew.
+  // A film re-solved for a perturbed state with the base factorisation and cavitated set while the solver still
+  // holds them: exactly if only velocities, speeds or hole pressures changed (kSameMatrix), by one Newton step
+  // from the base pressure if the thickness changed too (kLinearised, first order in the step: the derivative for
+  // the base cavitated set, like the other columns). Anew otherwise (the viscosity changed).
+  enum Reuse { kSameMatrix, kLinearised, kNone };
   bool inner_base = true, outer_base = true;
-  auto film = [&](reynolds::FilmSolver& solver, bool& at_base, const reynolds::FilmState& st, bool same_matrix,
+  auto film = [&](reynolds::FilmSolver& solver, bool& at_base, const reynolds::FilmState& st, Reuse reuse,
                   reynolds::FilmResult& r, const char* which) {
-    if (same_matrix && at_base && solver.solve_same_matrix(st, r)) return;
+    if (at_base && reuse == kSameMatrix && solver.solve_same_matrix(st, r)) return;
+    if (at_base && reuse == kLinearised && solver.solve_linearised(st, r)) return;
     at_base = false;
     if (!solver.solve(st, r))
       throw std::runtime_error("floating-ring bearing '" + name() + "', " + which + " film: " + solver.last_error());
@@ -336,8 +340,8 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
     for (int r = 0; r < rows; ++r) J[j * rows + r] += (out[r] - out0[r]) / step[j];
   };
   // The inner film at the perturbed inputs, rotated into the housing frame, into w.jac_inner.
-  auto inner = [&](const double* holes, bool same_matrix) -> const reynolds::FilmResult& {
-    film(w.inner, inner_base, inner_state(s, qp, vp, zp, holes), same_matrix, w.jac_inner, "inner");
+  auto inner = [&](const double* holes, Reuse reuse) -> const reynolds::FilmResult& {
+    film(w.inner, inner_base, inner_state(s, qp, vp, zp, holes), reuse, w.jac_inner, "inner");
     const double c = std::cos(zp[kAngle]), sn = std::sin(zp[kAngle]);
     rotate(c, sn, w.jac_inner.fx, w.jac_inner.fy);
     rotate(c, sn, w.jac_inner.mx, w.jac_inner.my);
@@ -355,7 +359,7 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
     if (skip(k)) continue;
     const double saved = in[j];
     in[j] = saved + step[j];
-    film(w.outer, outer_base, outer_state(zp), true, w.jac_rate_outer[a], "outer");
+    film(w.outer, outer_base, outer_state(zp), kSameMatrix, w.jac_rate_outer[a], "outer");
     drill_hole_pressures(w.outer, zp, w.jac_rate_holes[a].data());
     in[j] = saved;
   }
@@ -365,7 +369,7 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
     const int j = d + k;
     const double saved = in[j];
     in[j] = saved + step[j];
-    column(j, inner(holes0, true), base.outer);
+    column(j, inner(holes0, kSameMatrix), base.outer);
     in[j] = saved;
   }
   for (int a = 0; a < 5; ++a) {
@@ -373,35 +377,35 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
     if (skip(k)) continue;
     const double saved = in[j];
     in[j] = saved + step[j];
-    column(j, inner(w.jac_rate_holes[a].data(), true), w.jac_rate_outer[a]);
+    column(j, inner(w.jac_rate_holes[a].data(), kSameMatrix), w.jac_rate_outer[a]);
     in[j] = saved;
   }
   // 3. The shaft's displacements and the ring angle change the inner film's thickness (the outer film does not
-  //    depend on them): new inner solves.
+  //    depend on them): linearised inner solves.
   for (int k = 0; k < d; ++k) {
     const double saved = in[k];
     in[k] = saved + step[k];
-    column(k, inner(holes0, false), base.outer);
+    column(k, inner(holes0, kLinearised), base.outer);
     in[k] = saved;
   }
   {
     const int j = 2 * d + kAngle;
     const double saved = in[j];
     in[j] = saved + step[j];
-    column(j, inner(holes_angle, false), base.outer);
+    column(j, inner(holes_angle, kLinearised), base.outer);
     in[j] = saved;
   }
-  // 4. The ring's displacements and tilts change both films' thickness.
+  // 4. The ring's displacements and tilts change both films' thickness: linearised solves of both.
   constexpr int kPositions[4] = {kX, kY, kAx, kAy};
   for (int k : kPositions) {
     if (skip(k)) continue;
     const int j = 2 * d + k;
     const double saved = in[j];
     in[j] = saved + step[j];
-    film(w.outer, outer_base, outer_state(zp), false, w.jac_outer, "outer");
+    film(w.outer, outer_base, outer_state(zp), kLinearised, w.jac_outer, "outer");
     double holes[8];
     drill_hole_pressures(w.outer, zp, holes);
-    column(j, inner(holes, false), w.jac_outer);
+    column(j, inner(holes, kLinearised), w.jac_outer);
     in[j] = saved;
   }
   // 5. The film temperatures change one film's viscosity each (and through the drill holes' pressures the outer
@@ -416,11 +420,11 @@ void FloatingRingElement::add_jacobian(const SpinState& s, const double* q, cons
       double holes[8];
       std::copy(holes0, holes0 + inner_.holes.size(), holes);
       if (k == kOuterTemperature) {
-        film(w.outer, outer_base, outer_state(zp), false, w.jac_outer, "outer");
+        film(w.outer, outer_base, outer_state(zp), kNone, w.jac_outer, "outer");
         drill_hole_pressures(w.outer, zp, holes);
         outer = &w.jac_outer;
       }
-      column(j, inner(holes, false), *outer);
+      column(j, inner(holes, kNone), *outer);
       in[j] = saved;
     }
     set_viscosities(w.inner, w.outer, z);

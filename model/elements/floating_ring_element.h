@@ -60,7 +60,10 @@ class FloatingRingElement final : public ForceElement {
   void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                     double* J) const override;
   /// Columns that solve a film anew (the others are back-substitutions).
-  int jacobian_evaluations() const override { return spec_.ring_tilt ? 9 : 7; }
+  /// The base solve (when the solvers were left elsewhere) and, with thermal films, the two columns of the film
+  /// temperatures, which change a viscosity and so need new factorisations; every other column is a
+  /// back-substitution with the base factorisations (add_jacobian).
+  int jacobian_evaluations() const override { return thermal_ ? 3 : 1; }
   std::vector<ProbeInfo> probes() const override;
   void eval_probes(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                   double* out) const override;

@@ -76,6 +76,7 @@ struct FilmSolver::Impl {
   bool sym = false;
   double w_last = 1.0;  // row weight of the last reduced row (1/2 for the mid-width row when nz is odd)
   std::vector<double> Cw, Ce, Cs, Cn, Dg, FE, SQ, b0, pr, thr;
+  std::vector<double> pr0, res;  // the factorisation's own solution (solve_linearised) and a residual
   std::vector<std::uint8_t> dirr, cr, fr;
   std::vector<int> colcount, border_j;
   int i0 = 0, last_col = 0, na = 0;
@@ -233,6 +234,8 @@ struct FilmSolver::Impl {
     for (auto* v : {&mk_node, &mk_up, &mk_kw, &mk_ke, &mk_ks, &mk_kn}) v->assign(N, 0);
     for (auto* v : {&mk_alpha, &mk_invden, &mk_const}) v->assign(N, 0.0);
     pr.assign(N + 1, 0.0);  // + sentinel
+    pr0.assign(N + 1, 0.0);
+    res.assign(N, 0.0);
     for (auto* v : {&gm_x, &gm_f, &gm_t}) v->assign(N, 0.0);
     gm_v.assign(static_cast<std::size_t>(kGmresRestart + 1) * N, 0.0);
     gm_h.assign((kGmresRestart + 1) * (kGmresRestart + 1), 0.0);
@@ -1007,6 +1010,52 @@ struct FilmSolver::Impl {
            symmetric_values();
   }
 
+  // Film closure: |e(z)| is convex in z, so the thinnest film is at one of the ends. Sets the error if it closes.
+  bool closes(const FilmState& s) {
+    const double hl = 0.5 * g.length;
+    const double e1 = std::hypot(s.ex - hl * s.sx, s.ey - hl * s.sy);
+    const double e2 = std::hypot(s.ex + hl * s.sx, s.ey + hl * s.sy);
+    if (std::max(e1, e2) < g.clearance) return false;
+    std::ostringstream os;
+    os << "film closes: eccentricity " << std::max(e1, e2) << " m >= clearance " << g.clearance
+       << " m (eccentricity ratio " << std::max(e1, e2) / g.clearance << ")";
+    fail(os.str());
+    return true;
+  }
+
+  // One Newton step of the new state's system from the factorisation's solution p0, with the factorisation's
+  // matrix A0 and its cavitated set: p = p0 + A0^-1 (b - A p0) on the free nodes. Exact in the right-hand side,
+  // first order in the film thickness (the error is A0^-1 (A0 - A)(p - p0), second order in the change).
+  bool solve_linearised(const FilmState& s, FilmResult& r) {
+    err.clear();
+    if (o.cavitation == Cavitation::MassConserving)
+      return fail("solve_linearised: not for the mass-conserving model (its film fractions are not linear)");
+    if (!factored) return fail("solve_linearised: no factorisation of a previous solve to reuse");
+    if (!finite_state(s)) return fail("state is not finite");
+    if (closes(s)) return false;
+    set_inputs(s);
+    if (symmetric_state(s) != sym) return fail("solve_linearised: the state changes the mid-width symmetry");
+    geometry_arrays(s);
+    reduced_system();  // new couplings, sources and hole values; Dirichlet nodes take their values in pr
+    for (int kr = 0; kr < n * m; ++kr)
+      if (cr[kr])
+        pr[kr] = pcav;
+      else if (fr[kr])
+        pr[kr] = pr0[kr];
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j) {
+        const int kr = i * m + j;
+        if (fr[kr]) res[kr] = -outflow(i, j, false);  // b - A p0 of the free node
+      }
+    iterations = 0;
+    solves = 0;
+    solve_free([&](int, int, int kr) { return res[kr]; });  // the correction, into pr
+    for (int kr = 0; kr < n * m; ++kr)
+      if (fr[kr]) pr[kr] += pr0[kr];
+    outputs(s, r);
+    return true;
+  }
+
   bool solve_same_matrix(const FilmState& s, FilmResult& r) {
     err.clear();
     if (o.cavitation == Cavitation::MassConserving)
@@ -1033,16 +1082,7 @@ struct FilmSolver::Impl {
     err.clear();
     factored = false;
     if (!finite_state(s)) return fail("state is not finite");
-    // Film closure: |e(z)| is convex in z, so the thinnest film is at one of the ends.
-    const double hl = 0.5 * g.length;
-    const double e1 = std::hypot(s.ex - hl * s.sx, s.ey - hl * s.sy);
-    const double e2 = std::hypot(s.ex + hl * s.sx, s.ey + hl * s.sy);
-    if (std::max(e1, e2) >= g.clearance) {
-      std::ostringstream os;
-      os << "film closes: eccentricity " << std::max(e1, e2) << " m >= clearance " << g.clearance
-         << " m (eccentricity ratio " << std::max(e1, e2) / g.clearance << ")";
-      return fail(os.str());
-    }
+    if (closes(s)) return false;
     set_inputs(s);
     if (o.cavitation == Cavitation::MassConserving) {
       double supply = pamb;
@@ -1080,6 +1120,7 @@ struct FilmSolver::Impl {
       warm = false;
       return false;
     }
+    if (o.cavitation != Cavitation::MassConserving) std::copy(pr.begin(), pr.begin() + n * m, pr0.begin());
     outputs(s, r);
     warm = true;
     factored = o.cavitation != Cavitation::MassConserving;
@@ -1104,6 +1145,7 @@ FilmSolver& FilmSolver::operator=(FilmSolver&&) noexcept = default;
 
 bool FilmSolver::solve(const FilmState& s, FilmResult& r) { return impl_->solve(s, r); }
 bool FilmSolver::solve_same_matrix(const FilmState& s, FilmResult& r) { return impl_->solve_same_matrix(s, r); }
+bool FilmSolver::solve_linearised(const FilmState& s, FilmResult& r) { return impl_->solve_linearised(s, r); }
 const std::string& FilmSolver::last_error() const { return impl_->err; }
 const std::vector<double>& FilmSolver::pressure() const { return impl_->p; }
 const std::vector<double>& FilmSolver::film_fraction() const { return impl_->ff; }

@@ -145,6 +145,15 @@ class FilmSolver {
   /// model is mass-conserving. Keeps the cavitated set the next solve() starts from. Allocation-free.
   bool solve_same_matrix(const FilmState& s, FilmResult& r);
 
+  /// Solves the film for a state whose film thickness (ex, ey, sx, sy) may also differ from that of the last
+  /// successful solve(), by one Newton step from that solve's pressure with its factorisation and cavitated set:
+  /// p = p0 + A0^-1 (b - A p0) on its free nodes (A, b: the new state's system). Exact where solve_same_matrix()
+  /// is (thickness unchanged) and first order in the thickness change otherwise, so finite differences of such
+  /// solves over small steps are the film's derivatives for a fixed cavitated set (one back-substitution per
+  /// column instead of new factorisations; FloatingRingElement::add_jacobian). Same conditions and failures as
+  /// solve_same_matrix() except the thickness test; fails also if the film closes. Allocation-free.
+  bool solve_linearised(const FilmState& s, FilmResult& r);
+
   /// Pressure of the last solve, Pa gauge, n_circ x n_axial, theta-major: p[i * n_axial + j] at theta_nodes()[i],
   /// z_nodes()[j] (the ends, at z = -+L/2, are at ambient pressure).
   const std::vector<double>& pressure() const;

@@ -102,7 +102,8 @@ TEST(FloatingRing, FourDrillHolesRepeatEveryQuarterTurnOfTheRing) {
   EXPECT_GT(std::abs(c.f[0] - a.f[0]) + std::abs(c.f[1] - a.f[1]), 1e-3 * std::hypot(a.f[0], a.f[1]));
 }
 
-// The element's own Jacobian (factorisation reused for the rate columns, the outer film skipped for the shaft's)
+// The element's own Jacobian (the base factorisations reused for every column: back-substitutions for the rates, one
+// Newton step for the thickness columns; the outer film skipped for the shaft's)
 // against plain forward differences of calc_and_add_forces, which solve both films anew for every column. Each
 // entry is compared in units of its row's largest change over a typical step of the inputs (the engine's Newton
 // matrix weighs them that way); forward differences with relative steps of 1e-6 of an iterative active-set solve

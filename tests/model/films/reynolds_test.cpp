@@ -653,5 +653,88 @@ TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
   EXPECT_THAT(jfo.last_error(), HasSubstr("mass-conserving"));
 }
 
+
+// solve_linearised: one Newton step from the last solve's pressure with its factorisation and cavitated set. At
+// the solved state it reproduces the solve; velocities alone make it solve_same_matrix; for a thickness change too
+// small to move the set its difference from a new solve is second order in the change (halving the change divides
+// it by 4), and far below the change of the film itself.
+TEST(Linearised, OneNewtonStepIsSecondOrderInTheThicknessChange) {
+  for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
+    FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
+    for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.3, 0.0, 0.002, 2e5});
+    FilmState a = journal(0.6, 0.3, 10000.0, 15e-6);
+    a.sx = 3e-4;
+    a.sy = -1e-4;
+    a.vx = 0.01;
+    a.vy = -0.005;
+    a.omega_outer = 2000.0;
+    FilmSolver solver(g, 0.0108, with(cav));
+    const FilmResult base = solve_ok(solver, a);
+    const double F = std::hypot(base.fx, base.fy), M = std::hypot(base.mx, base.my);
+    FilmResult r;
+    ASSERT_TRUE(solver.solve_linearised(a, r)) << solver.last_error();
+    EXPECT_NEAR(r.fx, base.fx, 1e-12 * F) << to_string(cav);
+    EXPECT_NEAR(r.my, base.my, 1e-12 * M) << to_string(cav);
+    EXPECT_EQ(r.linear_solves, 1);
+    EXPECT_EQ(r.iterations, 0);
+    FilmState faster = a;
+    faster.vx += 0.003;
+    FilmResult same, lin;
+    ASSERT_TRUE(solver.solve_same_matrix(faster, same));
+    ASSERT_TRUE(solver.solve_linearised(faster, lin));
+    EXPECT_NEAR(lin.fx, same.fx, 1e-12 * F);
+    EXPECT_NEAR(lin.fy, same.fy, 1e-12 * F);
+    struct Direction {
+      const char* name;
+      void (*apply)(FilmState&, double);
+      double scale;
+    };
+    const Direction dirs[] = {{"ex", [](FilmState& s, double t) { s.ex += t; }, 1e-9},
+                              {"ey", [](FilmState& s, double t) { s.ey += t; }, 1e-9},
+                              {"sx", [](FilmState& s, double t) { s.sx += t; }, 2e-7},
+                              {"sy", [](FilmState& s, double t) { s.sy += t; }, 2e-7}};
+    for (const Direction& dir : dirs) {
+      double err[2], change[2];
+      for (int h = 0; h < 2; ++h) {
+        FilmState s = a;
+        dir.apply(s, dir.scale / (1 << h));
+        FilmResult l;
+        ASSERT_TRUE(solver.solve_linearised(s, l)) << solver.last_error();
+        FilmSolver fresh(g, 0.0108, with(cav));
+        solve_ok(fresh, a);
+        const FilmResult full = solve_ok(fresh, s);
+        ASSERT_EQ(full.iterations, 1) << dir.name << ": the set moved, choose a smaller change";
+        // Loads in units of the base film's: force, moment and torque alike.
+        const double T = std::abs(base.torque_inner);
+        auto diff = [&](const FilmResult& x, const FilmResult& y) {
+          return std::sqrt(std::pow((x.fx - y.fx) / F, 2) + std::pow((x.fy - y.fy) / F, 2) +
+                           std::pow((x.mx - y.mx) / M, 2) + std::pow((x.my - y.my) / M, 2) +
+                           std::pow((x.torque_inner - y.torque_inner) / T, 2));
+        };
+        err[h] = diff(l, full);
+        change[h] = diff(full, base);
+      }
+      EXPECT_LT(err[0], 1e-2 * change[0]) << dir.name << " " << to_string(cav);
+      EXPECT_GT(err[0] / err[1], 3.0) << dir.name << " " << to_string(cav) << ": second order";
+      EXPECT_LT(err[0] / err[1], 5.0) << dir.name << " " << to_string(cav);
+    }
+    // Refusals: the film closes; a state that would be solved on the symmetric half; nothing solved yet.
+    FilmState closed = a;
+    closed.ex = 15e-6;
+    EXPECT_FALSE(solver.solve_linearised(closed, r));
+    EXPECT_THAT(solver.last_error(), HasSubstr("closes"));
+    solve_ok(solver, journal(0.6, 0.3, 10000.0, 15e-6));  // no tilt, symmetric holes: the half-grid solve
+    EXPECT_FALSE(solver.solve_linearised(a, r));
+    EXPECT_THAT(solver.last_error(), HasSubstr("symmetry"));
+    FilmSolver unsolved(g, 0.0108, with(cav));
+    EXPECT_FALSE(unsolved.solve_linearised(a, r));
+  }
+  FilmSolver jfo(supplied(2e5), kEta, with(Cavitation::MassConserving));
+  FilmResult r;
+  solve_ok(jfo, journal(0.6));
+  EXPECT_FALSE(jfo.solve_linearised(journal(0.6), r));
+  EXPECT_THAT(jfo.last_error(), HasSubstr("mass-conserving"));
+}
+
 }  // namespace
 }  // namespace turbodyn::reynolds
