@@ -122,9 +122,19 @@ void FloatingRingElement::initial_states(double* z) const {
 }
 
 double FloatingRingElement::state_scale(int i) const {
-  // Temperatures: 1 K.
-  static constexpr double kScale[kMaxStates] = {1e-6, 1e-6, 1e-3, 1e-3, 1e-5, 1e-5, 1e-2, 1e-2, 10.0, 1.0, 1.0, 1.0};
-  return kScale[i];
+  // Translations 1 um and 1 mm/s (ForceElement's typical displacement and velocity); tilts and their rates as the
+  // rotations that move the ring's wider film's edges by as much (the films see a tilt only through the thickness
+  // at z = +-L/2), so every state of the ring is resolved to the same film-thickness error; spin 10 rad/s, angle
+  // 1 rad, temperatures 1 K.
+  const double half_width = 0.5 * std::max(spec_.inner_length, spec_.outer_length);
+  switch (i) {
+    case kX: case kY: return kTypicalDisplacement;
+    case kVx: case kVy: return kTypicalVelocity;
+    case kAx: case kAy: return kTypicalDisplacement / half_width;
+    case kWx: case kWy: return kTypicalVelocity / half_width;
+    case kSpin: return 10.0;
+    default: return 1.0;  // angle (rad), temperatures (K)
+  }
 }
 
 double FloatingRingElement::film_viscosity(double T, const char* which) const {

@@ -146,5 +146,29 @@ TEST(FloatingRing, OwnJacobianMatchesPlainFiniteDifferences) {
   }
 }
 
+
+// The integrator's tolerances of the ring's states (RunupModel::AbsoluteTolerances with atol_scaling "typical")
+// follow state_scale: its tilts and tilt rates are the rotations that move the wider film's edges (z = +-L/2) by
+// the typical translation and translational velocity, so no state of the ring is resolved more finely than the
+// film thickness it changes.
+TEST(FloatingRing, TiltTolerancesMoveTheFilmEdgeAsMuchAsTheTranslations) {
+  FloatingRingSpec f = reference_ring();
+  f.inner_length = 0.007;
+  f.outer_length = 0.010;
+  OilSpec oil;
+  const FloatingRingElement e("test", f, oil, 0, 9.81);
+  using R = FloatingRingElement;
+  const double half = 0.005;
+  EXPECT_DOUBLE_EQ(e.state_scale(R::kAx) * half, e.state_scale(R::kX));
+  EXPECT_DOUBLE_EQ(e.state_scale(R::kAy) * half, e.state_scale(R::kY));
+  EXPECT_DOUBLE_EQ(e.state_scale(R::kWx) * half, e.state_scale(R::kVx));
+  EXPECT_DOUBLE_EQ(e.state_scale(R::kWy) * half, e.state_scale(R::kVy));
+  EXPECT_DOUBLE_EQ(e.state_scale(R::kX), ForceElement::kTypicalDisplacement);
+  EXPECT_DOUBLE_EQ(e.state_scale(R::kVx), ForceElement::kTypicalVelocity);
+  f.inner_length = 0.012;  // the inner film the wider one
+  const FloatingRingElement wide("test", f, oil, 0, 9.81);
+  EXPECT_DOUBLE_EQ(wide.state_scale(R::kAx) * 0.006, wide.state_scale(R::kX));
+}
+
 }  // namespace
 }  // namespace turbodyn
