@@ -29,6 +29,14 @@ struct Integration {
   bool cancelled = false;       // a right-hand side saw the cancel flag and stopped the integrator
   long jacobian_step = 0;       // integrator step count at the last Jacobian
   long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
+  // Newton convergence monitor (ls_solve): the attempt (step count and time) of the last solve, its iteration,
+  // the weighted norm of its correction, and whether an iteration since the last Jacobian converged slowly.
+  N_Vector weights = nullptr;
+  long attempt_steps = -1;
+  double attempt_t = 0.0;
+  int iteration = 0;
+  double last_correction = 0.0;
+  bool slow = false;
 };
 
 int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
@@ -84,10 +92,16 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
   // CVODE does not call the setup of a matrix-embedded solver on its own schedule, so the solve keeps the Newton
   // matrix current: a new Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than
   // 2 % since the last one, when the nonlinear solver failed since then (the Jacobian is stale: nonlinear films),
-  // or every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51); a new factorisation
-  // when gamma (the step size) changed.
+  // every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51), and at the start of an
+  // attempt after a Newton iteration converged slowly (a correction larger than kSlowConvergence times the one
+  // before) with a Jacobian at least kSlowAge steps old: such a Jacobian is going stale, and refreshing it before
+  // the iteration fails saves the failure's step cut (by 4). A slow iteration with a younger Jacobian is the
+  // problem's nonlinearity (contacts, the damper's impacts), which a new Jacobian does not cure. A new
+  // factorisation when gamma (the step size) changed. bench/README.md has the measurements.
   constexpr double kJacobianSpeedChange = 0.02;
   constexpr long kJacobianMaxSteps = 50;
+  constexpr double kSlowConvergence = 0.3;
+  constexpr long kSlowAge = 6;
   sunrealtype tcur, gamma, rl1;
   N_Vector ypred, yn, fn, zn1;
   void* user = nullptr;
@@ -97,8 +111,15 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
   long steps = 0, failures = 0;
   CVodeGetNumSteps(in->cvode, &steps);
   CVodeGetNumNonlinSolvConvFails(in->cvode, &failures);
+  if (steps != in->attempt_steps || tcur != in->attempt_t) {
+    in->attempt_steps = steps;
+    in->attempt_t = tcur;
+    in->iteration = 0;
+  }
   if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0) ||
-      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps) {
+      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps ||
+      (in->slow && in->iteration == 0 && steps - in->jacobian_step >= kSlowAge)) {
+    in->slow = false;
     in->jacobian_step = steps;
     in->jacobian_failures = failures;
     try {
@@ -114,6 +135,11 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
     if (!model.FactorNewton(gamma, ws)) return 1;  // recoverable: CVODE retries with a smaller step
   }
   model.SolveNewton(gamma, N_VGetArrayPointer(b), N_VGetArrayPointer(x), ws);
+  CVodeGetErrWeights(in->cvode, in->weights);
+  const double norm = N_VWrmsNorm(x, in->weights);
+  if (in->iteration > 0 && norm > kSlowConvergence * in->last_correction) in->slow = true;
+  in->last_correction = norm;
+  ++in->iteration;
   return 0;
 }
 
@@ -198,6 +224,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   in.model = &model;
   in.ws = ws.get();
   in.cancel = options.cancel;
+  in.weights = N_VClone(y);
   void* mem = nullptr;
   SUNLinearSolver LS = nullptr;
   const Integrator integrator = resolve_integrator(model, options.solver.integrator);
@@ -233,6 +260,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
               ERKStepSetMaxStep, ERKStepSetStopTime);
   } else {
     N_VDestroy(atol);
+    N_VDestroy(in.weights);
     N_VDestroy(y);
     SUNContext_Free(&ctx);
     throw std::invalid_argument("unknown integrator (cvode-bdf or arkode-erk)");
@@ -301,6 +329,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   result.stats.jacobian_evaluations = ws->jacobian_evaluations;
   result.stats.linear_setups = ws->factorisations;
   result.stats.wall_time = wall();
+  N_VDestroy(in.weights);
   N_VDestroy(y);
   SUNContext_Free(&ctx);
   return result;
