@@ -17,6 +17,18 @@ if [[ ! -f build-asan/CMakeCache.txt ]]; then
 fi
 cmake --build build-asan --parallel "$(nproc)"
 # detect_leaks: TBB and HDF5 keep process-lifetime allocations that LeakSanitizer would report at exit.
-export ASAN_OPTIONS=halt_on_error=1:detect_leaks=0:abort_on_error=0
-export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir build-asan --output-on-failure --parallel "$(nproc)" --timeout 2400 "$@"
+# Every report also goes to a file in build-asan/sanitizer-reports/: a command-line test that expects the program to
+# fail (any non-zero exit) would otherwise pass on a sanitizer's abort, so any report file fails the script.
+reports=$PWD/build-asan/sanitizer-reports
+rm -rf "$reports" && mkdir -p "$reports"
+export ASAN_OPTIONS=halt_on_error=1:detect_leaks=0:abort_on_error=0:log_path=$reports/asan
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:log_path=$reports/ubsan
+status=0
+ctest --test-dir build-asan --output-on-failure --parallel "$(nproc)" --timeout 2400 "$@" || status=$?
+if compgen -G "$reports/*" > /dev/null; then
+  echo "sanitize: sanitizer reports (also in $reports):" >&2
+  cat "$reports"/* >&2
+  exit 1
+fi
+echo "sanitize: no sanitizer report"
+exit $status
