@@ -1023,18 +1023,32 @@ struct FilmSolver::Impl {
     return true;
   }
 
+  // The checks of solve_same_matrix() and solve_linearised() (`what` names the caller in the messages), then the
+  // state's speeds, pressures and Dirichlet values: a None or Gumbel factorisation exists, the state is finite,
+  // the thickness is the factorisation's (same_thickness) or the film is open, and the mid-width symmetry is kept.
+  bool can_reuse_factorisation(const FilmState& s, const char* what, bool same_thickness) {
+    err.clear();
+    auto refuse = [&](const char* why) { return fail(std::string(what) + ": " + why); };  // allocates on failure only
+    if (o.cavitation == Cavitation::MassConserving)
+      return refuse("not for the mass-conserving model (its film fractions are not linear)");
+    if (!factored) return refuse("no factorisation of a previous solve to reuse");
+    if (!finite_state(s)) return fail("state is not finite");
+    if (same_thickness) {
+      if (s.ex != factored_at[0] || s.ey != factored_at[1] || s.sx != factored_at[2] || s.sy != factored_at[3])
+        return refuse("the film thickness differs from that of the last solve");
+    } else if (closes(s)) {
+      return false;
+    }
+    set_inputs(s);
+    if (symmetric_state(s) != sym) return refuse("the state changes the mid-width symmetry");
+    return true;
+  }
+
   // One Newton step of the new state's system from the factorisation's solution p0, with the factorisation's
   // matrix A0 and its cavitated set: p = p0 + A0^-1 (b - A p0) on the free nodes. Exact in the right-hand side,
   // first order in the film thickness (the error is A0^-1 (A0 - A)(p - p0), second order in the change).
   bool solve_linearised(const FilmState& s, FilmResult& r) {
-    err.clear();
-    if (o.cavitation == Cavitation::MassConserving)
-      return fail("solve_linearised: not for the mass-conserving model (its film fractions are not linear)");
-    if (!factored) return fail("solve_linearised: no factorisation of a previous solve to reuse");
-    if (!finite_state(s)) return fail("state is not finite");
-    if (closes(s)) return false;
-    set_inputs(s);
-    if (symmetric_state(s) != sym) return fail("solve_linearised: the state changes the mid-width symmetry");
+    if (!can_reuse_factorisation(s, "solve_linearised", false)) return false;
     geometry_arrays(s);
     reduced_system();  // new couplings, sources and hole values; Dirichlet nodes take their values in pr
     for (int kr = 0; kr < n * m; ++kr)
@@ -1057,15 +1071,7 @@ struct FilmSolver::Impl {
   }
 
   bool solve_same_matrix(const FilmState& s, FilmResult& r) {
-    err.clear();
-    if (o.cavitation == Cavitation::MassConserving)
-      return fail("solve_same_matrix: not for the mass-conserving model (its film fractions are not linear)");
-    if (!factored) return fail("solve_same_matrix: no factorisation of a previous solve to reuse");
-    if (!finite_state(s)) return fail("state is not finite");
-    if (s.ex != factored_at[0] || s.ey != factored_at[1] || s.sx != factored_at[2] || s.sy != factored_at[3])
-      return fail("solve_same_matrix: the film thickness differs from that of the last solve");
-    set_inputs(s);
-    if (symmetric_state(s) != sym) return fail("solve_same_matrix: the state changes the mid-width symmetry");
+    if (!can_reuse_factorisation(s, "solve_same_matrix", true)) return false;
     geometry_arrays(s);  // the same thickness; new squeeze and Couette terms
     reduced_system();    // the same couplings; new sources and hole values
     // The cavitated set (cr) and the free set (fr) of the factorisation are kept.

@@ -566,18 +566,29 @@ TEST(WarmStart, SwiftStieberForcesAlongAWhirlEqualColdSolvesToRoundOff) {
 // pressures. For a fixed set the film is affine in them, so: at the solved state it reproduces the solve; it is
 // affine in each of these inputs; for a change too small to move the set it equals a new solve; and it refuses a
 // changed thickness, a change of the mid-width symmetry and the mass-conserving model.
+// A floating ring's inner film as the reuse tests see it: four drill holes at mid-width, the journal eccentric,
+// tilted, squeezing and spinning against a spinning ring.
+FilmGeometry holed_film() {
+  FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
+  for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.3, 0.0, 0.002, 2e5});
+  return g;
+}
+FilmState tilted_squeezing_journal() {
+  FilmState a = journal(0.6, 0.3, 10000.0, 15e-6);
+  a.sx = 3e-4;
+  a.sy = -1e-4;
+  a.vx = 0.01;
+  a.vy = -0.005;
+  a.dsx = 0.5;
+  a.dsy = 0.2;
+  a.omega_outer = 2000.0;
+  return a;
+}
+
 TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
   for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
-    FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
-    for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.3, 0.0, 0.002, 2e5});
-    FilmState a = journal(0.6, 0.3, 10000.0, 15e-6);
-    a.sx = 3e-4;
-    a.sy = -1e-4;
-    a.vx = 0.01;
-    a.vy = -0.005;
-    a.dsx = 0.5;
-    a.dsy = 0.2;
-    a.omega_outer = 2000.0;
+    const FilmGeometry g = holed_film();
+    FilmState a = tilted_squeezing_journal();
     a.use_override = true;
     for (int k = 0; k < 4; ++k) a.hole_pressure_override[k] = 2e5 + 1e4 * k;
     FilmSolver solver(g, 0.0108, with(cav));
@@ -660,14 +671,8 @@ TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
 // it by 4), and far below the change of the film itself.
 TEST(Linearised, OneNewtonStepIsSecondOrderInTheThicknessChange) {
   for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
-    FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
-    for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.3, 0.0, 0.002, 2e5});
-    FilmState a = journal(0.6, 0.3, 10000.0, 15e-6);
-    a.sx = 3e-4;
-    a.sy = -1e-4;
-    a.vx = 0.01;
-    a.vy = -0.005;
-    a.omega_outer = 2000.0;
+    const FilmGeometry g = holed_film();
+    const FilmState a = tilted_squeezing_journal();
     FilmSolver solver(g, 0.0108, with(cav));
     const FilmResult base = solve_ok(solver, a);
     const double F = std::hypot(base.fx, base.fy), M = std::hypot(base.mx, base.my);
