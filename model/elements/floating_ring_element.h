@@ -59,9 +59,8 @@ class FloatingRingElement final : public ForceElement {
   bool has_jacobian() const override { return true; }
   void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                     double* J) const override;
-  /// Columns that solve a film anew (the others are back-substitutions).
-  /// The base solve (when the solvers were left elsewhere) and, with thermal films, the two columns of the film
-  /// temperatures, which change a viscosity and so need new factorisations; every other column is a
+  /// Film solves that factorise anew per call: the base solve (when the solvers were left elsewhere) and, with
+  /// thermal films, the two columns of the film temperatures, which change a viscosity; every other column is a
   /// back-substitution with the base factorisations (add_jacobian).
   int jacobian_evaluations() const override { return thermal_ ? 3 : 1; }
   std::vector<ProbeInfo> probes() const override;

@@ -146,7 +146,6 @@ TEST(FloatingRing, OwnJacobianMatchesPlainFiniteDifferences) {
   }
 }
 
-
 // The integrator's tolerances of the ring's states (RunupModel::AbsoluteTolerances with atol_scaling "typical")
 // follow state_scale: its tilts and tilt rates are the rotations that move the wider film's edges (z = +-L/2) by
 // the typical translation and translational velocity, so no state of the ring is resolved more finely than the

@@ -562,10 +562,6 @@ TEST(WarmStart, SwiftStieberForcesAlongAWhirlEqualColdSolvesToRoundOff) {
   EXPECT_LT(warm_sweeps, cold_sweeps / 2);
 }
 
-// solve_same_matrix reuses the last solve's factorisation and cavitated set for new velocities, speeds and hole
-// pressures. For a fixed set the film is affine in them, so: at the solved state it reproduces the solve; it is
-// affine in each of these inputs; for a change too small to move the set it equals a new solve; and it refuses a
-// changed thickness, a change of the mid-width symmetry and the mass-conserving model.
 // A floating ring's inner film as the reuse tests see it: four drill holes at mid-width, the journal eccentric,
 // tilted, squeezing and spinning against a spinning ring.
 FilmGeometry holed_film() {
@@ -585,6 +581,10 @@ FilmState tilted_squeezing_journal() {
   return a;
 }
 
+// solve_same_matrix reuses the last solve's factorisation and cavitated set for new velocities, speeds and hole
+// pressures. For a fixed set the film is affine in them, so: at the solved state it reproduces the solve; it is
+// affine in each of these inputs; for a change too small to move the set it equals a new solve; and it refuses a
+// changed thickness, a change of the mid-width symmetry and the mass-conserving model.
 TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
   for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
     const FilmGeometry g = holed_film();
@@ -663,7 +663,6 @@ TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
   EXPECT_FALSE(jfo.solve_same_matrix(journal(0.6), r));
   EXPECT_THAT(jfo.last_error(), HasSubstr("mass-conserving"));
 }
-
 
 // solve_linearised: one Newton step from the last solve's pressure with its factorisation and cavitated set. At
 // the solved state it reproduces the solve; velocities alone make it solve_same_matrix; for a thickness change too
