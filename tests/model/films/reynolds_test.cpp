@@ -569,6 +569,13 @@ FilmGeometry holed_film() {
   for (int k = 0; k < 4; ++k) g.holes.push_back(Hole{k * kPi / 2 + 0.3, 0.0, 0.002, 2e5});
   return g;
 }
+// One input of a FilmState to perturb in the reuse tests: its name, how to change it by t, and a typical change.
+struct Direction {
+  const char* name;
+  void (*apply)(FilmState&, double);
+  double scale;
+};
+
 FilmState tilted_squeezing_journal() {
   FilmState a = journal(0.6, 0.3, 10000.0, 15e-6);
   a.sx = 3e-4;
@@ -602,11 +609,6 @@ TEST(SameMatrix, ReusesTheFactorisationForVelocitiesSpeedsAndHolePressures) {
     EXPECT_EQ(r.linear_solves, 1);
     EXPECT_EQ(r.iterations, 0);
     // Directions: squeeze velocities, tilt rates, journal speed, one hole's pressure (scale: a typical change).
-    struct Direction {
-      const char* name;
-      void (*apply)(FilmState&, double);
-      double scale;
-    };
     const Direction dirs[] = {{"vx", [](FilmState& s, double t) { s.vx += t; }, 0.01},
                               {"vy", [](FilmState& s, double t) { s.vy += t; }, 0.01},
                               {"dsx", [](FilmState& s, double t) { s.dsx += t; }, 0.5},
@@ -688,11 +690,6 @@ TEST(Linearised, OneNewtonStepIsSecondOrderInTheThicknessChange) {
     ASSERT_TRUE(solver.solve_linearised(faster, lin));
     EXPECT_NEAR(lin.fx, same.fx, 1e-12 * F);
     EXPECT_NEAR(lin.fy, same.fy, 1e-12 * F);
-    struct Direction {
-      const char* name;
-      void (*apply)(FilmState&, double);
-      double scale;
-    };
     const Direction dirs[] = {{"ex", [](FilmState& s, double t) { s.ex += t; }, 1e-9},
                               {"ey", [](FilmState& s, double t) { s.ey += t; }, 1e-9},
                               {"sx", [](FilmState& s, double t) { s.sx += t; }, 2e-7},
