@@ -15,6 +15,7 @@
 #include "app/optimize_command.h"
 #include "app/response_command.h"
 #include "app/run_command.h"
+#include "app/stability_command.h"
 #include "app/sweep_command.h"
 #include "model/io/model_file.h"
 #include "model/rotor/rotor.h"
@@ -92,6 +93,21 @@ int main(int argc, char** argv) {
   bearing->add_option("-o,--output", bearing_options.output_dir, "Output directory")->capture_default_str();
   bearing->add_flag("!--no-plots", bearing_options.plots, "Do not draw PNG pictures");
   add_sets(bearing);
+
+  turbodyn::app::StabilityCommandOptions stability_options;
+  CLI::App* stability = app.add_subcommand(
+      "stability", "Eigenvalues of the whole nonlinear model (rotor, balls, cages, friction) linearised about its "
+                   "steady turning state at speeds: whirl frequencies, growth rates, damping ratios");
+  stability->add_option("MODEL", stability_options.model_file, "Model file (TOML)")->required();
+  stability->add_option("--speeds", stability_options.speeds,
+                        "Speeds: START:END:COUNT or a comma list, units allowed (\"20000:150000 rpm:14\"); "
+                        "default: 11 speeds over [modal]");
+  stability->add_option("--min-rotor-share", stability_options.min_rotor_share,
+                        "Table and pictures: modes with at least this fraction of their motion in the rotor")
+      ->capture_default_str();
+  stability->add_option("-o,--output", stability_options.output_dir, "Output directory")->capture_default_str();
+  stability->add_flag("!--no-plots", stability_options.plots, "Do not draw PNG pictures");
+  add_sets(stability);
 
   turbodyn::app::RunCommandOptions run_options;
   CLI::App* run = app.add_subcommand("run", "Run-up simulation: time series, summary, spectrograms, orbits");
@@ -190,6 +206,10 @@ int main(int argc, char** argv) {
     if (bearing->parsed()) {
       bearing_options.overrides = overrides;
       return turbodyn::app::run_bearing_command(bearing_options);
+    }
+    if (stability->parsed()) {
+      stability_options.overrides = overrides;
+      return turbodyn::app::run_stability_command(stability_options);
     }
     if (sweep->parsed()) return turbodyn::app::run_sweep_command(sweep_options);
     if (identify->parsed()) return turbodyn::app::run_identify_command(identify_options);

@@ -16,6 +16,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace turbodyn {
@@ -160,6 +161,26 @@ class ForceElement {
   /// Force evaluations one add_jacobian() call makes (0 for an analytic Jacobian), for the engine's count of
   /// force-element calls.
   virtual int jacobian_evaluations() const { return 0; }
+
+  /// How the element's states sit in a steady state at constant speed that turns with a frame about the rotor
+  /// axis (a relative equilibrium: balls and cage orbiting at the cage speed), for the linearised stability
+  /// analysis (model/engine/stability.h). Indices are the element's own (0 .. n_states() - 1).
+  struct SteadyRotationLayout {
+    /// Cartesian (x, y) pairs written in the housing frame (a cage's centre and velocity, a ring's radial
+    /// position): in the turning frame they are rotated.
+    std::vector<std::pair<int, int>> planar_pairs;
+    /// (angle, rate) pairs that advance at the frame's speed in the steady state (a ball's orbital angle, the
+    /// cage angle); every other state is constant there.
+    std::vector<std::pair<int, int>> turning_angles;
+    /// Index into turning_angles of the angle that fixes the frame's phase (the cage's), or -1 if there are none.
+    int phase_angle = -1;
+  };
+  /// False (the default) if the element has no such steady state about a centred rotor, or the analysis does not
+  /// know it; elements without states that act the same in every direction may return true with an empty layout.
+  virtual bool steady_rotation_layout(SteadyRotationLayout* layout) const {
+    (void)layout;
+    return false;
+  }
 
   /// Outputs of the element.
   virtual std::vector<ProbeInfo> probes() const { return {}; }

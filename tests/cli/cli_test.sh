@@ -249,6 +249,20 @@ EOF2
     [ $? -eq 2 ] || fail "damper accepted: $(cat "$out/sfd.log")"
     grep -q "squeeze-film dampers are nonlinear" "$out/sfd.log" || fail "message: $(cat "$out/sfd.log")"
     ;;
+  stability_reference_ball)
+    # Issue 17: turbodyn stability on the ball-bearing rotor finds the growing forward whirl at 95,000 rpm and
+    # none at 30,000 rpm; a floating-ring model is refused naming the bearing, exit 2.
+    "$exe" stability "$src/examples/reference_ball.toml" --speeds "30000 rpm, 95000 rpm" -o "$out" > "$out/log" 2>&1 \
+      || fail "exit $?: $(cat "$out/log")"
+    for f in stability.json stability.csv stability_frequencies.png stability_damping.png; do
+      [ -s "$out/$f" ] || fail "no $f: $(cat "$out/log")"
+    done
+    grep -q "^ *95000 .*UNSTABLE" "$out/log" || fail "no growing mode at 95,000 rpm: $(cat "$out/log")"
+    ! grep -q "^ *30000 .*UNSTABLE" "$out/log" || fail "a growing rotor mode at 30,000 rpm: $(cat "$out/log")"
+    "$exe" stability "$src/examples/reference_floating_ring.toml" --speeds "50000 rpm" -o "$out/fr" > "$out/fr.log" 2>&1
+    [ $? -eq 2 ] || fail "floating rings accepted: $(cat "$out/fr.log")"
+    grep -q "bearing '.*': its element has no steady state" "$out/fr.log" || fail "message: $(cat "$out/fr.log")"
+    ;;
   failed_write)
     # Issue 20: a result file that cannot be written (here a directory is in its place) is an error naming it,
     # with a non-zero exit and no "Wrote" line.

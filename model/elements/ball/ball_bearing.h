@@ -105,6 +105,10 @@ class BallBearingElement final : public ForceElement {
 
   std::unique_ptr<ElementWorkspace> make_workspace() const override;
   double state_scale(int i) const override;
+  /// Balls and cage orbit at the cage speed about a centred shaft: the ball and cage angles turn, the cage's
+  /// centre and velocity (and a spring-mounted outer ring's) are housing-frame pairs. False with outer ring
+  /// External (the wrapping element answers) and with gravity (nothing is steady in a turning frame then).
+  bool steady_rotation_layout(SteadyRotationLayout* layout) const override;
   /// The balls: each ball's equations involve only itself, the cage, the outer ring and the shaft.
   std::vector<int> independent_state_blocks() const override {
     return std::vector<int>(static_cast<std::size_t>(spec_.n_balls), kBallStates);

@@ -1,0 +1,160 @@
+#include "app/stability_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "app/command_line.h"
+#include "app/modal_command.h"
+#include "model/engine/stability.h"
+#include "model/io/output_file.h"
+#include "model/spec/constants.h"
+#include "model/spec/errors.h"
+#include "post/plot.h"
+
+namespace turbodyn::app {
+namespace {
+
+// Damping ratios below this are drawn at it on the logarithmic axis of the damping picture.
+constexpr double kDampingFloor = 1e-6;
+
+void write_pictures(const std::string& name, const std::vector<StabilityPoint>& points, double min_share,
+                    const std::filesystem::path& dir) {
+  using plot::Series;
+  Series stable{"stable", {}, {}, Series::Style::Points, "#1f77b4", 1.0};
+  Series unstable{"growing (unstable)", {}, {}, Series::Style::Crosses, "#d62728", 1.4};
+  Series cage{"cage frequency", {}, {}, Series::Style::Dashed, "#7f7f7f", 1.2};
+  for (const StabilityPoint& p : points)
+    if (p.frame_speed > 0.0) {
+      cage.x.push_back(p.speed * kRadPerSToRpm);
+      cage.y.push_back(p.frame_speed / (2.0 * kPi));
+    }
+  Series damp{"damping ratio of a stable mode", {}, {}, Series::Style::Points, "#1f77b4", 1.0};
+  Series growth{"growth rate / |lambda| of an unstable mode", {}, {}, Series::Style::Crosses, "#d62728", 1.4};
+  for (const StabilityPoint& p : points)
+    for (const StabilityMode& m : p.modes) {
+      if (m.rotor_share < min_share) continue;
+      const double rpm = p.speed * kRadPerSToRpm;
+      Series& f = m.grows() ? unstable : stable;
+      f.x.push_back(rpm);
+      f.y.push_back(m.frequency);
+      Series& d = m.grows() ? growth : damp;
+      d.x.push_back(rpm);
+      d.y.push_back(std::max(std::abs(m.damping_ratio), kDampingFloor));
+    }
+  plot::LineChart chart;
+  chart.title = name + ": whirl frequencies of the linearised run-up model (> 0 forward, < 0 backward)";
+  chart.xlabel = "rotor speed [rpm]";
+  chart.ylabel = "frequency in the housing frame [Hz]";
+  chart.series = {cage, stable, unstable};
+  plot::render_png(chart, dir / "stability_frequencies.png");
+  plot::LineChart dc;
+  dc.title = name + ": damping ratios of the modes in the rotor (|value|; red: growing)";
+  dc.xlabel = "rotor speed [rpm]";
+  dc.ylabel = "|damping ratio| [-]";
+  dc.logy = true;
+  dc.series = {damp, growth};
+  plot::render_png(dc, dir / "stability_damping.png");
+}
+
+}  // namespace
+
+int run_stability_command(const StabilityCommandOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const MachineSpec spec = load_model(options.model_file, options.overrides);
+  const std::vector<double> speeds = analysis_speeds(spec, options.speeds, 11);
+  if (!(options.min_rotor_share >= 0.0 && options.min_rotor_share <= 1.0))
+    throw ModelError("--min-rotor-share must lie in [0, 1]");
+  std::vector<StabilityPoint> points;
+  for (double s : speeds) {
+    try {
+      points.push_back(analyse_stability(spec, s));
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(spec.source.string() + ": " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw ModelError(spec.source.string() + " at " + std::to_string(s * kRadPerSToRpm) + " rpm: " + e.what());
+    }
+  }
+
+  std::filesystem::create_directories(options.output_dir);
+  nlohmann::json j;
+  j["turbodyn_version"] = "0.1.0";
+  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
+  nlohmann::json overrides = nlohmann::json::array();
+  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
+  j["overrides"] = overrides;
+  j["assumptions"] = {
+      "steady state at constant speed without gravity and unbalance, rotor centred: balls and cages orbit as a "
+      "rigid pattern at the cage speed (a relative equilibrium), found by Newton's method",
+      "linearised by central differences of the run-up model's right-hand side (every contact, friction and "
+      "damping law as in a run), shaft in its physical DOFs, written in the frame turning with the cages: constant "
+      "coefficients, eigenvalues = Floquet exponents of the steady state",
+      "frequency: housing frame, > 0 forward whirl; growth rate > 0: the steady state is unstable"};
+  nlohmann::json jp = nlohmann::json::array();
+  for (const StabilityPoint& p : points) {
+    nlohmann::json modes = nlohmann::json::array();
+    for (const StabilityMode& m : p.modes)
+      modes.push_back({{"frequency_hz", m.frequency},
+                       {"frame_frequency_hz", m.frame_frequency},
+                       {"growth_rate_per_s", m.growth_rate},
+                       {"damping_ratio", m.damping_ratio},
+                       {"forward_share", m.forward_share},
+                       {"rotor_share", m.rotor_share},
+                       {"element_shares", m.element_shares}});
+    jp.push_back({{"speed_rad_s", p.speed},
+                  {"speed_rpm", p.speed * kRadPerSToRpm},
+                  {"cage_speed_rad_s", p.frame_speed},
+                  {"states", p.n_states},
+                  {"steady_state_residual", p.residual},
+                  {"elements", p.elements},
+                  {"modes", modes}});
+  }
+  j["results"] = jp;
+  write_output_file(options.output_dir / "stability.json", j.dump(1) + "\n");
+  {
+    OutputFile file(options.output_dir / "stability.csv");
+    std::ostream& csv = file.stream();
+    csv << "speed_rpm,cage_speed_rad_s,frequency_hz,frame_frequency_hz,growth_rate_per_s,damping_ratio,"
+           "forward_share,rotor_share";
+    for (const std::string& e : points.front().elements) csv << ",share_" << e;
+    csv << '\n' << std::setprecision(10);
+    for (const StabilityPoint& p : points)
+      for (const StabilityMode& m : p.modes) {
+        csv << p.speed * kRadPerSToRpm << ',' << p.frame_speed << ',' << m.frequency << ',' << m.frame_frequency << ','
+            << m.growth_rate << ',' << m.damping_ratio << ',' << m.forward_share << ',' << m.rotor_share;
+        for (double s : m.element_shares) csv << ',' << s;
+        csv << '\n';
+      }
+    file.commit();
+  }
+
+  std::cout << spec.name << ": linearised about the steady turning state (no gravity, no unbalance); modes with at "
+            << "least " << options.min_rotor_share << " of their motion in the rotor, least damped first\n";
+  std::cout << "     speed [rpm]   cage [rad/s]   frequency [Hz]   growth [1/s]   damping ratio   rotor share\n";
+  constexpr std::size_t kShown = 4;
+  for (const StabilityPoint& p : points) {
+    std::size_t shown = 0;
+    for (const StabilityMode& m : p.modes) {
+      if (m.rotor_share < options.min_rotor_share) continue;
+      std::cout << std::fixed << std::setw(16) << std::setprecision(0) << p.speed * kRadPerSToRpm << std::setw(15)
+                << std::setprecision(1) << p.frame_speed << std::setw(17) << std::setprecision(1) << m.frequency
+                << std::setw(15) << std::setprecision(2) << m.growth_rate << std::scientific << std::setw(16)
+                << std::setprecision(3) << m.damping_ratio << std::fixed << std::setw(14) << std::setprecision(3)
+                << m.rotor_share << (m.grows() ? "   UNSTABLE" : "") << "\n";
+      if (++shown == kShown) break;
+    }
+  }
+  std::cout << std::defaultfloat;
+  if (options.plots) write_pictures(spec.name, points, options.min_rotor_share, options.output_dir);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "Wrote " << (options.output_dir / "stability.json").string() << ", stability.csv"
+            << (options.plots ? ", stability_frequencies.png, stability_damping.png" : "") << " ("
+            << std::setprecision(3) << wall << " s)\n";
+  return 0;
+}
+
+}  // namespace turbodyn::app

@@ -1,0 +1,334 @@
+#include "model/engine/stability.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include "model/elements/force_element.h"
+#include "model/engine/runup.h"
+#include "model/engine/runup_workspace.h"
+#include "model/spec/constants.h"
+
+namespace turbodyn {
+namespace {
+
+using Layout = ForceElement::SteadyRotationLayout;
+
+// Relative central-difference step of both Jacobians: the functions are smooth at the steady state (closed
+// Hertz contacts, friction in its creep range), so a step near eps^(1/3) balances truncation and round-off.
+constexpr double kRelativeStep = 1e-6;
+// Steady state of an element: converged at this largest scaled rate (state derivative over its typical
+// magnitude times the speed); kAccepted is the most that is accepted when the iteration stalls (the kinks of the
+// contact laws make the last digits ragged).
+constexpr double kConverged = 1e-9, kAccepted = 1e-6;
+constexpr int kMaxIterations = 400, kMaxNewton = 60;
+// Pseudo-time steps (in units of 1 / speed): the first, and the largest (then the iteration is Newton's method).
+constexpr double kFirstPseudoStep = 1.0, kLargestPseudoStep = 1e12;
+// Continuation in speed: no step larger than this (rad/s), about 2,400 rpm.
+constexpr double kMaxSpeedStep = 250.0;
+
+// One element's steady turning state at rotor speed `speed` with the rotor held centred, by pseudo-transient
+// continuation (Kelley & Keyes 1998, SIAM J. Numer. Anal. 35(2)): implicit Euler steps of the element's own
+// equations written in the frame of its phase angle (the cage),
+//   u' = G(u),  u_i = z_i / s_i,  G_i = z_i' / (s_i W0)  (s_i the state's typical magnitude, W0 the speed),
+// with a turning angle's rate taken relative to the phase angle's rate, psi_j' = psi_j_rate - W, and the phase
+// angle held. The pseudo-time step grows as the rates fall (switched evolution relaxation), so the iteration
+// starts as a damped time integration, which follows the physics through the saturated branches of the friction
+// law where Newton's method sees no slope, and ends as Newton's method. Each linear solve is least-norm: a ball
+// floating inside its pocket clearance has a neutral orbital position.
+class ElementSteadyState {
+ public:
+  ElementSteadyState(const ForceElement& e, const Layout& layout)
+      : e_(e), layout_(layout), ws_(e.make_workspace()), d_(static_cast<int>(e.dofs().size())), m_(e.n_states()) {
+    angle_of_.assign(static_cast<std::size_t>(m_), -1);
+    for (std::size_t j = 0; j < layout_.turning_angles.size(); ++j)
+      angle_of_[static_cast<std::size_t>(layout_.turning_angles[j].first)] = static_cast<int>(j);
+    q_.assign(static_cast<std::size_t>(d_), 0.0);
+    v_.assign(static_cast<std::size_t>(d_), 0.0);
+    f_.assign(static_cast<std::size_t>(d_), 0.0);
+    zdot_.resize(m_);
+    scale_.resize(m_);
+    for (int i = 0; i < m_; ++i) scale_(i) = std::max(e.state_scale(i), 1e-300);
+  }
+
+  /// Newton's method with least-norm steps and a backtracking line search on G(u) = 0, from z (overwritten);
+  /// returns the final largest scaled rate. Fast near the steady state; it sees no slope where friction saturates.
+  double newton(double speed, Eigen::VectorXd& z) {
+    speed_ = speed;
+    rate_scale_ = std::max(std::abs(speed), 100.0);
+    Eigen::VectorXd g(m_), g_try(m_);
+    rates(z, g);
+    double norm = g.lpNorm<Eigen::Infinity>();
+    Eigen::MatrixXd J(m_, m_);
+    for (int it = 0; it < kMaxNewton && norm > kConverged; ++it) {
+      jacobian(z, J);
+      const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-g);
+      if (!step.allFinite()) break;
+      bool reduced = false;
+      double lambda = 1.0;
+      for (int ls = 0; ls < 12 && !reduced; ++ls, lambda *= 0.5) {
+        const Eigen::VectorXd z_try = z + lambda * step.cwiseProduct(scale_);
+        rates(z_try, g_try);
+        const double n_try = g_try.lpNorm<Eigen::Infinity>();
+        if (std::isfinite(n_try) && n_try < norm) {
+          z = z_try;
+          g = g_try;
+          norm = n_try;
+          reduced = true;
+        }
+      }
+      if (!reduced) break;
+    }
+    return norm;
+  }
+
+  /// Pseudo-transient continuation from z (overwritten); returns the final largest scaled rate.
+  double solve(double speed, Eigen::VectorXd& z) {
+    speed_ = speed;
+    rate_scale_ = std::max(std::abs(speed), 100.0);
+    Eigen::VectorXd g(m_), g_try(m_);
+    rates(z, g);
+    double norm = g.lpNorm<Eigen::Infinity>(), dt = kFirstPseudoStep;
+    Eigen::MatrixXd J(m_, m_), H(m_, m_);
+    for (int it = 0; it < kMaxIterations && norm > kConverged; ++it) {
+      jacobian(z, J);
+      bool advanced = false;
+      for (int attempt = 0; attempt < 30 && !advanced; ++attempt) {
+        H = -J;
+        H.diagonal().array() += 1.0 / dt;
+        const Eigen::VectorXd step = H.completeOrthogonalDecomposition().solve(g);
+        const Eigen::VectorXd z_try = z + step.cwiseProduct(scale_);
+        rates(z_try, g_try);
+        const double n_try = g_try.lpNorm<Eigen::Infinity>();
+        if (step.allFinite() && std::isfinite(n_try) && n_try < 2.0 * norm) {
+          // Switched evolution relaxation: the pseudo-time step grows as the rates fall.
+          dt = std::min(kLargestPseudoStep, dt * std::clamp(norm / n_try, 0.5, 10.0));
+          z = z_try;
+          g = g_try;
+          norm = n_try;
+          advanced = true;
+        } else {
+          dt = std::max(kFirstPseudoStep, 0.25 * dt);
+        }
+      }
+      if (!advanced) break;
+    }
+    return norm;
+  }
+
+  /// The frame's speed W at z: the phase angle's rate, or 0 if the element has no turning angles.
+  double frame_speed(const Eigen::VectorXd& z) const {
+    if (layout_.turning_angles.empty()) return 0.0;
+    return z(layout_.turning_angles[static_cast<std::size_t>(std::max(layout_.phase_angle, 0))].second);
+  }
+
+ private:
+  void rates(const Eigen::VectorXd& z, Eigen::VectorXd& g) {
+    SpinState s;
+    s.speed = speed_;
+    std::fill(f_.begin(), f_.end(), 0.0);
+    e_.calc_and_add_forces(s, q_.data(), v_.data(), z.data(), *ws_, f_.data(), zdot_.data());
+    const double W = frame_speed(z);
+    for (int i = 0; i < m_; ++i) {
+      const int j = angle_of_[static_cast<std::size_t>(i)];
+      const double rate = j < 0 ? zdot_(i) : j == std::max(layout_.phase_angle, 0) ? 0.0 : zdot_(i) - W;
+      g(i) = rate / (scale_(i) * rate_scale_);
+    }
+  }
+
+  void jacobian(const Eigen::VectorXd& z, Eigen::MatrixXd& J) {
+    Eigen::VectorXd zp = z, gp(m_), gm(m_);
+    for (int k = 0; k < m_; ++k) {
+      const double h = kRelativeStep * std::max(std::abs(z(k)), scale_(k));
+      zp(k) = z(k) + h;
+      rates(zp, gp);
+      zp(k) = z(k) - h;
+      rates(zp, gm);
+      zp(k) = z(k);
+      J.col(k) = (gp - gm) * (scale_(k) / (2.0 * h));  // per unit of the scaled state
+    }
+  }
+
+  const ForceElement& e_;
+  const Layout& layout_;
+  std::unique_ptr<ElementWorkspace> ws_;
+  int d_ = 0, m_ = 0;
+  std::vector<int> angle_of_;  // per state: the turning angle it is, or -1
+  std::vector<double> q_, v_, f_;
+  Eigen::VectorXd zdot_, scale_;
+  double speed_ = 0.0, rate_scale_ = 1.0;
+};
+
+// The element's steady state at `speed` by continuation from rest, each step started from the secant through the
+// last two solutions (angles excepted). Returns the states and the frame speed in *frame.
+Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout, double speed, double* frame,
+                                     double* residual) {
+  ElementSteadyState solver(e, layout);
+  const int m = e.n_states();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
+  e.initial_states(x.data());
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(speed) / kMaxSpeedStep)));
+  Eigen::VectorXd prev = x;
+  double prev_speed = 0.0, last_speed = 0.0, norm = 0.0;
+  for (int k = 1; k <= steps; ++k) {
+    const double s = speed * k / steps;
+    Eigen::VectorXd guess(m);
+    if (k == 1) {
+      guess = x;
+      e.initial_states_at_speed(s, guess.data());
+    } else {
+      guess = x + (x - prev) * ((s - last_speed) / (last_speed - prev_speed));
+      // Angles are not extrapolated: a ball's place in its pocket is neutral and may have moved in the last solve.
+      for (const auto& a : layout.turning_angles) guess(a.first) = x(a.first);
+    }
+    prev = x;
+    prev_speed = last_speed;
+    Eigen::VectorXd start = guess;
+    norm = solver.newton(s, guess);
+    if (!(norm <= kAccepted)) {
+      guess = start;
+      norm = solver.solve(s, guess);
+    }
+    if (!(norm <= kAccepted))
+      throw std::runtime_error("element '" + e.name() + "': no steady state found at " +
+                               std::to_string(s * kRadPerSToRpm) + " rpm (the iteration stopped at a scaled rate of " +
+                               std::to_string(norm) + ")");
+    x = guess;
+    last_speed = s;
+  }
+  *frame = solver.frame_speed(x);
+  *residual = norm;
+  return x;
+}
+
+}  // namespace
+
+StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const StabilityOptions& options) {
+  if (!std::isfinite(speed) || speed < 0.0) throw std::invalid_argument("the speed must be finite and >= 0");
+  MachineSpec spec = spec_in;
+  spec.gravity = 0.0;
+  for (DiskSpec& d : spec.disks) d.unbalance = 0.0;
+  spec.speed = SpeedProfile{};
+  spec.speed.kind = SpeedProfile::Kind::Ramp;
+  spec.speed.start = spec.speed.end = speed;
+  spec.speed.duration = 1.0;
+  spec.solver.reduction_cutoff = 0.0;  // physical DOFs: the rotor's (x, y) pairs are explicit
+  const std::unique_ptr<RunupModel> model = make_runup_model(spec);
+  const Rotor& rotor = model->rotor();
+  const int n = model->n_dof(), N = model->n_states() - 2;  // the two energy accounts are left out
+
+  StabilityPoint out;
+  out.speed = speed;
+  out.n_states = N;
+  std::vector<double> y(static_cast<std::size_t>(model->n_states()), 0.0);
+  std::vector<Layout> layouts(model->elements().size());
+  bool have_frame = false;
+  for (std::size_t k = 0; k < model->elements().size(); ++k) {
+    const ForceElement& e = *model->elements()[k];
+    out.elements.push_back(e.name());
+    if (!e.steady_rotation_layout(&layouts[k]))
+      throw std::invalid_argument("bearing '" + e.name() + "': its element has no steady state about a centred "
+                                  "rotor that the stability analysis knows (it covers ball bearings with a fixed or "
+                                  "spring-mounted outer ring, and elements without states)");
+    if (e.n_states() == 0) continue;
+    double frame = 0.0, residual = 0.0;
+    const Eigen::VectorXd z = element_steady_state(e, layouts[k], speed, &frame, &residual);
+    std::copy(z.data(), z.data() + z.size(), y.begin() + model->state_offset(static_cast<int>(k)));
+    out.residual = std::max(out.residual, residual);
+    if (layouts[k].turning_angles.empty()) continue;
+    if (have_frame && std::abs(frame - out.frame_speed) > 1e-6 * std::max(std::abs(frame), 1.0))
+      throw std::invalid_argument("bearing '" + e.name() + "': its cage turns at " + std::to_string(frame) +
+                                  " rad/s, another at " + std::to_string(out.frame_speed) +
+                                  " rad/s; the linearisation needs one turning frame (identical bearings)");
+    out.frame_speed = frame;
+    have_frame = true;
+  }
+  const double W = out.frame_speed;
+
+  // Typical magnitudes of the states (scaled tolerances at atol = 1 typical displacement).
+  const Eigen::VectorXd typical = model->AbsoluteTolerances(ForceElement::kTypicalDisplacement, true).head(N);
+  RunupWorkspacePtr ws = model->make_workspace();
+  ws->energy = false;
+  std::vector<double> ydot(y.size()), yp(y), yd_p(y.size()), yd_m(y.size());
+  model->Rhs(0.0, y.data(), ydot.data(), *ws);
+  // The rotor must be at rest in the steady state: the elements' forces on the centred shaft cancel.
+  for (int i = n; i < 2 * n; ++i)
+    out.residual = std::max(out.residual, std::abs(ydot[static_cast<std::size_t>(i)]) /
+                                              (typical(i) * std::max(speed, 100.0)));
+
+  // A = dF/dy by central differences, in scaled states: As = D^-1 A D.
+  Eigen::MatrixXd A(N, N);
+  for (int j = 0; j < N; ++j) {
+    const double h = kRelativeStep * std::max(std::abs(y[static_cast<std::size_t>(j)]), typical(j));
+    yp[static_cast<std::size_t>(j)] = y[static_cast<std::size_t>(j)] + h;
+    model->Rhs(0.0, yp.data(), yd_p.data(), *ws);
+    yp[static_cast<std::size_t>(j)] = y[static_cast<std::size_t>(j)] - h;
+    model->Rhs(0.0, yp.data(), yd_m.data(), *ws);
+    yp[static_cast<std::size_t>(j)] = y[static_cast<std::size_t>(j)];
+    for (int i = 0; i < N; ++i)
+      A(i, j) = (yd_p[static_cast<std::size_t>(i)] - yd_m[static_cast<std::size_t>(i)]) / (2.0 * h) * typical(j) /
+                typical(i);
+  }
+  // The turning frame: w_a' = x_a' + W x_b, w_b' = x_b' - W x_a for every housing-frame pair (a, b).
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t node = 0; node < rotor.node_z.size(); ++node)
+    for (int offset : {0, n}) {
+      pairs.emplace_back(offset + rotor.dof(static_cast<int>(node), kX), offset + rotor.dof(static_cast<int>(node), kY));
+      pairs.emplace_back(offset + rotor.dof(static_cast<int>(node), kThetaX),
+                         offset + rotor.dof(static_cast<int>(node), kThetaY));
+    }
+  for (std::size_t k = 0; k < layouts.size(); ++k)
+    for (const auto& [a, b] : layouts[k].planar_pairs)
+      pairs.emplace_back(model->state_offset(static_cast<int>(k)) + a, model->state_offset(static_cast<int>(k)) + b);
+  for (const auto& [a, b] : pairs) {
+    A(a, b) += W * typical(b) / typical(a);
+    A(b, a) -= W * typical(a) / typical(b);
+  }
+
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(A);
+  if (es.info() != Eigen::Success) throw std::runtime_error("the eigenvalue solver did not converge");
+  double f_max = options.frequency_max;
+  if (f_max <= 0.0) f_max = std::max(5000.0, 4.0 * speed / (2.0 * kPi));
+  const Eigen::VectorXcd& lambda = es.eigenvalues();
+  const Eigen::MatrixXcd V = es.eigenvectors();
+  for (int k = 0; k < N; ++k) {
+    const std::complex<double> l = lambda(k);
+    if (l.imag() < 0.0) continue;  // each conjugate pair once
+    const Eigen::VectorXcd v = V.col(k);
+    double fwd = 0.0, bwd = 0.0;
+    for (std::size_t node = 0; node < rotor.node_z.size(); ++node) {
+      const std::complex<double> a = v(rotor.dof(static_cast<int>(node), kX)),
+                                 b = v(rotor.dof(static_cast<int>(node), kY));
+      const std::complex<double> i(0.0, 1.0);
+      fwd += std::norm(a + i * b);
+      bwd += std::norm(a - i * b);
+    }
+    StabilityMode mode;
+    mode.frame_frequency = l.imag() / (2.0 * kPi);
+    mode.growth_rate = l.real();
+    const double w_fwd = l.imag() + W, w_bwd = W - l.imag();  // housing-frame frequencies of the two parts
+    const double w = fwd >= bwd ? w_fwd : w_bwd;
+    mode.frequency = w / (2.0 * kPi);
+    mode.forward_share = fwd + bwd > 0.0 ? (fwd + (w_bwd > 0.0 ? bwd : 0.0)) / (fwd + bwd) : 0.0;
+    const double magnitude = std::hypot(l.real(), w);
+    mode.damping_ratio = magnitude > 0.0 ? -l.real() / magnitude : 0.0;
+    const double total = v.squaredNorm();
+    mode.rotor_share = v.head(2 * n).squaredNorm() / total;
+    for (std::size_t e = 0; e < model->elements().size(); ++e)
+      mode.element_shares.push_back(
+          v.segment(model->state_offset(static_cast<int>(e)), model->elements()[e]->n_states()).squaredNorm() / total);
+    if (!mode.grows() &&
+        (magnitude / (2.0 * kPi) > f_max || mode.rotor_share < options.min_rotor_share))
+      continue;
+    out.modes.push_back(std::move(mode));
+  }
+  std::sort(out.modes.begin(), out.modes.end(),
+            [](const StabilityMode& a, const StabilityMode& b) { return a.growth_rate > b.growth_rate; });
+  return out;
+}
+
+}  // namespace turbodyn

@@ -1,0 +1,68 @@
+// Linearised stability of the whole run-up model (rotor and every force element with its internal states) about a
+// steady state at constant speed: `turbodyn stability`, docs/ball-bearing.md ("Linearised stability").
+//
+// A rotor on ball bearings has no equilibrium at speed: its balls and cages orbit. Without gravity and unbalance,
+// with the rotor centred, they orbit as a rigid pattern at the cage speed W_c, a relative equilibrium: constant in
+// a frame turning at W_c about the rotor axis. The rotor (axisymmetric), its gyroscopic terms at constant speed and
+// each element's equations are the same in every direction, so in that frame the linearised equations
+//   w' = A~ w,   A~ = A + W_c S
+// have constant coefficients: A = dF/dy at the steady state (central differences of the run-up model's
+// right-hand side, every friction, damping and contact law included), S adds the frame's turning to each housing-
+// frame (x, y) pair (rotor translations and tilts, cage centre): w_x' = x' + W_c y, w_y' = y' - W_c x. Its
+// eigenvalues are the Floquet exponents of the orbiting steady state (an exact linearisation, not a frozen-time
+// one). A mode lambda~ = s + i w~ with housing-frame motion x + i y made of a forward part at w~ + W_c and a
+// backward part at W_c - w~ is reported at the frequency of the larger part (signed: > 0 forward whirl), with its
+// growth rate s (> 0: the state is unstable) and damping ratio -s / |lambda| in the housing frame.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/spec/model_spec.h"
+
+namespace turbodyn {
+
+struct StabilityOptions {
+  /// Modes above this housing-frame frequency are dropped (Hz); 0 = 4 x the highest rotor speed frequency,
+  /// at least 5 kHz.
+  double frequency_max = 0.0;
+  /// Keep only modes whose rotor share (StabilityMode::rotor_share) is at least this; 0 keeps the balls' own modes.
+  double min_rotor_share = 0.0;
+};
+
+/// Damping ratios above -this are round-off of the central differences (the undamped shaft's bending modes near
+/// 1e6 rad/s come out with |Re| ~ 1e-7 |lambda|; the balls' neutral places in their pockets with |Re| ~ 1e-10).
+inline constexpr double kStabilityNoiseDamping = 1e-5;
+
+struct StabilityMode {
+  double frequency = 0.0;           ///< Hz in the housing frame, > 0 forward whirl, < 0 backward
+  double frame_frequency = 0.0;     ///< Hz in the turning frame, Im(lambda~) / 2 pi (>= 0)
+  double growth_rate = 0.0;         ///< 1/s, Re(lambda); > 0 grows
+  double damping_ratio = 0.0;       ///< -growth_rate / |lambda| in the housing frame
+  double forward_share = 0.0;       ///< of the rotor's translational motion, the fraction whirling forward
+  /// Fractions of the mode's state vector (each state over its typical magnitude, RunupModel::AbsoluteTolerances)
+  /// in the rotor coordinates and in each element's states; they sum to 1.
+  double rotor_share = 0.0;
+  std::vector<double> element_shares;
+  /// The mode grows beyond round-off: the steady state is unstable.
+  bool grows() const { return damping_ratio < -kStabilityNoiseDamping; }
+};
+
+struct StabilityPoint {
+  double speed = 0.0;        ///< rotor speed (rad/s)
+  double frame_speed = 0.0;  ///< W_c (rad/s): the cages' speed, 0 if no element turns
+  int n_states = 0;          ///< size of the linearised system
+  /// Largest relative residual of the steady state (each state derivative over its typical magnitude times the
+  /// speed), after Newton's method.
+  double residual = 0.0;
+  std::vector<std::string> elements;  ///< element names, the order of StabilityMode::element_shares
+  std::vector<StabilityMode> modes;   ///< largest growth rate first
+};
+
+/// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
+/// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
+/// (ForceElement::steady_rotation_layout: floating rings, journal bearings and dampers are not covered), or if the
+/// elements' frames turn at different speeds; std::runtime_error if Newton's method does not find the steady state.
+StabilityPoint analyse_stability(const MachineSpec& spec, double speed, const StabilityOptions& options = {});
+
+}  // namespace turbodyn
