@@ -204,7 +204,14 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   };
 
   try {
-    model.InitialState(t0, options.solver.static_start, N_VGetArrayPointer(y), *ws);
+    if (options.initial_state.empty()) {
+      model.InitialState(t0, options.solver.static_start, N_VGetArrayPointer(y), *ws);
+    } else {
+      if (static_cast<int>(options.initial_state.size()) != ny)
+        throw std::invalid_argument("the initial state has " + std::to_string(options.initial_state.size()) +
+                                    " values, the model " + std::to_string(ny) + " states");
+      std::copy(options.initial_state.begin(), options.initial_state.end(), N_VGetArrayPointer(y));
+    }
   } catch (const std::exception& e) {
     result.message = describe_stop(t0, model.spin(t0).speed, e.what());
     N_VDestroy(y);

@@ -19,6 +19,9 @@ struct RunupOptions {
   double sample_rate = 20000;  ///< 1/s
   double t_start = 0.0;        ///< s
   double t_end = 0.0;          ///< s, 0 = end of the speed profile
+  /// The state at t_start (RunupModel::n_states() values, e.g. a steady state of model/engine/stability.h);
+  /// empty: the model's InitialState (static equilibrium or rest, as solver.static_start says).
+  std::vector<double> initial_state;
   bool stability_limit_detection = true;  ///< BDF: lower the order when higher orders turn unstable
   /// Threads for the force elements of one right-hand side (RunupModel::make_workspace); the results do not
   /// depend on it. 1 in parameter studies, which already run one simulation per core.

@@ -207,7 +207,7 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
 
 }  // namespace
 
-StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const StabilityOptions& options) {
+MachineSpec stability_machine(const MachineSpec& spec_in, double speed) {
   if (!std::isfinite(speed) || speed < 0.0) throw std::invalid_argument("the speed must be finite and >= 0");
   MachineSpec spec = spec_in;
   spec.gravity = 0.0;
@@ -217,6 +217,11 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
   spec.speed.start = spec.speed.end = speed;
   spec.speed.duration = 1.0;
   spec.solver.reduction_cutoff = 0.0;  // physical DOFs: the rotor's (x, y) pairs are explicit
+  return spec;
+}
+
+StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const StabilityOptions& options) {
+  const MachineSpec spec = stability_machine(spec_in, speed);
   const std::unique_ptr<RunupModel> model = make_runup_model(spec);
   const Rotor& rotor = model->rotor();
   const int n = model->n_dof(), N = model->n_states() - 2;  // the two energy accounts are left out
@@ -248,6 +253,7 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     have_frame = true;
   }
   const double W = out.frame_speed;
+  out.steady_state = y;
 
   // Typical magnitudes of the states (scaled tolerances at atol = 1 typical displacement).
   const Eigen::VectorXd typical = model->AbsoluteTolerances(ForceElement::kTypicalDisplacement, true).head(N);

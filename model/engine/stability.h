@@ -56,8 +56,16 @@ struct StabilityPoint {
   /// speed), after Newton's method.
   double residual = 0.0;
   std::vector<std::string> elements;  ///< element names, the order of StabilityMode::element_shares
+  /// The steady state at t = 0 (RunupModel::n_states() values, energy accounts 0) of the model that
+  /// stability_machine(spec, speed) describes: a run started from it (RunupOptions::initial_state) stays there
+  /// unless a mode grows.
+  std::vector<double> steady_state;
   std::vector<StabilityMode> modes;   ///< largest growth rate first
 };
+
+/// The machine the analysis linearises: `spec` at the constant speed `speed` (rad/s), without gravity and
+/// unbalance, the shaft in its physical DOFs (no reduction).
+MachineSpec stability_machine(const MachineSpec& spec, double speed);
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state

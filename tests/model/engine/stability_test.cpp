@@ -84,7 +84,9 @@ TEST(Stability, RaceFrictionDestabilisesAForwardWhirlAboveSixtyThousandRpm) {
     if (m.grows())
       std::printf("[ 30,000 rpm ] growing: %.1f Hz, zeta %.3g, rotor share %.2e\n", m.frequency, m.damping_ratio,
                   m.rotor_share);
-    if (m.rotor_share >= kRotorMotion) EXPECT_FALSE(m.grows()) << m.frequency << " Hz";
+    if (m.rotor_share >= kRotorMotion) {
+      EXPECT_FALSE(m.grows()) << m.frequency << " Hz";
+    }
   }
   const StabilityPoint high = analyse_stability(spec, 95000 * kRpm);
   ASSERT_FALSE(high.modes.empty());
