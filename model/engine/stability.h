@@ -33,6 +33,9 @@ struct StabilityOptions {
 /// Damping ratios above -this are round-off of the central differences (the undamped shaft's bending modes near
 /// 1e6 rad/s come out with |Re| ~ 1e-7 |lambda|; the balls' neutral places in their pockets with |Re| ~ 1e-10).
 inline constexpr double kStabilityNoiseDamping = 1e-5;
+/// Growth rates below this (1/s) are neutral: an e-folding time of 100 s is nothing in a run-up of seconds, and a
+/// neutral mode at 0 Hz in the housing frame (a damper ring's free place) has a damping ratio of -1 from round-off.
+inline constexpr double kStabilityNeutralRate = 1e-2;
 
 struct StabilityMode {
   double frequency = 0.0;           ///< Hz in the housing frame, > 0 forward whirl, < 0 backward
@@ -45,7 +48,7 @@ struct StabilityMode {
   double rotor_share = 0.0;
   std::vector<double> element_shares;
   /// The mode grows beyond round-off: the steady state is unstable.
-  bool grows() const { return damping_ratio < -kStabilityNoiseDamping; }
+  bool grows() const { return damping_ratio < -kStabilityNoiseDamping && growth_rate > kStabilityNeutralRate; }
 };
 
 struct StabilityPoint {
@@ -69,7 +72,8 @@ MachineSpec stability_machine(const MachineSpec& spec, double speed);
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
-/// (ForceElement::steady_rotation_layout: floating rings, journal bearings and dampers are not covered), or if the
+/// (ForceElement::steady_rotation_layout: floating rings, journal bearings, linear bearings in dampers and dampers
+/// with a feed hole or supply pressure are not covered), or if the
 /// elements' frames turn at different speeds; std::runtime_error if Newton's method does not find the steady state.
 StabilityPoint analyse_stability(const MachineSpec& spec, double speed, const StabilityOptions& options = {});
 

@@ -239,6 +239,16 @@ void BallBearingElement::steady_states(double speed, double* z) const {
 
 bool BallBearingElement::steady_rotation_layout(SteadyRotationLayout* layout) const {
   if (spec_.outer_ring_mode == OuterRingMode::External || gravity_ != 0.0) return false;
+  core_rotation_layout(layout);
+  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
+    const int o = n_core_;
+    layout->planar_pairs.emplace_back(o, o + 1);
+    layout->planar_pairs.emplace_back(o + 2, o + 3);
+  }
+  return true;
+}
+
+void BallBearingElement::core_rotation_layout(SteadyRotationLayout* layout) const {
   layout->planar_pairs.clear();
   layout->turning_angles.clear();
   for (int j = 0; j < spec_.n_balls; ++j) layout->turning_angles.emplace_back(ball_offset(j), ball_offset(j) + 3);
@@ -247,12 +257,6 @@ bool BallBearingElement::steady_rotation_layout(SteadyRotationLayout* layout) co
   layout->turning_angles.emplace_back(c + 3, c + 7);
   layout->planar_pairs.emplace_back(c, c + 1);
   layout->planar_pairs.emplace_back(c + 4, c + 5);
-  if (spec_.outer_ring_mode == OuterRingMode::Spring) {
-    const int o = n_core_;
-    layout->planar_pairs.emplace_back(o, o + 1);
-    layout->planar_pairs.emplace_back(o + 2, o + 3);
-  }
-  return true;
 }
 
 std::unique_ptr<ElementWorkspace> BallBearingElement::make_workspace() const {

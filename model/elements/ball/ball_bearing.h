@@ -109,6 +109,8 @@ class BallBearingElement final : public ForceElement {
   /// centre and velocity (and a spring-mounted outer ring's) are housing-frame pairs. False with outer ring
   /// External (the wrapping element answers) and with gravity (nothing is steady in a turning frame then).
   bool steady_rotation_layout(SteadyRotationLayout* layout) const override;
+  /// The turning angles and housing-frame pairs of the core states (balls, cage) alone, for a wrapping element.
+  void core_rotation_layout(SteadyRotationLayout* layout) const;
   /// The balls: each ball's equations involve only itself, the cage, the outer ring and the shaft.
   std::vector<int> independent_state_blocks() const override {
     return std::vector<int>(static_cast<std::size_t>(spec_.n_balls), kBallStates);

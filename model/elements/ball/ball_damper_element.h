@@ -25,6 +25,10 @@ class BallDamperElement final : public ForceElement {
   void initial_states(double* z) const override;
   void initial_states_at_speed(double speed, double* z) const override;
   double state_scale(int i) const override;
+  /// The bearing's balls and cage, and the damper ring's centre and velocity as housing-frame pairs. Only for a
+  /// film that is the same in every direction (no feed hole, no supply pressure) and without gravity: then the
+  /// ring's steady place is the centre; otherwise false.
+  bool steady_rotation_layout(SteadyRotationLayout* layout) const override;
   /// The bearing's balls (the damper ring's states join the border).
   std::vector<int> independent_state_blocks() const override { return bearing_.independent_state_blocks(); }
   double fd_relative_step() const override { return 1e-6; }

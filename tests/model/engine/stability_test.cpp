@@ -99,6 +99,27 @@ TEST(Stability, RaceFrictionDestabilisesAForwardWhirlAboveSixtyThousandRpm) {
   EXPECT_NEAR(top.frequency / cage_hz, 1.0, 0.2);
 }
 
+TEST(Stability, BallBearingsInADamperWhoseFilmIsTheSameInEveryDirection) {
+  // examples/reference_ball_sfd.toml without its feed hole and supply pressure: the damper rings rest at the
+  // centre, so the balls and cages turn as in the fixed-ring bearing (the same cage speed to round-off); the
+  // example itself (a feed hole at the top, 4 bar) has no steady turning state and is refused.
+  constexpr double kSpeed = 60000 * kRpm;
+  MachineSpec sfd = load_model(testing::source_dir() + "/examples/reference_ball_sfd.toml");
+  EXPECT_THROW(analyse_stability(sfd, kSpeed), std::invalid_argument);
+  for (BearingSpec& b : sfd.bearings) {
+    b.damper.feed_hole_diameter = 0.0;
+    b.damper.supply_pressure = 0.0;
+  }
+  const StabilityPoint damped = analyse_stability(sfd, kSpeed);
+  const StabilityPoint fixed = analyse_stability(reference_ball(), kSpeed);
+  EXPECT_NEAR(damped.frame_speed / fixed.frame_speed, 1.0, 1e-9);
+  EXPECT_EQ(damped.n_states, fixed.n_states + 8);  // each damper ring's x, y, vx, vy
+  for (const StabilityMode& m : damped.modes)
+    if (std::abs(m.frequency) < 1e-3) {
+      EXPECT_FALSE(m.grows()) << "the rings' neutral place at 0 Hz counts as growing";
+    }
+}
+
 TEST(Stability, ElementsWithoutASteadyTurningStateAreRefused) {
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_floating_ring.toml");
   try {
