@@ -307,7 +307,7 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   read_ring_thermal(r, oil, f);
 }
 
-void read_ball_bearing(Reader& r, BearingSpec& b) {
+void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   BallBearingSpec& s = b.ball;
   s.n_balls = static_cast<int>(r.integer_or("n_balls", s.n_balls, 3, limits::kMaxBalls));
   s.ball_diameter = r.quantity_or("ball_diameter", dim::length, s.ball_diameter, Bound::Positive);
@@ -337,6 +337,20 @@ void read_ball_bearing(Reader& r, BearingSpec& b) {
   s.spin_friction = r.flag_or("spin_friction", s.spin_friction);
   s.race_traction =
       r.choice("race_traction", {"spatial", "planar"}, "spatial") == "planar" ? RaceTraction::Planar : RaceTraction::Spatial;
+  s.traction_law =
+      r.choice("traction_law", {"coulomb", "eyring"}, "coulomb") == "eyring" ? TractionLaw::Eyring : TractionLaw::Coulomb;
+  // The lubricated law's inlet viscosity: given, or the model's oil at its temperature.
+  s.lubricant_viscosity = r.quantity_or("lubricant_viscosity", dim::viscosity, 0.0, Bound::Positive);
+  if (s.traction_law == TractionLaw::Eyring && s.lubricant_viscosity == 0.0)
+    s.lubricant_viscosity = oil.viscosity_at(oil.temperature);
+  if (s.traction_law != TractionLaw::Eyring)
+    for (const char* key : {"lubricant_viscosity", "pressure_viscosity", "eyring_stress", "limiting_shear_coefficient"})
+      if (r.has(key)) r.fail(key, std::string(key) + " needs traction_law = \"eyring\"");
+  s.pressure_viscosity =
+      r.quantity_or("pressure_viscosity", dim::dimensionless / dim::pressure, s.pressure_viscosity, Bound::NonNegative);
+  s.eyring_stress = r.quantity_or("eyring_stress", dim::pressure, s.eyring_stress, Bound::Positive);
+  s.limiting_shear_coefficient =
+      r.quantity_or("limiting_shear_coefficient", dim::dimensionless, s.limiting_shear_coefficient, Bound::Positive);
   s.preload = r.quantity_or("preload", dim::force, s.preload, Bound::NonNegative);
   s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
   s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);
@@ -358,7 +372,7 @@ void read_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
     case BearingType::Linear: read_linear_bearing(r, b); break;
     case BearingType::Journal: read_journal_bearing(r, oil, b); break;
     case BearingType::FloatingRing: read_floating_ring(r, oil, b); break;
-    case BearingType::Ball: read_ball_bearing(r, b); break;
+    case BearingType::Ball: read_ball_bearing(r, oil, b); break;
   }
   if (b.type == BearingType::Linear || b.type == BearingType::Ball) {
     if (const toml::table* damper = r.table("damper")) {

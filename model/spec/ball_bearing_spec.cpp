@@ -62,6 +62,10 @@ bool BallBearingSpec::IsValid(std::string* error) const {
       {"friction_sliding", friction_sliding, Rule::NonNegative},
       {"friction_v1", friction_v1, Rule::Positive},
       {"friction_v2", friction_v2, Rule::Positive},
+      {"lubricant_viscosity", lubricant_viscosity, Rule::NonNegative},
+      {"pressure_viscosity", pressure_viscosity, Rule::NonNegative},
+      {"eyring_stress", eyring_stress, Rule::Positive},
+      {"limiting_shear_coefficient", limiting_shear_coefficient, Rule::Positive},
       {"preload", preload, Rule::NonNegative},
       {"preload_stiffness", preload_stiffness, Rule::NonNegative},
       {"outer_ring_mass", outer_ring_mass, Rule::Positive},
@@ -77,6 +81,11 @@ bool BallBearingSpec::IsValid(std::string* error) const {
   }
   if (!positive(pocket_clearance) || pocket_clearance >= 0.5 * ball_diameter)
     return fail(error, "pocket_clearance", "> 0 and < ball_diameter / 2", pocket_clearance);
+  if (traction_law == TractionLaw::Eyring && !positive(lubricant_viscosity))
+    return fail(error, "lubricant_viscosity", "> 0 for the lubricated (Eyring) traction law", lubricant_viscosity);
+  if (traction_law == TractionLaw::Eyring && !(pressure_viscosity > 0.0 && pressure_viscosity <= 5e-8))
+    return fail(error, "pressure_viscosity", "> 0 and <= 5e-8 1/Pa for the lubricated law (oils: 1e-8 to 3e-8)",
+                pressure_viscosity);
   if (outer_ring_mode == OuterRingMode::Spring && !positive(outer_ring_stiffness))
     return fail(error, "outer_ring_stiffness", "> 0 for the spring outer-ring mode", outer_ring_stiffness);
   return true;

@@ -22,6 +22,19 @@ enum class RaceTraction {
   Planar,
 };
 
+/// Which law gives the size of the race traction (its direction is the slip's, as race_traction says).
+enum class TractionLaw {
+  /// Paper Eq. 23: mu(|v|) Q with the regularised Coulomb coefficient of friction_static, friction_sliding,
+  /// friction_v1, friction_v2.
+  Coulomb,
+  /// A lubricated (elastohydrodynamic) contact: the mean shear stress of an Eyring fluid across the central film,
+  /// tau = tau_0 asinh(eta(p) |v| / (tau_0 h)), capped at the limiting shear stress gamma p, times the Hertz
+  /// contact area (Johnson & Tevaarwerk 1977; Bair & Winer 1979), with eta(p) = eta_0 exp(alpha p) at the mean
+  /// Hertz pressure p (Barus) and h the central film thickness of Hamrock & Dowson (1977) at the contact's
+  /// entrainment speed. docs/ball-bearing.md, "Lubricated traction".
+  Eyring,
+};
+
 /// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
 struct BallBearingSpec {
   // Geometry.
@@ -62,6 +75,12 @@ struct BallBearingSpec {
   double friction_v2 = 0.005;      ///< v_2 in m/s (tanh regularisation of sgn)
   bool spin_friction = true;       ///< add the spin moment of each race contact (3 pi / 16) mu Q a
   RaceTraction race_traction = RaceTraction::Spatial;  ///< which slip the race friction acts on
+  TractionLaw traction_law = TractionLaw::Coulomb;     ///< which law sizes the race traction
+  // Lubricated traction (TractionLaw::Eyring); defaults typical of a mineral engine oil (docs/ball-bearing.md).
+  double lubricant_viscosity = 0.0;          ///< eta_0 in Pa s at the contact inlet; 0 = the model's [oil]
+  double pressure_viscosity = 2.0e-8;        ///< alpha in 1/Pa, Barus pressure-viscosity coefficient
+  double eyring_stress = 5.0e6;              ///< tau_0 in Pa
+  double limiting_shear_coefficient = 0.08;  ///< gamma: limiting shear stress / pressure
 
   // Axial preload (spring-preloaded outer ring).
   double preload = 40.0;               ///< F_p in N (>= 0), spring force at the unloaded geometry

@@ -22,6 +22,25 @@ using namespace ball_detail;
 
 // ------------------------------------------------------------------------------------------------- Hertz
 
+double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointContact& hz, double Q, double u,
+                                double v) {
+  if (!(Q > 0.0)) return 0.0;
+  const double radius = hz.radius_factor * std::cbrt(Q), area = kPi * radius * radius, p = Q / area;
+  const double Rx = 1.0 / hz.curvature_x, E = hz.modulus;
+  const double U = lub.viscosity * std::max(std::abs(u), kMinEntrainmentSpeed) / (E * Rx);
+  const double G = lub.pressure_viscosity * E, W = Q / (E * Rx * Rx);
+  const double h = Rx * 2.69 * std::pow(U, 0.67) * std::pow(G, 0.53) * std::pow(W, -0.067) *
+                   (1.0 - 0.61 * std::exp(-0.73 * hz.ellipticity));
+  const double eta = lub.viscosity * std::exp(std::min(lub.pressure_viscosity * p, 300.0));
+  // tau / v = (eta / h) (asinh(x) / x) (tanh(y) / y), x = eta v / (tau_0 h), y = tau_E / tau_L: finite at v = 0.
+  const double x = eta * std::abs(v) / (lub.eyring_stress * h);
+  const double asinh_x = x < 1e-4 ? 1.0 - x * x / 6.0 : std::asinh(x) / x;
+  const double tau_e = lub.eyring_stress * x * asinh_x, tau_l = lub.limiting_shear * p;
+  const double y = tau_e / tau_l;
+  const double tanh_y = y < 1e-4 ? 1.0 - y * y / 3.0 : std::tanh(y) / y;
+  return area * (eta / h) * asinh_x * tanh_y;
+}
+
 HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y, double modulus) {
   if (!(curvature_x > 0.0 && curvature_y > 0.0 && modulus > 0.0))
     throw std::invalid_argument("Hertz point contact: curvature sums and modulus must be > 0");
@@ -48,6 +67,8 @@ HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y,
     k = 0.5 * (lo + hi);
   }
   const double e = std::sqrt(std::max(0.0, 1.0 - 1.0 / (k * k)));
+  h.curvature_x = curvature_x;
+  h.modulus = modulus;
   h.ellipticity = k;
   h.integral_k = std::comp_ellint_1(e);
   h.integral_e = std::comp_ellint_2(e);
@@ -138,6 +159,8 @@ BallBearingElement::BallBearingElement(const std::string& name, const BallBearin
                              (1.0 - spec.ring_poisson_ratio * spec.ring_poisson_ratio) / spec.ring_youngs_modulus);
   double cx = 0.0, cy = 0.0;
   RaceCurvatures(D, dm, spec.inner_groove_ratio, a0, true, &cx, &cy);
+  lubricant_ = EyringLubricant{spec.lubricant_viscosity, spec.pressure_viscosity, spec.eyring_stress,
+                               spec.limiting_shear_coefficient};
   hertz_inner_ = SolveHertzPointContact(cx, cy, e_br);
   RaceCurvatures(D, dm, spec.outer_groove_ratio, a0, false, &cx, &cy);
   hertz_outer_ = SolveHertzPointContact(cx, cy, e_br);
@@ -296,7 +319,8 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   const double d_race = spec_.contact_damping, d_pocket = spec_.pocket_damping, cp = spec_.pocket_clearance;
   const double mu0 = spec_.friction_static, mur = spec_.friction_sliding;
   const double v1 = spec_.friction_v1, v2 = spec_.friction_v2;
-  const bool friction = mu0 > 0.0 || mur > 0.0;
+  const bool eyring = spec_.traction_law == TractionLaw::Eyring;
+  const bool friction = eyring || mu0 > 0.0 || mur > 0.0;
   const bool spin = friction && spec_.spin_friction;
   const bool planar = spec_.race_traction == RaceTraction::Planar;
   // mu(v)/v of paper Eq. 23 for v >= 0, finite at v = 0: the friction force is -Q (mu(|v_t|)/|v_t|) v_t.
@@ -371,7 +395,19 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
           const Vec3 roll = (Vec3(0.0, 1.0, 0.0) - geo.u.y() * geo.u).normalized();
           vt = vt.dot(roll) * roll;
         }
-        const Vec3 Ft = (-Q * mu_over_v(vt.norm())) * vt;
+        double per_slip = 0.0, u_entrain = 0.0;  // |F_t| / |v_t| in N s/m, entrainment speed in m/s
+        if (eyring) {
+          // Entrainment speed: the mean of the two surfaces' speeds relative to the contact point, which moves
+          // with the ball's orbit.
+          const Vec3 v_contact(0.0, psid * (R + arm.x()), 0.0);
+          Vec3 ue = 0.5 * ((Vb + wb.cross(arm) - v_contact) + (race.velocity + race.omega.cross(lever) - v_contact));
+          ue -= ue.dot(geo.u) * geo.u;
+          u_entrain = ue.norm();
+          per_slip = eyring_traction_per_slip(lubricant_, hz, Q, u_entrain, vt.norm());
+        } else {
+          per_slip = Q * mu_over_v(vt.norm());
+        }
+        const Vec3 Ft = -per_slip * vt;
         F += Ft;
         M += arm.cross(Ft);
         Fr -= Ft;
@@ -382,7 +418,12 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
         if (spin) {
           const double a = hz.radius_factor * std::cbrt(Q);
           const double ws = (wb - race.omega).dot(geo.u);
-          const double Ms = kSpinMoment * Q * a * a * mu_over_v(std::abs(ws) * a) * ws;
+          // Coulomb: (3 pi / 16) mu Q a; lubricated: the traction at the slip a |w_s| gives the same moment
+          // with mu = F / Q.
+          const double per_slip_spin =
+              eyring ? eyring_traction_per_slip(lubricant_, hz, Q, u_entrain, std::abs(ws) * a)
+                     : Q * mu_over_v(std::abs(ws) * a);
+          const double Ms = kSpinMoment * a * a * per_slip_spin * ws;
           M -= Ms * geo.u;
           Mr += Ms * geo.u;
           diss += Ms * ws;

@@ -31,7 +31,30 @@ struct HertzPointContact {
   double stiffness = 0.0;      ///< K_c in N/m^1.5: F = K_c delta^1.5
   /// sqrt(a b) = radius_factor * F^(1/3) (m / N^(1/3)), mean radius of the contact ellipse.
   double radius_factor = 0.0;
+  double curvature_x = 0.0;    ///< 1/R_x, curvature sum in the rolling direction (1/m), as given
+  double modulus = 0.0;        ///< E' in Pa, as given
 };
+
+/// The lubricant of the lubricated traction law (TractionLaw::Eyring).
+struct EyringLubricant {
+  double viscosity = 0.0;           ///< eta_0 in Pa s at the inlet
+  double pressure_viscosity = 0.0;  ///< alpha in 1/Pa (> 0)
+  double eyring_stress = 0.0;       ///< tau_0 in Pa
+  double limiting_shear = 0.0;      ///< gamma: limiting shear stress / pressure
+};
+
+/// Entrainment speeds below this (m/s) are taken as this in the film thickness: a contact at rest keeps a film of
+/// molecular size instead of none, so that the traction stays finite and smooth through zero slip.
+inline constexpr double kMinEntrainmentSpeed = 0.01;
+
+/// Lubricated traction of a Hertz contact carrying Q (N) at entrainment speed u and slip speed v (m/s), as the
+/// force per unit slip F/v in N s/m (finite at v = 0): mean Hertz pressure p = Q / (pi a b); central film
+/// thickness h = R_x H_c with H_c = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k)), U = eta_0 u / (E' R_x),
+/// G = alpha E', W = Q / (E' R_x^2) (Hamrock & Dowson 1977, ASME J. Lubr. Technol. 99); viscosity at p by Barus,
+/// eta = eta_0 exp(alpha p); Eyring shear stress tau_E = tau_0 asinh(eta v / (tau_0 h)) (Johnson & Tevaarwerk
+/// 1977, Proc. R. Soc. A 356), smoothly capped at the limiting shear stress gamma p (Bair & Winer 1979, ASME
+/// J. Lubr. Technol. 101), tau = gamma p tanh(tau_E / (gamma p)); F = tau pi a b. Isothermal.
+double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointContact& hz, double Q, double u, double v);
 
 /// curvature_x, curvature_y: principal curvature sums of the two bodies in the two principal planes (1/m, concave
 /// negative), both > 0; modulus: E' = 2 / ((1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2) in Pa (Hamrock's E').
@@ -195,6 +218,7 @@ class BallBearingElement final : public ForceElement {
   double gravity_ = 0.0;
   int n_core_ = 0;
   HertzPointContact hertz_inner_, hertz_outer_;
+  EyringLubricant lubricant_;
   double k_pocket_ = 0.0;
   double m_ball_ = 0.0, i_ball_ = 0.0, i_cage_ = 0.0;
   double pitch_radius_ = 0.0;

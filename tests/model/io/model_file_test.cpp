@@ -84,6 +84,24 @@ TEST(ModelFile, OverrideErrorsNameTheOverride) {
   EXPECT_THROW(parse_override("no-equals-sign"), ModelError);
 }
 
+TEST(ModelFile, LubricatedTractionTakesTheModelsOilUnlessGivenAndItsKeysNeedIt) {
+  const std::string f = example("reference_ball.toml");
+  const MachineSpec s = load_model(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
+                                       parse_override("bearings.turbine.traction_law=\"eyring\""),
+                                       parse_override("bearings.turbine.lubricant_viscosity=5 mPa*s"),
+                                       parse_override("bearings.turbine.eyring_stress=3 MPa")});
+  EXPECT_EQ(s.bearings[0].ball.traction_law, TractionLaw::Eyring);
+  EXPECT_DOUBLE_EQ(s.bearings[0].ball.lubricant_viscosity, s.oil.viscosity_at(s.oil.temperature));
+  EXPECT_DOUBLE_EQ(s.bearings[1].ball.lubricant_viscosity, 5e-3);
+  EXPECT_DOUBLE_EQ(s.bearings[1].ball.eyring_stress, 3e6);
+  EXPECT_DOUBLE_EQ(s.bearings[1].ball.pressure_viscosity, 2e-8);
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.eyring_stress=3 MPa")}),
+              HasSubstr("needs traction_law = \"eyring\""));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
+                           parse_override("bearings.compressor.pressure_viscosity=1e-6")}),
+              HasSubstr("pressure_viscosity"));
+}
+
 TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {
   const std::string f = example("reference_ball_sfd.toml");
   const MachineSpec s = load_model(f, {parse_override("bearings.compressor.damper.end_seal_gap=20 um"),

@@ -12,9 +12,12 @@ namespace turbodyn {
 namespace {
 
 TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
-  for (OuterRingMode mode : {OuterRingMode::Fixed, OuterRingMode::Spring, OuterRingMode::External}) {
+  for (OuterRingMode mode : {OuterRingMode::Fixed, OuterRingMode::Spring, OuterRingMode::External})
+  for (TractionLaw law : {TractionLaw::Coulomb, TractionLaw::Eyring}) {
     BallBearingSpec spec;
     spec.outer_ring_mode = mode;
+    spec.traction_law = law;
+    spec.lubricant_viscosity = 0.01;
     const BallBearingElement e("alloc", spec, 0, 9.81);
     auto ws = e.make_workspace();
     std::vector<double> z(e.n_states()), zdot(e.n_states()), out(e.probes().size());

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <complex>
 #include <memory>
 #include <stdexcept>
@@ -110,11 +111,10 @@ TEST(BallBearing, PowersAndProbesAreThoseOfTheirOwnStateWhateverWasEvaluatedBefo
   EXPECT_NE(fresh(z1, 0), fresh(z2, 0));
 }
 
-TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
-  // With friction and damping on: E(t) - E(0) = work of the drive - dissipated energy, the drive holding the
-  // rotor speed against the bearing's torque on the shaft (inner-race friction). The two powers are integrated
-  // as extra states by the same integrator. Fixed outer ring, so calc_bearing covers every state.
-  const BallBearingSpec s = reference_bearing();
+// With friction and damping on: E(t) - E(0) = work of the drive - dissipated energy, the drive holding the rotor
+// speed against the bearing's torque on the shaft (inner-race friction). The two powers are integrated as extra
+// states by the same integrator. Fixed outer ring, so calc_bearing covers every state.
+void check_dissipation_balances_the_energy(const BallBearingSpec& s) {
   const BallBearingElement e("ref", s, 0, 9.81);
   const double W = 30000 * kRpm;
   std::vector<double> z(e.n_states());
@@ -140,6 +140,15 @@ TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) {
   std::printf("[ balance ] 2 ms at 30000 rpm: dissipated %.4e J (mean %.3f W), drive work %.4e J, kinetic+potential "
               "%+.4e J, residual %.2e J\n",
               lost, lost / 2e-3, work, energy(in.z()) - E0, balance);
+}
+
+TEST(BallBearing, DissipationIsNonNegativeAndBalancesTheEnergy) { check_dissipation_balances_the_energy(reference_bearing()); }
+
+TEST(BallBearing, LubricatedTractionDissipatesAndBalancesTheEnergy) {
+  BallBearingSpec s = reference_bearing();
+  s.traction_law = TractionLaw::Eyring;
+  s.lubricant_viscosity = 0.01;
+  check_dissipation_balances_the_energy(s);
 }
 
 TEST(BallBearing, PowerFlowProbesSplitTheShaftPowerAndTheLosses) {
@@ -225,6 +234,43 @@ TEST(BallBearing, PlanarTractionIgnoresSlipAcrossTheRollingDirection) {
   const double spatial0 = race_losses(RaceTraction::Spatial, 0.0), spatial1 = race_losses(RaceTraction::Spatial, 2e-3);
   EXPECT_NEAR(planar1, planar0, 1e-9 * std::max(planar0, 1e-6));
   EXPECT_GT(spatial1 - spatial0, 1e-3) << spatial0 << " -> " << spatial1;
+}
+
+TEST(BallBearing, LubricatedTractionHasItsViscousAndLimitingRanges) {
+  // TractionLaw::Eyring at the reference bearing's inner contact, 20 N, entrainment 20 m/s, an engine oil of
+  // 10 mPa s: against the closed forms of its two ends and the film thickness's speed exponent.
+  constexpr double kD = 4.5e-3, kDm = 17.5e-3, kQ = 20.0, kU = 20.0;
+  const double alpha0 = 15.0 * 3.14159265358979323846 / 180.0;
+  const double modulus = 2.0 / (2.0 * (1.0 - 0.3 * 0.3) / 208e9);
+  double cx = 0.0, cy = 0.0;
+  RaceCurvatures(kD, kDm, 0.52, alpha0, true, &cx, &cy);
+  const HertzPointContact hz = SolveHertzPointContact(cx, cy, modulus);
+  const EyringLubricant lub{0.01, 2e-8, 5e6, 0.08};
+  // Viscous end: F / v = eta(p) A / h, the same at any small slip.
+  const double radius = hz.radius_factor * std::cbrt(kQ), area = M_PI * radius * radius, p = kQ / area;
+  const double Rx = 1.0 / cx;
+  const double h = Rx * 2.69 * std::pow(lub.viscosity * kU / (modulus * Rx), 0.67) *
+                   std::pow(lub.pressure_viscosity * modulus, 0.53) * std::pow(kQ / (modulus * Rx * Rx), -0.067) *
+                   (1.0 - 0.61 * std::exp(-0.73 * hz.ellipticity));
+  const double viscous = lub.viscosity * std::exp(lub.pressure_viscosity * p) * area / h;
+  EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 1e-12) / viscous, 1.0, 1e-9);
+  EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 0.0) / viscous, 1.0, 1e-9);
+  // Limiting end: F -> gamma p A = gamma Q (the Eyring stress grows only with log(slip), so far out).
+  EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 1e30) * 1e30 / kQ, lub.limiting_shear, 1e-5);
+  // h ~ u^0.67: at small slip F / v ~ 1 / h.
+  EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, 0.5 * kU, 0.0) / viscous, std::pow(2.0, 0.67), 1e-9);
+  // The force grows with the slip and stays below the limit.
+  double last = 0.0;
+  std::printf("[ eyring ] p %.3g GPa, h %.3g um; mu at slip", p * 1e-9, h * 1e6);
+  for (double v : {1e-4, 1e-3, 1e-2, 0.1, 1.0, 10.0}) {
+    const double force = eyring_traction_per_slip(lub, hz, kQ, kU, v) * v;
+    EXPECT_GT(force, last);
+    EXPECT_LT(force, lub.limiting_shear * kQ);
+    last = force;
+    std::printf(" %.0e m/s: %.4f;", v, force / kQ);
+  }
+  std::printf("\n");
+  EXPECT_EQ(eyring_traction_per_slip(lub, hz, 0.0, kU, 1.0), 0.0);
 }
 
 TEST(BallBearing, BadSpecValuesThrowNamingTheField) {
