@@ -30,6 +30,8 @@ constexpr int kMaxIterations = 400, kMaxNewton = 60;
 constexpr double kFirstPseudoStep = 1.0, kLargestPseudoStep = 1e12;
 // Continuation in speed: no step larger than this (rad/s), about 2,400 rpm.
 constexpr double kMaxSpeedStep = 250.0;
+// Damping ratios above -this count as round-off for modes above frequency_max.
+constexpr double kHighFrequencyNoise = 1e-3;
 
 // One element's steady turning state at rotor speed `speed` with the rotor held centred, by pseudo-transient
 // continuation (Kelley & Keyes 1998, SIAM J. Numer. Anal. 35(2)): implicit Euler steps of the element's own
@@ -328,8 +330,11 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     for (std::size_t e = 0; e < model->elements().size(); ++e)
       mode.element_shares.push_back(
           v.segment(model->state_offset(static_cast<int>(e)), model->elements()[e]->n_states()).squaredNorm() / total);
-    if (!mode.grows() &&
-        (magnitude / (2.0 * kPi) > f_max || mode.rotor_share < options.min_rotor_share))
+    // Above frequency_max only clearly growing modes are kept: the round-off of the central differences grows
+    // with |lambda| (a nearly rigid shaft's bending modes at MHz come out with damping ratios of -1e-5 to -6e-5).
+    const bool above = magnitude / (2.0 * kPi) > f_max;
+    if (above ? mode.damping_ratio > -kHighFrequencyNoise
+              : !mode.grows() && mode.rotor_share < options.min_rotor_share)
       continue;
     out.modes.push_back(std::move(mode));
   }

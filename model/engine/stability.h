@@ -23,8 +23,8 @@
 namespace turbodyn {
 
 struct StabilityOptions {
-  /// Modes above this housing-frame frequency are dropped (Hz); 0 = 4 x the highest rotor speed frequency,
-  /// at least 5 kHz.
+  /// Modes above this housing-frame frequency are dropped (Hz) unless they clearly grow (damping ratio below
+  /// -1e-3); 0 = 4 x the rotor speed frequency, at least 5 kHz.
   double frequency_max = 0.0;
   /// Keep only modes whose rotor share (StabilityMode::rotor_share) is at least this; 0 keeps the balls' own modes.
   double min_rotor_share = 0.0;
