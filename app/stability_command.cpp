@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -76,7 +77,9 @@ int run_stability_command(const StabilityCommandOptions& options) {
     } catch (const std::invalid_argument& e) {
       throw ModelError(spec.source.string() + ": " + e.what());
     } catch (const std::runtime_error& e) {
-      throw ModelError(spec.source.string() + " at " + std::to_string(s * kRadPerSToRpm) + " rpm: " + e.what());
+      std::ostringstream at;
+      at << std::fixed << std::setprecision(0) << s * kRadPerSToRpm;
+      throw ModelError(spec.source.string() + " at " + at.str() + " rpm: " + e.what());
     }
   }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -17,6 +19,18 @@ namespace turbodyn {
 namespace {
 
 using Layout = ForceElement::SteadyRotationLayout;
+
+std::string rpm_text(double speed) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(0) << speed * kRadPerSToRpm << " rpm";
+  return os.str();
+}
+
+std::string number_text(double x) {
+  std::ostringstream os;
+  os << std::setprecision(3) << x;
+  return os.str();
+}
 
 // Relative central-difference step of both Jacobians: the functions are smooth at the steady state (closed
 // Hertz contacts, friction in its creep range), so a step near eps^(1/3) balances truncation and round-off.
@@ -33,15 +47,15 @@ constexpr double kMaxSpeedStep = 250.0;
 // Damping ratios above -this count as round-off for modes above frequency_max.
 constexpr double kHighFrequencyNoise = 1e-3;
 
-// One element's steady turning state at rotor speed `speed` with the rotor held centred, by pseudo-transient
-// continuation (Kelley & Keyes 1998, SIAM J. Numer. Anal. 35(2)): implicit Euler steps of the element's own
-// equations written in the frame of its phase angle (the cage),
+// One element's steady turning state at rotor speed `speed` with the rotor held centred: G(u) = 0 for the
+// element's own equations written in the frame of its phase angle (the cage),
 //   u' = G(u),  u_i = z_i / s_i,  G_i = z_i' / (s_i W0)  (s_i the state's typical magnitude, W0 the speed),
 // with a turning angle's rate taken relative to the phase angle's rate, psi_j' = psi_j_rate - W, and the phase
-// angle held. The pseudo-time step grows as the rates fall (switched evolution relaxation), so the iteration
-// starts as a damped time integration, which follows the physics through the saturated branches of the friction
-// law where Newton's method sees no slope, and ends as Newton's method. Each linear solve is least-norm: a ball
-// floating inside its pocket clearance has a neutral orbital position.
+// angle held. Newton's method first (newton()); where it stalls, pseudo-transient continuation (solve(); Kelley &
+// Keyes 1998, SIAM J. Numer. Anal. 35(2)): implicit Euler steps whose length grows as the rates fall (switched
+// evolution relaxation), a damped time integration that follows the physics through the saturated branches of the
+// friction law where Newton's method sees no slope, ending as Newton's method. Each linear solve is least-norm: a
+// ball floating inside its pocket clearance has a neutral orbital position.
 class ElementSteadyState {
  public:
   ElementSteadyState(const ForceElement& e, const Layout& layout)
@@ -189,16 +203,17 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
     }
     prev = x;
     prev_speed = last_speed;
-    Eigen::VectorXd start = guess;
+    const Eigen::VectorXd start = guess;
     norm = solver.newton(s, guess);
     if (!(norm <= kAccepted)) {
       guess = start;
       norm = solver.solve(s, guess);
     }
     if (!(norm <= kAccepted))
-      throw std::runtime_error("element '" + e.name() + "': no steady state found at " +
-                               std::to_string(s * kRadPerSToRpm) + " rpm (the iteration stopped at a scaled rate of " +
-                               std::to_string(norm) + ")");
+      throw std::runtime_error("element '" + e.name() + "': no steady state found at " + rpm_text(s) +
+                               " (the iteration stopped at a scaled rate of " + number_text(norm) +
+                               "; where friction saturates, e.g. the balls' gyroscopic moment above what the "
+                               "traction carries, it finds no slope)");
     x = guess;
     last_speed = s;
   }
@@ -249,8 +264,8 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     out.residual = std::max(out.residual, residual);
     if (layouts[k].turning_angles.empty()) continue;
     if (have_frame && std::abs(frame - out.frame_speed) > 1e-6 * std::max(std::abs(frame), 1.0))
-      throw std::invalid_argument("bearing '" + e.name() + "': its cage turns at " + std::to_string(frame) +
-                                  " rad/s, another at " + std::to_string(out.frame_speed) +
+      throw std::invalid_argument("bearing '" + e.name() + "': its cage turns at " + number_text(frame) +
+                                  " rad/s, another at " + number_text(out.frame_speed) +
                                   " rad/s; the linearisation needs one turning frame (identical bearings)");
     out.frame_speed = frame;
     have_frame = true;

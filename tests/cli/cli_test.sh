@@ -262,6 +262,14 @@ EOF2
     "$exe" stability "$src/examples/reference_floating_ring.toml" --speeds "50000 rpm" -o "$out/fr" > "$out/fr.log" 2>&1
     [ $? -eq 2 ] || fail "floating rings accepted: $(cat "$out/fr.log")"
     grep -q "bearing '.*': its element has no steady state" "$out/fr.log" || fail "message: $(cat "$out/fr.log")"
+    # A steady state the iteration cannot find (the paper's planar traction cannot hold the balls' gyroscopic
+    # moment at speed) is an error naming the element and the speed, exit 2.
+    "$exe" stability "$src/examples/reference_ball.toml" --speeds "95000 rpm" -o "$out/planar" --no-plots \
+      --set 'bearings.compressor.race_traction="planar"' --set 'bearings.turbine.race_traction="planar"' \
+      > "$out/planar.log" 2>&1
+    [ $? -eq 2 ] || fail "no error without a steady state: $(cat "$out/planar.log")"
+    grep -q "element 'compressor': no steady state found at [0-9]* rpm" "$out/planar.log" \
+      || fail "message: $(cat "$out/planar.log")"
     ;;
   failed_write)
     # Issue 20: a result file that cannot be written (here a directory is in its place) is an error naming it,
