@@ -1,5 +1,8 @@
 #include "model/elements/linear_bearing_element.h"
 
+#include <algorithm>
+#include <array>
+
 namespace turbodyn {
 
 LinearBearingElement::LinearBearingElement(const LinearBearing& bearing, int x_dof, Pedestal pedestal, double gravity)
@@ -7,6 +10,29 @@ LinearBearingElement::LinearBearingElement(const LinearBearing& bearing, int x_d
       bearing_(bearing),
       pedestal_(pedestal),
       gravity_(gravity) {}
+
+bool LinearBearingElement::steady_rotation_layout(SteadyRotationLayout* layout) const {
+  if (gravity_ != 0.0 || bearing_.linearisation) return false;
+  // Table entries k[0..3] = xx, xy, yx, yy; a single value stands for every speed.
+  const auto isotropic = [](const std::array<std::vector<double>, 4>& m) {
+    const std::size_t n = std::max({m[0].size(), m[1].size(), m[2].size(), m[3].size()});
+    const auto at = [](const std::vector<double>& v, std::size_t i) {
+      return v.empty() ? 0.0 : v[std::min(i, v.size() - 1)];
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      if (at(m[0], i) != at(m[3], i) || at(m[1], i) != -at(m[2], i)) return false;
+    return true;
+  };
+  if (!isotropic(bearing_.table.k) || !isotropic(bearing_.table.c)) return false;
+  layout->planar_pairs.clear();
+  layout->turning_angles.clear();
+  layout->phase_angle = -1;
+  if (n_states() > 0) {
+    layout->planar_pairs.emplace_back(0, 1);
+    layout->planar_pairs.emplace_back(2, 3);
+  }
+  return true;
+}
 
 void LinearBearingElement::relative(const double* q, const double* v, const double* z, Eigen::Vector2d& du,
                                     Eigen::Vector2d& dv) const {

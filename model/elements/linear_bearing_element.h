@@ -26,6 +26,9 @@ class LinearBearingElement final : public ForceElement {
 
   bool has_jacobian() const override { return true; }
   double state_scale(int i) const override { return i < 2 ? 1e-6 : 1e-3; }  // pedestal position, velocity
+  /// True if the coefficients act the same in every direction (k_xx = k_yy, k_xy = -k_yx, the same for c, at every
+  /// speed of the table) and there is no gravity; a pedestal's position and velocity are housing-frame pairs.
+  bool steady_rotation_layout(SteadyRotationLayout* layout) const override;
   void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
                    double* J) const override;
   std::vector<ProbeInfo> probes() const override;

@@ -256,7 +256,7 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
       throw std::invalid_argument("bearing '" + e.name() + "': its element has no steady state about a centred "
                                   "rotor that the stability analysis knows (it covers ball bearings with a fixed or "
                                   "spring-mounted outer ring or in a squeeze-film damper without feed hole and supply "
-                                  "pressure, whose film is the same in every direction)");
+                                  "pressure, and linear bearings, all acting the same in every direction)");
     if (e.n_states() == 0) continue;
     double frame = 0.0, residual = 0.0;
     const Eigen::VectorXd z = element_steady_state(e, layouts[k], speed, &frame, &residual);

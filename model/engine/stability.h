@@ -72,8 +72,8 @@ MachineSpec stability_machine(const MachineSpec& spec, double speed);
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
-/// (ForceElement::steady_rotation_layout: floating rings, journal bearings, linear bearings in dampers and dampers
-/// with a feed hole or supply pressure are not covered), or if the
+/// (ForceElement::steady_rotation_layout: floating rings, journal bearings, anisotropic linear bearings, linear
+/// bearings in dampers and dampers with a feed hole or supply pressure are not covered), or if the
 /// elements' frames turn at different speeds; std::runtime_error if Newton's method does not find the steady state.
 StabilityPoint analyse_stability(const MachineSpec& spec, double speed, const StabilityOptions& options = {});
 

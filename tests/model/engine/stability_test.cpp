@@ -43,6 +43,26 @@ TEST(Stability, SteadyStateTurnsAtTheQuasiStaticCageSpeed) {
   EXPECT_EQ(p.elements, (std::vector<std::string>{"compressor", "turbine"}));
 }
 
+TEST(Stability, OnIsotropicLinearBearingsTheModesAreTheModalAnalysisOnes) {
+  // examples/reference_linear.toml (k = 3e7 N/m, c = 100 N s/m, no states, no turning frame) at 60,000 rpm: the
+  // linearisation of the run-up model's right-hand side is the rotor's own linear model, so its eigenvalues are the
+  // modal analysis', up to the central differences' round-off.
+  constexpr double kSpeed = 60000 * kRpm, kTolerance = 1e-6;
+  const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_linear.toml");
+  const StabilityPoint p = analyse_stability(spec, kSpeed);
+  EXPECT_EQ(p.frame_speed, 0.0);
+  const ModalResult modal = modal_analysis(build_rotor(spec), kSpeed, ModalOptions{6});
+  ASSERT_GE(modal.modes.size(), 6u);
+  for (const Mode& m : modal.modes) {
+    const double signed_modal = m.whirl == Whirl::Backward ? -m.frequency : m.frequency;
+    double best = 1e30, zeta = 0.0;
+    for (const StabilityMode& s : p.modes)
+      if (std::abs(s.frequency - signed_modal) < std::abs(best - signed_modal)) best = s.frequency, zeta = s.damping_ratio;
+    EXPECT_NEAR(best / signed_modal, 1.0, kTolerance) << signed_modal << " Hz";
+    EXPECT_NEAR(zeta, m.damping_ratio, 1e-6) << signed_modal << " Hz";
+  }
+}
+
 TEST(Stability, RotorModesAtLowSpeedAreTheModalAnalysisOnes) {
   // At 30,000 rpm the four lowest rotor modes (two backward, two forward) in the housing frame match `turbodyn
   // modal` with the quasi-static bearing stiffness. A wrong frame transformation would move them by the cage
