@@ -21,6 +21,7 @@ struct RingWorkspace : ElementWorkspace {
     films.outer.hole_flows.reserve(8);
     jac_inner.hole_flows.reserve(8);
     jac_outer.hole_flows.reserve(8);
+    probe_outer.hole_flows.reserve(8);
     for (reynolds::FilmResult& r : jac_rate_outer) r.hole_flows.reserve(8);
   }
   reynolds::FilmSolver inner, outer;
@@ -33,6 +34,7 @@ struct RingWorkspace : ElementWorkspace {
   bool solvers_at_key = false;  // the solvers' last solves (factorisations, pressures) are those of `films`
   // Jacobian scratch: perturbed films, and the outer films and drill-hole pressures of the ring's rate columns.
   reynolds::FilmResult jac_inner, jac_outer, jac_rate_outer[5];
+  reynolds::FilmResult probe_outer;  // the outer film of the last probe evaluation without the heat balance
   std::array<double, 8> jac_rate_holes[5];
 };
 
@@ -218,6 +220,12 @@ void FloatingRingElement::drill_hole_pressures(const reynolds::FilmSolver& outer
   }
 }
 
+double FloatingRingElement::mean_hole_pressure(const double* holes) const {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < inner_.holes.size(); ++k) sum += holes[k];
+  return inner_.holes.empty() ? 0.0 : sum / inner_.holes.size();
+}
+
 const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s, const double* q, const double* v,
                                                              const double* z, ElementWorkspace& ws) const {
   auto& w = static_cast<RingWorkspace&>(ws);
@@ -234,9 +242,7 @@ const FloatingRingElement::Films& FloatingRingElement::Solve(const SpinState& s,
   const double c = std::cos(z[kAngle]), sn = std::sin(z[kAngle]);
   rotate(c, sn, i.fx, i.fy);
   rotate(c, sn, i.mx, i.my);
-  double hole_sum = 0.0;
-  for (std::size_t k = 0; k < inner_.holes.size(); ++k) hole_sum += holes[k];
-  w.films.hole_pressure = inner_.holes.empty() ? 0.0 : hole_sum / inner_.holes.size();
+  w.films.hole_pressure = mean_hole_pressure(holes);
   w.key.set(s.speed, q, v, z);
   w.solvers_at_key = true;
   return w.films;
@@ -477,16 +483,36 @@ FloatingRingElement::Heat FloatingRingElement::heat(const SpinState& s, const do
 
 void FloatingRingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
                                      ElementWorkspace& ws, double* out) const {
-  const Films& films = Solve(s, q, v, z, ws);
-  out[0] = -films.outer.fx;
-  out[1] = -films.outer.fy;
+  auto& w = static_cast<RingWorkspace&>(ws);
+  const reynolds::FilmResult* outer = nullptr;
+  double hole_pressure = 0.0;
+  const Films* films = nullptr;
+  if (thermal_ || w.key.matches(s.speed, q, v, z)) {
+    films = &Solve(s, q, v, z, ws);
+    outer = &films->outer;
+    hole_pressure = films->hole_pressure;
+  } else {
+    // Without the heat balance every probe comes from the outer film (the housing force, the drill holes'
+    // pressure) and the ring's state: the inner film, half the cost of a probe, is not solved. The solvers then no
+    // longer hold the films of the key's state.
+    w.key.invalidate();
+    w.solvers_at_key = false;
+    if (!w.outer.solve(outer_state(z), w.probe_outer))
+      throw std::runtime_error("floating-ring bearing '" + name() + "', outer film: " + w.outer.last_error());
+    double holes[8];
+    drill_hole_pressures(w.outer, z, holes);
+    outer = &w.probe_outer;
+    hole_pressure = mean_hole_pressure(holes);
+  }
+  out[0] = -outer->fx;
+  out[1] = -outer->fy;
   out[2] = s.speed != 0.0 ? z[kSpin] / s.speed : 0.0;
   out[3] = std::hypot(q[0] - z[kX], q[1] - z[kY]) / spec_.inner_clearance;
   out[4] = std::hypot(z[kX], z[kY]) / spec_.outer_clearance;
   out[5] = std::hypot(z[kAx], z[kAy]);
-  out[6] = films.hole_pressure;
+  out[6] = hole_pressure;
   if (thermal_) {
-    const thermal::FilmHeatInputs h = film_heat(s, v, films.inner, films.outer, z);
+    const thermal::FilmHeatInputs h = film_heat(s, v, films->inner, films->outer, z);
     const thermal::FilmHeatFlows b = thermal::film_heat_balance(spec_.thermal, density_, !inner_.holes.empty(), h);
     out[7] = h.inner_temperature;
     out[8] = h.outer_temperature;

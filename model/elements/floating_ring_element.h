@@ -104,6 +104,7 @@ class FloatingRingElement final : public ForceElement {
                                   const double* holes) const;
   /// Pressures at the drill holes' inner mouths from the solved outer film at ring angle z[kAngle] and spin z[kSpin].
   void drill_hole_pressures(const reynolds::FilmSolver& outer, const double* z, double* holes) const;
+  double mean_hole_pressure(const double* holes) const;  // of the inner film's drill holes
   /// [f; zdot] from the two films' results (the inner film's force and moment already in the housing frame).
   void loads(const SpinState& s, const double* v, const reynolds::FilmResult& inner,
              const reynolds::FilmResult& outer, const double* z, double* f, double* zdot) const;
