@@ -50,8 +50,14 @@ class BorderedBandLdlt {
     return with_sizes([this]<int M, bool Full>() { return factor_band<M, Full>(); }) && factor_corner();
   }
   void solve() {
-    with_sizes([this]<int M, bool Full>() {
-      solve_band<M, Full>();
+    with_sizes([this]<int M, bool>() {
+      if constexpr (M > 0) {
+        if (na_ > 0)
+          solve_band_windowed<M, true>();
+        else
+          solve_band_windowed<M, false>();
+      } else
+        solve_band();
       return true;
     });
   }
@@ -176,9 +182,91 @@ class BorderedBandLdlt {
     return true;
   }
 
-  template <int M, bool FullBorder>
+  // Solve for a compile-time half-bandwidth. The substitutions are chains from one row to the next: the M values
+  // of the sliding window y[r .. r + M] stay in registers, so each row costs one multiply-add on the chain instead
+  // of a store and a reload. Rows of fixed nodes are a shift of the window (their columns and right-hand sides are
+  // zero). The border's (na unknowns) sums run beside the chain.
+  template <int M, bool Border>
+  void solve_band_windowed() {
+    const int n = n_, na = Border ? na_ : 0;
+    double* y = y_.data();
+    double* ya = ya_.data();
+    const double* inv_d = inv_d_.data();
+    const std::uint8_t* fixed = fixed_.data();
+    std::fill(y + n, y + n + M + 1, 0.0);
+    double a[M];  // forward: y[r .. r + M - 1] with the updates of the rows above r
+#pragma GCC unroll 16
+    for (int t = 0; t < M; ++t) a[t] = y[t];
+    for (int r = 0; r < n; ++r) {
+      const double yr = a[0];
+      y[r] = yr * inv_d[r];
+      if (fixed[r]) {
+#pragma GCC unroll 16
+        for (int t = 1; t < M; ++t) a[t - 1] = a[t];
+        a[M - 1] = y[r + M];
+        continue;
+      }
+      const double* col = column(r);
+#pragma GCC unroll 16
+      for (int t = 1; t < M; ++t) a[t - 1] = a[t] - col[t] * yr;
+      a[M - 1] = y[r + M] - col[M] * yr;
+      if (Border) {
+        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
+        for (int k = 0; k < na; ++k) ya[k] -= w[k] * yr;
+      }
+    }
+    if (Border) solve_corner();
+    double b[M];  // backward: the solution y[r + 1 .. r + M]
+#pragma GCC unroll 16
+    for (int t = 0; t < M; ++t) b[t] = 0.0;
+    for (int r = n - 1; r >= 0; --r) {
+      if (fixed[r]) {
+#pragma GCC unroll 16
+        for (int t = M - 1; t > 0; --t) b[t] = b[t - 1];
+        b[0] = y[r];
+        continue;
+      }
+      const double* col = column(r);
+      // The newest value, b[0] = y[r + 1], enters last: the terms before it do not wait for it.
+      double s0 = 0.0, s1 = 0.0;
+#pragma GCC unroll 16
+      for (int t = 2; t <= M; t += 2) {
+        s0 += col[t] * b[t - 1];
+        if (t + 1 <= M) s1 += col[t + 1] * b[t];
+      }
+      if (Border) {
+        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
+        for (int k = 0; k < na; ++k) s0 += w[k] * ya[k];
+      }
+      const double yr = (y[r] - (s0 + s1)) - col[1] * b[0];
+      y[r] = yr;
+#pragma GCC unroll 16
+      for (int t = M - 1; t > 0; --t) b[t] = b[t - 1];
+      b[0] = yr;
+    }
+  }
+
+  // The border's unknowns from the corner's L D L^T (after the band's forward substitution).
+  void solve_corner() {
+    const int na = na_;
+    double* ya = ya_.data();
+    for (int i = 0; i < na; ++i) {
+      const double* ri = corner_.data() + i * na;
+      double s = ya[i];
+      for (int j = 0; j < i; ++j) s -= ri[j] * ya[j];
+      ya[i] = s;
+    }
+    for (int i = 0; i < na; ++i) ya[i] /= corner_d_[i];
+    for (int i = na - 1; i >= 0; --i) {
+      double s = ya[i];
+      for (int j = i + 1; j < na; ++j) s -= corner_[j * na + i] * ya[j];
+      ya[i] = s;
+    }
+  }
+
+  // Solve for a run-time half-bandwidth.
   void solve_band() {
-    const int m = M > 0 ? M : m_, na = FullBorder ? M : na_, n = n_;
+    const int m = m_, na = na_, n = n_;
     double* y = y_.data();
     double* ya = ya_.data();
     std::fill(y + n, y + n + m + 1, 0.0);
@@ -192,18 +280,7 @@ class BorderedBandLdlt {
         for (int a = 0; a < na; ++a) ya[a] -= w[a] * yr;
       }
     }
-    for (int i = 0; i < na; ++i) {
-      const double* ri = corner_.data() + i * na;
-      double s = ya[i];
-      for (int j = 0; j < i; ++j) s -= ri[j] * ya[j];
-      ya[i] = s;
-    }
-    for (int i = 0; i < na; ++i) ya[i] /= corner_d_[i];
-    for (int i = na - 1; i >= 0; --i) {
-      double s = ya[i];
-      for (int j = i + 1; j < na; ++j) s -= corner_[j * na + i] * ya[j];
-      ya[i] = s;
-    }
+    solve_corner();
     for (int r = 0; r < n; ++r) y[r] *= inv_d_[r];
     for (int r = n - 1; r >= 0; --r) {
       if (fixed_[r]) continue;
