@@ -1,0 +1,97 @@
+// Cost of the film's linear algebra alone (model/films/bordered_band_ldlt.h): one factorisation and one solve of the
+// system of a floating ring's film on the grid of the reference examples, 48 columns of 10 axial nodes, the
+// wrap-around column as the border. The arguments are the border's size (na: how many of that column's nodes are
+// free; 0 when the film has a fully cavitated column, where the cut goes) and the share of fixed (cavitated or hole)
+// nodes in per cent, laid out as a cavitated zone of whole columns' interiors, as the films produce them.
+//
+//   build/bench/band_ldlt_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "model/films/bordered_band_ldlt.h"
+
+namespace {
+
+using turbodyn::reynolds::BorderedBandLdlt;
+
+constexpr int kColumns = 48, kM = 10;
+
+// Fills the band (columns 0 .. kColumns - 2) and the border (column kColumns - 1) with a diagonally dominant
+// five-point system; fixed nodes are identity rows.
+void assemble(BorderedBandLdlt& s, int na, int fixed_percent, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.2, 1.0);
+  const int nb = (kColumns - 1) * kM;
+  // A cavitated zone of whole columns' interiors (the edge rows next to the ambient stay free) holding the share.
+  const int per_column = kM - 2, zone = fixed_percent * nb / 100 / per_column;
+  auto fixed = [&](int r) {
+    const int q = r / kM, j = r % kM;
+    return q >= kColumns / 3 && q < kColumns / 3 + zone && j > 0 && j < kM - 1;
+  };
+  s.reset(nb, kM, na);
+  for (int r = 0; r < nb; ++r) {
+    double* col = s.column(r);
+    const bool f = fixed(r);
+    s.set_fixed(r, f);
+    if (f) {
+      col[0] = 1.0;
+      continue;
+    }
+    const int q = r / kM, j = r % kM;
+    double sum = 1.0;
+    if (j + 1 < kM && !fixed(r + 1)) sum += -(col[1] = -u(rng));
+    if (q + 1 < kColumns - 1) {
+      if (!fixed(r + kM)) sum += -(col[kM] = -u(rng));
+    } else if (j < na) {
+      sum += -(s.border(r, j) = -u(rng));
+    }
+    if (q == 0 && j < na) sum += -(s.border(r, j) += -u(rng));
+    col[0] = 2.0 * sum + 4.0;
+  }
+  for (int a = 0; a < na; ++a) {
+    s.corner(a, a) = 6.0;
+    if (a + 1 < na) s.corner(a + 1, a) = -u(rng);
+  }
+}
+
+void Factor(benchmark::State& st) {
+  const int na = static_cast<int>(st.range(0)), fixed_percent = static_cast<int>(st.range(1));
+  BorderedBandLdlt s;
+  s.reserve(kColumns * kM, kM);
+  for (auto _ : st) {
+    st.PauseTiming();
+    assemble(s, na, fixed_percent, 7);
+    st.ResumeTiming();
+    if (!s.factor()) st.SkipWithError("not positive definite");
+  }
+}
+
+void Solve(benchmark::State& st) {
+  const int na = static_cast<int>(st.range(0)), fixed_percent = static_cast<int>(st.range(1));
+  BorderedBandLdlt s;
+  s.reserve(kColumns * kM, kM);
+  assemble(s, na, fixed_percent, 7);
+  if (!s.factor()) st.SkipWithError("not positive definite");
+  const int nb = (kColumns - 1) * kM;
+  for (auto _ : st) {
+    for (int r = 0; r < nb; ++r) s.rhs()[r] = 1e-3 * (r % 17);
+    for (int a = 0; a < na; ++a) s.rhs_border()[a] = 1.0;
+    s.solve();
+    benchmark::DoNotOptimize(s.rhs()[nb / 2]);
+  }
+}
+
+void Args(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"na", "fixed%"});
+  for (int na : {0, 1, 3, 6, 10})
+    for (int f : {0, 37}) b->Args({na, f});
+}
+
+BENCHMARK(Factor)->Apply(Args)->Unit(benchmark::kMicrosecond);
+BENCHMARK(Solve)->Apply(Args)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
