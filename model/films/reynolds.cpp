@@ -94,6 +94,9 @@ struct FilmSolver::Impl {
   BorderedBandLdlt band;
   double U = 0, pcav = 0, pamb = 0;
   double pscale = 1, fscale = 1;
+  // Faces between a free node and a hole node, with the factor of their conductance (fitted_holes): east faces by
+  // the full-grid node index k, axial faces by i * nzf + jf.
+  std::vector<std::pair<int, double>> fit_east, fit_axial;
   int iterations = 0, solves = 0;
   std::string err;
 
@@ -200,6 +203,7 @@ struct FilmSolver::Impl {
         kind[nearest] = static_cast<int>(h);
       }
     }
+    if (o.fitted_holes) fit_hole_faces();
     mask_symmetric = true;
     for (int k = 0; k < N; ++k) {
       if (kind[k] != -1) dir_nodes.push_back(k);
@@ -262,6 +266,42 @@ struct FilmSolver::Impl {
     return true;
   }
 
+  // Shortley-Weller faces at the holes' edges. Along the grid line through a free node and its neighbour inside a
+  // hole, the circle is crossed at distance delta from the free node (0 < delta <= step); the face then conducts
+  // step / delta times its grid value, as if the hole's pressure sat on the circle. Holes that caught no node
+  // inside their circle (smaller than a cell: their nearest node) keep the grid faces.
+  void fit_hole_faces() {
+    const int N = n * nz;
+    std::vector<char> inside(g.holes.size(), 0);
+    for (int k = 0; k < N; ++k)
+      if (kind[k] >= 0) {
+        const Hole& ho = g.holes[kind[k]];
+        const double ddx = g.radius * std::remainder(th[k / nz] - ho.theta, kTwoPi), ddz = zn[k % nz] - ho.z;
+        if (ddx * ddx + ddz * ddz <= 0.25 * ho.diameter * ho.diameter) inside[kind[k]] = 1;
+      }
+    auto factor = [&](int free_k, int hole_k, bool east) {
+      const int h = kind[hole_k];
+      if (!inside[h]) return 1.0;
+      const Hole& ho = g.holes[h];
+      const double a = 0.5 * ho.diameter;
+      const double ux = g.radius * std::remainder(th[free_k / nz] - ho.theta, kTwoPi), uz = zn[free_k % nz] - ho.z;
+      const double across = east ? uz : ux, along = east ? ux : uz, step = east ? dx : dz;
+      if (std::abs(across) >= a) return 1.0;
+      const double delta = std::abs(along) - std::sqrt(a * a - across * across);
+      return step / std::clamp(delta, 0.05 * step, step);
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < nz; ++j) {
+        const int k = i * nz + j, ke = ((i + 1) % n) * nz + j;
+        const bool hk = kind[k] >= 0, he = kind[ke] >= 0;
+        if (hk != he) fit_east.push_back({k, hk ? factor(ke, k, true) : factor(k, ke, true)});
+        if (j + 1 < nz) {
+          const bool hn = kind[k + 1] >= 0;
+          if (hk != hn) fit_axial.push_back({i * nzf + j + 1, hk ? factor(k + 1, k, false) : factor(k, k + 1, false)});
+        }
+      }
+  }
+
   void geometry_arrays(const FilmState& s) {
     const double c = g.clearance;
     const double kx = dz / (12.0 * eta * dx), kz = dx / (12.0 * eta * dz);
@@ -304,6 +344,8 @@ struct FilmSolver::Impl {
         }
       }
     }
+    for (const auto& [k, f] : fit_east) aE[k] *= f;
+    for (const auto& [kf, f] : fit_axial) aF[kf] *= f;
   }
 
   // Coefficients of the reduced system: per node west/east/south/north couplings, diagonal, Couette flux through
@@ -1185,6 +1227,10 @@ void FilmSolver::assemble_full_film_system(const FilmState& s, Eigen::SparseMatr
     return kd >= 0 ? (s.use_override ? s.hole_pressure_override[kd] : d.g.holes[kd].pressure)
                    : d.g.grooves[-2 - kd].pressure;
   };
+  // The holes' fitted faces (SolverOptions::fitted_holes), as the solver scales them.
+  std::vector<double> fit_e(N, 1.0), fit_a(n * d.nzf, 1.0);
+  for (const auto& [k, f] : d.fit_east) fit_e[k] = f;
+  for (const auto& [kf, f] : d.fit_axial) fit_a[kf] = f;
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(5 * N);
   b.setZero(N);
@@ -1201,7 +1247,8 @@ void FilmSolver::assemble_full_film_system(const FilmState& s, Eigen::SparseMatr
       const double z = d.zn[j];
       const double he = h_at(d.cte[i], d.ste[i], z), hw = h_at(d.cte[iw], d.ste[iw], z);
       const double hs = h_at(d.ct[i], d.st[i], d.zf[j]), hn = h_at(d.ct[i], d.st[i], d.zf[j + 1]);
-      const double ae = kx * he * he * he, aw = kx * hw * hw * hw, as = kz * hs * hs * hs, an = kz * hn * hn * hn;
+      const double ae = kx * he * he * he * fit_e[k], aw = kx * hw * hw * hw * fit_e[iw * nz + j],
+                   as = kz * hs * hs * hs * fit_a[i * d.nzf + j], an = kz * hn * hn * hn * fit_a[i * d.nzf + j + 1];
       const double hdot = -((s.vx + z * s.dsx) * d.ct[i] + (s.vy + z * s.dsy) * d.st[i]);
       double rhs = -0.5 * U * d.dz * (he - hw) - hdot * d.dx * d.dz;
       t.emplace_back(k, k, ae + aw + as + an);

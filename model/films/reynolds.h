@@ -103,6 +103,10 @@ struct SolverOptions {
   double tolerance = 1e-8;  ///< relative: active-set sign tests and the mass-conserving inner iteration
   int max_iterations = 200;  ///< active-set sweeps (and inner sweeps per active set)
   bool use_symmetry = true;  ///< solve half the film when tilt, holes and grooves are symmetric about mid-width
+  /// Holes' edges where they cross the grid lines: a face between a free node and a hole node conducts over the
+  /// free node's distance to the hole's circle instead of the grid step (Shortley & Weller 1938), so the hole's
+  /// size does not jump with the grid. False: the hole is the grid nodes inside its circle.
+  bool fitted_holes = true;
 };
 
 /// Short-bearing (Ocvirk) and long-bearing (Sommerfeld) closed forms, half-Sommerfeld (Gumbel) cavitation, steady,

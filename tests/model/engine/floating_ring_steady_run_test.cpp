@@ -46,13 +46,24 @@ TEST(FloatingRingSteady, AgreesWithALongConstantSpeedRun) {
   EXPECT_NEAR((mean(ch + "outer_temperature") - ts) / (p.outer_temperature - ts), 1.0, kAgreement);
   EXPECT_NEAR(mean(ch + "outer_eccentricity") / p.outer_eccentricity, 1.0, 2 * kAgreement);
   EXPECT_NEAR(mean(ch + "inner_eccentricity") / p.inner_eccentricity, 1.0, 5 * kAgreement);  // it swings with the holes
-  // Energy: the run's mechanical balance closes with the films' dissipation, and at the steady end the heat
-  // dissipated leaves by oil and conduction (stored heat constant).
+  // Energy: the run's mechanical balance closes with the films' dissipation, and at the nearly steady end the heat
+  // dissipated leaves by oil and conduction or is still being stored (the stored heat's mean rate over the window,
+  // about 1e-3 of the dissipation).
   constexpr double kClosure = 1e-3;
   const double change = r.energy_final - r.energy_initial;
   EXPECT_NEAR(change, r.work_in - r.dissipated, kClosure * r.dissipated);
   const double dissipated = mean(ch + "inner_power_loss") + mean(ch + "outer_power_loss");
-  EXPECT_NEAR(mean(ch + "heat_to_oil") + mean(ch + "heat_conducted"), dissipated, kClosure * dissipated);
+  double stored_rate = 0.0;
+  for (std::size_t c = 0; c < r.channels.size(); ++c)
+    if (r.channels[c].name == ch + "stored_heat") {
+      std::size_t first = 0;
+      while (r.time[first] <= 0.3) ++first;
+      const std::size_t last = r.time.size() - 1;
+      stored_rate = (r.columns[c][last] - r.columns[c][first]) / (r.time[last] - r.time[first]);
+    }
+  EXPECT_LT(std::abs(stored_rate), 5e-3 * dissipated) << "not near steady";
+  EXPECT_NEAR(mean(ch + "heat_to_oil") + mean(ch + "heat_conducted") + stored_rate, dissipated,
+              0.25 * kClosure * dissipated);
   EXPECT_GT(mean(ch + "heat_to_oil"), 0.05 * dissipated);
   EXPECT_LT(mean(ch + "heat_conducted"), -0.05 * dissipated);  // the 100 degC shaft heats the films
 }
