@@ -35,8 +35,9 @@ namespace turbodyn::reynolds {
 
 using turbodyn::Cavitation;
 
-/// Radial hole in the outer surface. Grid nodes inside its circle (on the unrolled surface) get p = pressure; a
-/// hole smaller than the grid spacing fixes its nearest node.
+/// Radial hole in the outer surface. Grid nodes inside its circle (on the unrolled surface) get p = pressure, and
+/// the faces from them to free nodes are fitted to the circle (SolverOptions::fitted_holes); a hole smaller than
+/// the grid spacing fixes its nearest node.
 struct Hole {
   double theta = 0;     ///< rad, position of the centre in the film frame
   double z = 0;         ///< m, from mid-width
