@@ -16,6 +16,7 @@
 #include "model/spec/constants.h"
 #include "model/spec/errors.h"
 #include "post/plot.h"
+#include "post/report.h"
 
 namespace turbodyn::app {
 namespace {
@@ -107,7 +108,8 @@ int run_stability_command(const StabilityCommandOptions& options) {
                        {"damping_ratio", m.damping_ratio},
                        {"forward_share", m.forward_share},
                        {"rotor_share", m.rotor_share},
-                       {"element_shares", m.element_shares}});
+                       {"element_shares", m.element_shares},
+                       {"grows", m.grows()}});
     jp.push_back({{"speed_rad_s", p.speed},
                   {"speed_rpm", p.speed * kRadPerSToRpm},
                   {"cage_speed_rad_s", p.frame_speed},
@@ -153,8 +155,14 @@ int run_stability_command(const StabilityCommandOptions& options) {
   }
   std::cout << std::defaultfloat;
   if (options.plots) write_pictures(spec.name, points, options.min_rotor_share, options.output_dir);
+  post::write_stability_report(options.output_dir, j,
+                               {command_line(),
+                                options.plots ? std::vector<std::string>{"stability_frequencies.png",
+                                                                         "stability_damping.png"}
+                                              : std::vector<std::string>{},
+                                {"stability.json", "stability.csv"}, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "Wrote " << (options.output_dir / "stability.json").string() << ", stability.csv"
+  std::cout << "Wrote " << (options.output_dir / "stability.json").string() << ", stability.csv, report.html"
             << (options.plots ? ", stability_frequencies.png, stability_damping.png" : "") << " ("
             << std::setprecision(3) << wall << " s)\n";
   return 0;

@@ -181,6 +181,47 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
   page.write(dir);
 }
 
+void write_stability_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
+  const std::string F = "stability.json";
+  HtmlPage page = model_page("Linearised stability", "stability", j, in.command);
+  page.heading("Assumptions");
+  for (const nlohmann::json& a : j.at("assumptions")) page.paragraph(a.get<std::string>());
+  // Per speed the mode with the largest growth rate (modes are stored so), and how many grow.
+  page.heading("Fastest-growing (least damped) mode at each speed");
+  std::vector<Row> rows;
+  bool any_growing = false;
+  const nlohmann::json& res = j.at("results");
+  for (std::size_t i = 0; i < res.size(); ++i) {
+    const nlohmann::json& modes = res[i].at("modes");
+    const std::string at = json_pointer("/results", i);
+    int growing = 0;
+    for (const nlohmann::json& m : modes) growing += m.value("grows", false);
+    any_growing |= growing > 0;
+    Row row = {HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
+               HtmlPage::number(F, j, at + "/cage_speed_rad_s", 1.0, "rad/s")};
+    if (modes.empty()) {
+      row.insert(row.end(), {"–", "–", "–", "–", "0"});
+    } else {
+      const std::string m0 = json_pointer(at + "/modes", 0);
+      row.insert(row.end(), {HtmlPage::number(F, j, m0 + "/frequency_hz", 1.0, "Hz"),
+                             HtmlPage::number(F, j, m0 + "/growth_rate_per_s", 1.0, "1/s"),
+                             HtmlPage::number(F, j, m0 + "/damping_ratio", 1.0, "", 3),
+                             HtmlPage::number(F, j, m0 + "/rotor_share", 1.0, "", 3), std::to_string(growing)});
+    }
+    rows.push_back(row);
+  }
+  if (any_growing)
+    page.alert("UNSTABLE: at least one mode grows at a speed analysed (column \"growing modes\"); the steady "
+               "turning state does not persist there.");
+  page.table("least_damped", {"rotor speed", "cage speed", "frequency", "growth rate", "damping ratio",
+                              "rotor share", "growing modes"}, rows);
+  page.paragraph("Frequency in the housing frame, positive for forward whirl; the rotor share is the mode's share "
+                 "of motion in the rotor's degrees of freedom (states scaled by their typical sizes). Every mode is "
+                 "in stability.json and stability.csv.");
+  pictures_and_files(page, in);
+  page.write(dir);
+}
+
 void write_response_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
   const std::string F = "response.json";
   HtmlPage page = model_page("Unbalance response", "response", j, in.command);

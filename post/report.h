@@ -30,6 +30,9 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
 void write_response_report(const std::filesystem::path& dir, const nlohmann::json& response, const ReportInputs& in);
 /// `turbodyn bearing`: from bearing.json.
 void write_bearing_report(const std::filesystem::path& dir, const nlohmann::json& bearing, const ReportInputs& in);
+/// `turbodyn stability`: from stability.json.
+void write_stability_report(const std::filesystem::path& dir, const nlohmann::json& stability,
+                            const ReportInputs& in);
 /// `turbodyn sweep` and `turbodyn merge` (`kind`): from results.json.
 void write_study_report(const std::filesystem::path& dir, const nlohmann::json& results, const std::string& kind,
                         const ReportInputs& in);

@@ -254,7 +254,7 @@ EOF2
     # none at 30,000 rpm; a floating-ring model is refused naming the bearing, exit 2.
     "$exe" stability "$src/examples/reference_ball.toml" --speeds "30000 rpm, 95000 rpm" -o "$out" > "$out/log" 2>&1 \
       || fail "exit $?: $(cat "$out/log")"
-    for f in stability.json stability.csv stability_frequencies.png stability_damping.png; do
+    for f in stability.json stability.csv stability_frequencies.png stability_damping.png report.html; do
       [ -s "$out/$f" ] || fail "no $f: $(cat "$out/log")"
     done
     grep -q "^ *95000 .*UNSTABLE" "$out/log" || fail "no growing mode at 95,000 rpm: $(cat "$out/log")"

@@ -27,6 +27,7 @@ case $case in
   bearing) check "$work/bearing_reference_ball" bearing 20 ;;
   bearing_floating_ring) check "$work/bearing_floating_ring" bearing 20 ;;
   modal_floating_ring) check "$work/modal_floating_ring" modal 10 ;;
+  stability) check "$work/stability_reference_ball" stability 10 ;;
   sweep)
     "$exe" sweep "$src/tests/data/studies/two_parameter_study.toml" -o "$out/study" -j 2 > "$out/log" 2>&1 \
       || fail "sweep: exit $?: $(cat "$out/log")"
