@@ -172,6 +172,7 @@ struct FilmSolver::Impl {
       if (!any)
         for (int i = 0; i < n; ++i) kind[i * nz + nearest] = -2 - static_cast<int>(k);
     }
+    std::vector<char> caught(g.holes.size(), 0);  // the hole's circle holds a node (else its nearest node stands in)
     for (std::size_t h = 0; h < g.holes.size(); ++h) {
       const Hole& ho = g.holes[h];
       if (!(ho.diameter > 0.0) || !std::isfinite(ho.theta) || !std::isfinite(ho.z) || !std::isfinite(ho.pressure))
@@ -185,7 +186,7 @@ struct FilmSolver::Impl {
       bool any = false;
       for (int i = 0; i < n; ++i)
         for (int j = 0; j < nz; ++j) {
-          const double ddx = g.radius * std::remainder(th[i] - ho.theta, kTwoPi), ddz = zn[j] - ho.z;
+          const auto [ddx, ddz] = from_hole_centre(ho, i, j);
           const double d2 = ddx * ddx + ddz * ddz;
           const int k = i * nz + j;
           if (d2 < best) {
@@ -202,8 +203,9 @@ struct FilmSolver::Impl {
         if (kind[nearest] != -1) bad("hole " + std::to_string(h) + " overlaps another hole or a groove");
         kind[nearest] = static_cast<int>(h);
       }
+      caught[h] = any;
     }
-    if (o.fitted_holes) fit_hole_faces();
+    if (o.fitted_holes) fit_hole_faces(caught);
     mask_symmetric = true;
     for (int k = 0; k < N; ++k) {
       if (kind[k] != -1) dir_nodes.push_back(k);
@@ -266,25 +268,23 @@ struct FilmSolver::Impl {
     return true;
   }
 
+  // Node (i, j) from the centre of hole `ho` on the unrolled surface (m): circumferential (shortest way round) and
+  // axial.
+  std::pair<double, double> from_hole_centre(const Hole& ho, int i, int j) const {
+    return {g.radius * std::remainder(th[i] - ho.theta, kTwoPi), zn[j] - ho.z};
+  }
+
   // Shortley-Weller faces at the holes' edges. Along the grid line through a free node and its neighbour inside a
   // hole, the circle is crossed at distance delta from the free node (0 < delta <= step); the face then conducts
   // step / delta times its grid value, as if the hole's pressure sat on the circle. Holes that caught no node
-  // inside their circle (smaller than a cell: their nearest node) keep the grid faces.
-  void fit_hole_faces() {
-    const int N = n * nz;
-    std::vector<char> inside(g.holes.size(), 0);
-    for (int k = 0; k < N; ++k)
-      if (kind[k] >= 0) {
-        const Hole& ho = g.holes[kind[k]];
-        const double ddx = g.radius * std::remainder(th[k / nz] - ho.theta, kTwoPi), ddz = zn[k % nz] - ho.z;
-        if (ddx * ddx + ddz * ddz <= 0.25 * ho.diameter * ho.diameter) inside[kind[k]] = 1;
-      }
+  // inside their circle (`caught`; smaller than a cell: their nearest node) keep the grid faces.
+  void fit_hole_faces(const std::vector<char>& caught) {
     auto factor = [&](int free_k, int hole_k, bool east) {
       const int h = kind[hole_k];
-      if (!inside[h]) return 1.0;
+      if (!caught[h]) return 1.0;
       const Hole& ho = g.holes[h];
       const double a = 0.5 * ho.diameter;
-      const double ux = g.radius * std::remainder(th[free_k / nz] - ho.theta, kTwoPi), uz = zn[free_k % nz] - ho.z;
+      const auto [ux, uz] = from_hole_centre(ho, free_k / nz, free_k % nz);
       const double across = east ? uz : ux, along = east ? ux : uz, step = east ? dx : dz;
       if (std::abs(across) >= a) return 1.0;
       const double delta = std::abs(along) - std::sqrt(a * a - across * across);
