@@ -228,7 +228,7 @@ TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
 // p = 0 at both ends (the circumference 2 pi R = 5 L long, its images e^-15 away). tanh(pi (x + i z) / (2L)) maps
 // the strip onto the unit disk, so a source at the centre has p = Q / (2 pi k) ln|coth(pi (x + i z) / (2L))|,
 // k = c^3 / (12 eta), and the hole's circle is a level line of it up to terms in (a/L)^4 in the mean:
-// Q = 2 pi k p_h / ln(2L / (pi a)). With the holes' edges fitted (the default) the hole flow converges to it at
+// Q = 2 pi k p_h / ln(2L / (pi a)) (docs/references.md §9). With the holes' edges fitted (the default) the hole flow converges to it at
 // second order; with the nodes inside the circle as the hole it is off by several per cent on every grid here.
 TEST(Holes, SupplyHoleInAStripMatchesTheConformalMap) {
   const double L = 0.010, R = 0.008, a = 0.001, c = 40e-6, eta = 0.0108, ph = 1e5;
