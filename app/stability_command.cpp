@@ -91,6 +91,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
   nlohmann::json overrides = nlohmann::json::array();
   for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
   j["overrides"] = overrides;
+  j["min_rotor_share"] = options.min_rotor_share;
   j["assumptions"] = {
       "steady state at constant speed without gravity and unbalance, rotor centred: balls and cages orbit as a "
       "rigid pattern at the cage speed (a relative equilibrium), found by Newton's method",

@@ -186,37 +186,57 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
   HtmlPage page = model_page("Linearised stability", "stability", j, in.command);
   page.heading("Assumptions");
   for (const nlohmann::json& a : j.at("assumptions")) page.paragraph(a.get<std::string>());
-  // Per speed the mode with the largest growth rate (modes are stored so), and how many grow.
-  page.heading("Fastest-growing (least damped) mode at each speed");
+  // Per speed the fastest-growing (least damped) mode among those that move the rotor (modes are stored by
+  // decreasing growth rate), how many of those grow, and how many growing modes stay in the elements' own states
+  // (e.g. a ball set's density wave on a nearly still rotor): both mean the steady state does not persist.
+  const double min_share = j.value("min_rotor_share", 0.0);
+  page.heading("Fastest-growing (least damped) mode with rotor motion at each speed");
   std::vector<Row> rows;
-  bool any_growing = false;
+  int speeds_rotor = 0, speeds_elements = 0;
   const nlohmann::json& res = j.at("results");
   for (std::size_t i = 0; i < res.size(); ++i) {
     const nlohmann::json& modes = res[i].at("modes");
     const std::string at = json_pointer("/results", i);
-    int growing = 0;
-    for (const nlohmann::json& m : modes) growing += m.value("grows", false);
-    any_growing |= growing > 0;
+    int growing = 0, growing_elements = 0;
+    std::size_t first = modes.size();
+    for (std::size_t k = 0; k < modes.size(); ++k) {
+      const bool rotor = modes[k].at("rotor_share").get<double>() >= min_share;
+      if (rotor && first == modes.size()) first = k;
+      const bool grows = modes[k].value("grows", false);
+      growing += grows && rotor;
+      growing_elements += grows && !rotor;
+    }
+    speeds_rotor += growing > 0;
+    speeds_elements += growing_elements > 0;
     Row row = {HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
                HtmlPage::number(F, j, at + "/cage_speed_rad_s", 1.0, "rad/s")};
-    if (modes.empty()) {
-      row.insert(row.end(), {"–", "–", "–", "–", "0"});
+    if (first == modes.size()) {
+      row.insert(row.end(), {"–", "–", "–", "–"});
     } else {
-      const std::string m0 = json_pointer(at + "/modes", 0);
+      const std::string m0 = json_pointer(at + "/modes", first);
       row.insert(row.end(), {HtmlPage::number(F, j, m0 + "/frequency_hz", 1.0, "Hz"),
                              HtmlPage::number(F, j, m0 + "/growth_rate_per_s", 1.0, "1/s"),
                              HtmlPage::number(F, j, m0 + "/damping_ratio", 1.0, "", 3),
-                             HtmlPage::number(F, j, m0 + "/rotor_share", 1.0, "", 3), std::to_string(growing)});
+                             HtmlPage::number(F, j, m0 + "/rotor_share", 1.0, "", 3)});
     }
+    row.insert(row.end(), {std::to_string(growing), std::to_string(growing_elements)});
     rows.push_back(row);
   }
-  if (any_growing)
-    page.alert("UNSTABLE: at least one mode grows at a speed analysed (column \"growing modes\"); the steady "
-               "turning state does not persist there.");
+  const std::string share = display_number(100.0 * min_share, 3) + " %";
+  if (speeds_rotor > 0)
+    page.alert("UNSTABLE: at " + std::to_string(speeds_rotor) + " of the speeds analysed a mode with at least " +
+               share + " of its motion in the rotor grows (column \"growing, with rotor\"); the steady turning "
+               "state does not persist there.");
+  if (speeds_elements > 0)
+    page.alert("At " + std::to_string(speeds_elements) + " of the speeds analysed a mode of the elements' own "
+               "states grows with less than " + share + " of its motion in the rotor (column \"growing, "
+               "elements only\"): the elements' steady state (e.g. a ball set's spacing) does not persist there, "
+               "though the rotor hardly takes part.");
   page.table("least_damped", {"rotor speed", "cage speed", "frequency", "growth rate", "damping ratio",
-                              "rotor share", "growing modes"}, rows);
-  page.paragraph("Frequency in the housing frame, positive for forward whirl; the rotor share is the mode's share "
-                 "of motion in the rotor's degrees of freedom (states scaled by their typical sizes). Every mode is "
+                              "rotor share", "growing, with rotor", "growing, elements only"}, rows);
+  page.paragraph("Modes with at least " + share + " of their motion in the rotor's degrees of freedom (states "
+                 "scaled by their typical sizes; --min-rotor-share) count as rotor modes, as in the pictures and "
+                 "the terminal listing. Frequency in the housing frame, positive for forward whirl. Every mode is "
                  "in stability.json and stability.csv.");
   pictures_and_files(page, in);
   page.write(dir);

@@ -259,6 +259,11 @@ EOF2
     done
     grep -q "^ *95000 .*UNSTABLE" "$out/log" || fail "no growing mode at 95,000 rpm: $(cat "$out/log")"
     ! grep -q "^ *30000 .*UNSTABLE" "$out/log" || fail "a growing rotor mode at 30,000 rpm: $(cat "$out/log")"
+    # The report tells the growing rotor modes (95,000 rpm) from a ball set's own mode (30,000 rpm, rotor share
+    # 3e-4): one speed each.
+    grep -q "UNSTABLE: at 1 of the speeds analysed a mode with at least" "$out/report.html" \
+      || fail "report: rotor modes: $(grep -o 'UNSTABLE[^<]*' "$out/report.html")"
+    grep -q "At 1 of the speeds analysed a mode of the elements" "$out/report.html" || fail "report: elements only"
     "$exe" stability "$src/examples/reference_floating_ring.toml" --speeds "50000 rpm" -o "$out/fr" > "$out/fr.log" 2>&1
     [ $? -eq 2 ] || fail "floating rings accepted: $(cat "$out/fr.log")"
     grep -q "bearing '.*': its element has no steady state" "$out/fr.log" || fail "message: $(cat "$out/fr.log")"
