@@ -63,6 +63,8 @@ struct FilmSolver::Impl {
 
   // Per call, full grid (i * nz + j; faces i * nzf + jf).
   std::vector<double> hN, hE, hF, aE, aF, cE, sq, dval;
+  std::vector<double> end_slope_lo, end_slope_hi;  // per column, dp/dz at z = -L/2, +L/2 (outputs, open ends)
+  std::vector<char> plain_column;                  // per column: no hole or groove node
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
   std::vector<std::uint8_t> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
@@ -128,6 +130,9 @@ struct FilmSolver::Impl {
       seal_conductance = dx * gap * gap * gap / (12.0 * eta * g.end_seal_length);
     }
     th.resize(n);
+    end_slope_lo.assign(n, 0.0);
+    end_slope_hi.assign(n, 0.0);
+    plain_column.assign(n, 1);
     ct.resize(n);
     st.resize(n);
     cte.resize(n);
@@ -972,8 +977,10 @@ struct FilmSolver::Impl {
     for (int i = 0; i < n; ++i) {
       const int ie = (i + 1) % n;
       double rp = 0, rz = 0, rc = 0, rpz = 0;
+      bool plain = true;
       for (int j = 0; j < nz; ++j) {
         const int k = i * nz + j;
+        plain &= kind[k] == -1;
         const double pk = p[k];
         rp += pk;
         rpz += pk * zn[j];
@@ -992,7 +999,22 @@ struct FilmSolver::Impl {
         const double s0 = (3.0 * e0 + p0) / 8.0, s1 = (3.0 * e1 + p1) / 8.0;  // strip integral / dz
         rp += s0 + s1;
         rpz += zend * (s1 - s0);
+      } else {
+        // Open ends (p = p_amb there): the cell sums are the trapezoidal rule of p - p_amb and (p - p_amb) z
+        // along the column, whose error is dominated by the ends, where the profile is steepest. The
+        // Euler-Maclaurin end term -dz^2/12 [f']_-L/2^L/2, with p' at the ends from second-order one-sided
+        // differences, makes them converge faster in the axial step (docs/reynolds.md §2). The force's term only
+        // in columns without hole or groove nodes, whose profile kinks at the hole's edge (there it made the
+        // forces worse); the moment's in every column (a hole at mid-width hardly weighs in it).
+        const double* pc = &p[i * nz];
+        const double slope_lo = (4.0 * pc[0] - pc[1] - 3.0 * pamb) / (2.0 * dz);
+        const double slope_hi = (3.0 * pamb - 4.0 * pc[nz - 1] + pc[nz - 2]) / (2.0 * dz);
+        if (plain) rp -= dz / 12.0 * (slope_hi - slope_lo);         // f = p - p_amb
+        rpz -= dz / 12.0 * 0.5 * g.length * (slope_hi + slope_lo);  // f = (p - p_amb) z
+        end_slope_lo[i] = slope_lo;
+        end_slope_hi[i] = slope_hi;
       }
+      plain_column[i] = plain;
       sc += rp * ct[i];
       ss += rp * st[i];
       zc += rpz * ct[i];
@@ -1002,6 +1024,18 @@ struct FilmSolver::Impl {
     }
     // Couette end strips with h at the end planes.
     const double c = g.clearance, zl = -0.5 * g.length, zu = 0.5 * g.length;
+    if (seal_conductance == 0.0) {
+      // The Poiseuille shear's axial sums get the forces' end term, so that the film's torque balance
+      // T_journal + T_bush = -(e x F)_z holds as closely as before: between two plain columns the integrand is
+      // h_e (p_east - p) (zero at the ends), its end slope h_e(end) (p'_east(end) - p'(end)).
+      for (int i = 0; i < n; ++i) {
+        const int ie = (i + 1) % n;
+        if (!plain_column[i] || !plain_column[ie]) continue;
+        const double hl = c - (s.ex + zl * s.sx) * cte[i] - (s.ey + zl * s.sy) * ste[i];
+        const double hu = c - (s.ex + zu * s.sx) * cte[i] - (s.ey + zu * s.sy) * ste[i];
+        pois -= dz / 12.0 * (hu * (end_slope_hi[ie] - end_slope_hi[i]) - hl * (end_slope_lo[ie] - end_slope_lo[i]));
+      }
+    }
     double ends = 0.0;
     for (int i = 0; i < n; ++i) {
       const double hl = c - (s.ex + zl * s.sx) * ct[i] - (s.ey + zl * s.sy) * st[i];

