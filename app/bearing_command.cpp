@@ -14,6 +14,7 @@
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "model/elements/floating_ring_steady.h"
 #include "model/io/output_file.h"
+#include "model/io/result_header.h"
 #include "model/spec/units.h"
 #include "model/spec/constants.h"
 #include "post/plot.h"
@@ -141,12 +142,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
   const bool thermal = element->thermal();
   const FloatingRingSpec& f = b.ring;
   std::filesystem::create_directories(options.output_dir);
-  nlohmann::json j;
-  j["turbodyn_version"] = "0.1.0";
-  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
-  nlohmann::json overrides = nlohmann::json::array();
-  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
-  j["overrides"] = overrides;
+  nlohmann::json j = result_header(spec, options.overrides);
   j["bearing"] = {{"name", b.name},
                   {"type", "floating-ring"},
                   {"thermal", to_string(f.thermal.model)},
@@ -326,12 +322,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
 
   std::filesystem::create_directories(options.output_dir);
   const BallBearingSpec& s = b.ball;
-  nlohmann::json j;
-  j["turbodyn_version"] = "0.1.0";
-  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
-  nlohmann::json overrides = nlohmann::json::array();
-  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
-  j["overrides"] = overrides;
+  nlohmann::json j = result_header(spec, options.overrides);
   j["bearing"] = {{"name", b.name},
                   {"n_balls", s.n_balls},
                   {"ball_diameter_m", s.ball_diameter},

@@ -18,6 +18,7 @@
 #include "app/stability_command.h"
 #include "app/sweep_command.h"
 #include "model/io/model_file.h"
+#include "model/io/result_header.h"
 #include "model/rotor/rotor.h"
 
 namespace {
@@ -48,7 +49,7 @@ int run_check(const std::filesystem::path& file, const std::vector<turbodyn::Ove
 int main(int argc, char** argv) {
   turbodyn::app::set_command_line(argc, argv);
   CLI::App app{"turbodyn: nonlinear run-up simulation of turbocharger rotors"};
-  app.set_version_flag("--version", "turbodyn 0.1.0");
+  app.set_version_flag("--version", std::string("turbodyn ") + turbodyn::turbodyn_version());
   app.require_subcommand(1);
 
   std::vector<std::string> sets;

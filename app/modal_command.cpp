@@ -13,6 +13,7 @@
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "model/elements/floating_ring_steady.h"
 #include "model/io/output_file.h"
+#include "model/io/result_header.h"
 #include "post/plot.h"
 #include "post/plot_style.h"
 #include "post/report.h"
@@ -300,17 +301,11 @@ int run_modal_command(const ModalCommandOptions& options) {
   const std::string frame_name = options.frame == Frame::Rotating ? "rotating" : "inertial";
 
   // modal.json: every number, documented in docs/output-format.md.
-  nlohmann::json j;
-  j["turbodyn_version"] = "0.1.0";
-  j["model"] = {{"name", spec.name},
-                {"source", spec.source.string()},
-                {"n_nodes", rotor.node_z.size()},
-                {"n_dof", rotor.n_dof},
-                {"total_mass_kg", rotor.total_mass},
-                {"node_z_m", rotor.node_z}};
-  nlohmann::json overrides = nlohmann::json::array();
-  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
-  j["overrides"] = overrides;
+  nlohmann::json j = result_header(spec, options.overrides);
+  j["model"].update({{"n_nodes", rotor.node_z.size()},
+                     {"n_dof", rotor.n_dof},
+                     {"total_mass_kg", rotor.total_mass},
+                     {"node_z_m", rotor.node_z}});
   j["frame"] = frame_name;
   j["orders"] = spec.modal.orders;
   nlohmann::json points = nlohmann::json::array();

@@ -13,6 +13,7 @@
 #include "app/command_line.h"
 #include "model/rotor/response.h"
 #include "model/io/output_file.h"
+#include "model/io/result_header.h"
 #include "model/rotor/rotor.h"
 
 namespace turbodyn::app {
@@ -61,11 +62,7 @@ int run_response_command(const ResponseCommandOptions& options) {
     }
     file.commit();
   }
-  nlohmann::json j;
-  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
-  nlohmann::json overrides = nlohmann::json::array();
-  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
-  j["overrides"] = overrides;
+  nlohmann::json j = result_header(spec, options.overrides);
   for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
   write_output_file(options.output_dir / "response.json", j.dump(1) + "\n");
   if (options.plots) {

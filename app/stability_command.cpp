@@ -13,6 +13,7 @@
 #include "app/modal_command.h"
 #include "model/engine/stability.h"
 #include "model/io/output_file.h"
+#include "model/io/result_header.h"
 #include "model/spec/constants.h"
 #include "model/spec/errors.h"
 #include "post/plot.h"
@@ -85,12 +86,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
   }
 
   std::filesystem::create_directories(options.output_dir);
-  nlohmann::json j;
-  j["turbodyn_version"] = "0.1.0";
-  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}};
-  nlohmann::json overrides = nlohmann::json::array();
-  for (const Override& o : options.overrides) overrides.push_back(o.path + "=" + o.value);
-  j["overrides"] = overrides;
+  nlohmann::json j = result_header(spec, options.overrides);
   j["min_rotor_share"] = options.min_rotor_share;
   j["assumptions"] = {
       "steady state at constant speed without gravity and unbalance, rotor centred: balls and cages orbit as a "

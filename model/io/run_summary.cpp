@@ -1,20 +1,18 @@
 #include "model/io/run_summary.h"
 
+#include "model/io/result_header.h"
+
 #include <cmath>
 
 namespace turbodyn {
 
 nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, const RunupOptions& ro,
                            const RunupResult& r, const std::vector<Override>& overrides) {
-  nlohmann::json j;
-  j["turbodyn_version"] = "0.1.0";
+  nlohmann::json j = result_header(spec, overrides);
   j["complete"] = r.complete;
   j["message"] = r.message;
-  j["model"] = {{"name", spec.name}, {"source", spec.source.string()}, {"n_dof", model.n_dof()},
-                {"n_states", model.n_states()}, {"n_force_elements", model.elements().size()}};
-  nlohmann::json ov = nlohmann::json::array();
-  for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
-  j["overrides"] = ov;
+  j["model"].update({{"n_dof", model.n_dof()}, {"n_states", model.n_states()},
+                     {"n_force_elements", model.elements().size()}});
   const double t_end = ro.t_end > 0.0 ? ro.t_end : model.speed().duration();
   j["options"] = {{"integrator", to_string(resolve_integrator(model, ro.solver.integrator))}, {"rtol", ro.solver.rtol},
                   {"atol", ro.solver.atol}, {"atol_scaling", to_string(ro.solver.atol_scaling)},
