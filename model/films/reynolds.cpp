@@ -64,7 +64,7 @@ struct FilmSolver::Impl {
   // Per call, full grid (i * nz + j; faces i * nzf + jf).
   std::vector<double> hN, hE, hF, aE, aF, cE, sq, dval;
   std::vector<double> end_slope_lo, end_slope_hi;  // per column, dp/dz at z = -L/2, +L/2 (outputs, open ends)
-  std::vector<char> plain_column;                  // per column: no hole or groove node
+  std::vector<char> plain_column;                  // per column: no hole or groove node (fixed by the geometry)
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
   std::vector<std::uint8_t> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
@@ -213,7 +213,10 @@ struct FilmSolver::Impl {
     if (o.fitted_holes) fit_hole_faces(caught);
     mask_symmetric = true;
     for (int k = 0; k < N; ++k) {
-      if (kind[k] != -1) dir_nodes.push_back(k);
+      if (kind[k] != -1) {
+        dir_nodes.push_back(k);
+        plain_column[k / nz] = 0;
+      }
       const int i = k / nz, j = k % nz;
       if (kind[k] != kind[i * nz + (nz - 1 - j)]) {
         // Different holes at mirrored nodes are fine if their pressures agree (checked per call).
@@ -977,10 +980,8 @@ struct FilmSolver::Impl {
     for (int i = 0; i < n; ++i) {
       const int ie = (i + 1) % n;
       double rp = 0, rz = 0, rc = 0, rpz = 0;
-      bool plain = true;
       for (int j = 0; j < nz; ++j) {
         const int k = i * nz + j;
-        plain &= kind[k] == -1;
         const double pk = p[k];
         rp += pk;
         rpz += pk * zn[j];
@@ -1009,12 +1010,11 @@ struct FilmSolver::Impl {
         const double* pc = &p[i * nz];
         const double slope_lo = (4.0 * pc[0] - pc[1] - 3.0 * pamb) / (2.0 * dz);
         const double slope_hi = (3.0 * pamb - 4.0 * pc[nz - 1] + pc[nz - 2]) / (2.0 * dz);
-        if (plain) rp -= dz / 12.0 * (slope_hi - slope_lo);         // f = p - p_amb
+        if (plain_column[i]) rp -= dz / 12.0 * (slope_hi - slope_lo);  // f = p - p_amb
         rpz -= dz / 12.0 * 0.5 * g.length * (slope_hi + slope_lo);  // f = (p - p_amb) z
         end_slope_lo[i] = slope_lo;
         end_slope_hi[i] = slope_hi;
       }
-      plain_column[i] = plain;
       sc += rp * ct[i];
       ss += rp * st[i];
       zc += rpz * ct[i];
