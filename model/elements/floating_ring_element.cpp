@@ -89,6 +89,7 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
     inner_.holes.push_back({spec.drill_hole_angle + 2.0 * M_PI * k / spec.drill_holes, 0.0, spec.drill_hole_diameter,
                             0.0});
   options_.cavitation = spec.cavitation;
+  options_.axial_grading = spec.axial_grading;
   eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
   eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
   if (thermal_) {

@@ -21,6 +21,7 @@ reynolds::FilmGeometry film_geometry(const Film& f, reynolds::SolverOptions& opt
     g.end_seal_length = f.end_seal_length;
   }
   options.cavitation = f.cavitation;
+  options.axial_grading = f.axial_grading;
   return g;
 }
 

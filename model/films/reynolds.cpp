@@ -53,7 +53,15 @@ struct FilmSolver::Impl {
   double eta = 0;
   SolverOptions o;
   int n = 0, nz = 0, nzf = 0;  // circumferential nodes, axial nodes, axial faces (nz + 1)
-  double dth = 0, dx = 0, dz = 0;
+  double dth = 0, dx = 0, dz = 0;  // dz: the uniform axial step L / (n_axial + 1) in the mapped coordinate
+  // Axial grid (uniform, or graded towards the ends, SolverOptions::axial_grading; axial_grid()): per node the
+  // control volume's width wz, which is also the loads' quadrature weight (the trapezoidal rule in the mapped
+  // coordinate), per face the distance dzf it conducts over, and the mapped step at the ends (hend, = dz when
+  // uniform) for the loads' end terms.
+  // The Couette shear (1/h, not zero at the ends) is summed over the cells' widths in z, wc (zf[j + 1] - zf[j]),
+  // and the end strips, which add up to the film's width exactly (Petroff's torque exact on any grid).
+  std::vector<double> wz, dzf, wc;
+  double hend = 0;
   double seal_conductance = 0;  // m^3/(Pa s) per grid column of an end seal's slot (0: open ends)
   std::vector<double> th, ct, st, cte, ste, zn, zf;  // node angles, cos/sin at nodes and east faces, z nodes/faces
   std::vector<int> iwest, ieast;                     // neighbouring columns (periodic)
@@ -116,6 +124,7 @@ struct FilmSolver::Impl {
     if (g.holes.size() > 8) bad("at most 8 holes (FilmState::hole_pressure_override has 8 entries)");
     if (!(o.tolerance > 0.0) || o.tolerance >= 1.0) bad("tolerance must be in (0, 1)");
     if (o.max_iterations < 1) bad("max_iterations must be >= 1");
+    if (!(o.axial_grading >= 0.0 && o.axial_grading < 1.0)) bad("axial_grading must be in [0, 1)");
     n = g.n_circ;
     nz = g.n_axial;
     nzf = nz + 1;
@@ -152,9 +161,7 @@ struct FilmSolver::Impl {
     }
     zn.resize(nz);
     zf.resize(nzf);
-    // From half-integer multiples of dz: exactly antisymmetric about mid-width (mirrored holes find mirrored nodes).
-    for (int j = 0; j < nz; ++j) zn[j] = (j + 1 - 0.5 * (nz + 1)) * dz;
-    for (int j = 0; j < nzf; ++j) zf[j] = (j + 0.5 - 0.5 * (nz + 1)) * dz;
+    axial_grid();
 
     const int N = n * nz;
     kind.assign(N, -1);
@@ -256,6 +263,38 @@ struct FilmSolver::Impl {
     for (auto* v : {&gm_g, &gm_y, &gm_cs, &gm_sn}) v->assign(kGmresRestart + 1, 0.0);
   }
 
+  // The axial nodes z = (L/2) G(xi) at uniformly spaced xi = -1 + 2 (j + 1) / (n_axial + 1), with
+  // G(xi) = (1 - b) xi + b sin(pi xi / 2): b = 0 is the uniform grid, b > 0 draws the nodes towards both ends (the
+  // spacing there is (1 - b) times, at mid-width (1 - b + b pi / 2) times the uniform step). The equation is
+  // discretised in xi, where the grid is uniform: faces at the half steps of xi, control volumes and face distances
+  // dz/dxi times the step of xi (the transformed equation d/dxi (k / z' dp/dxi) z'... in conservation form), so the
+  // scheme and the loads' end terms keep their uniform-grid form. From half-integer multiples of the step: exactly
+  // antisymmetric about mid-width (mirrored holes find mirrored nodes).
+  void axial_grid() {
+    const double b = o.axial_grading, half = 0.5 * g.length, dxi = 2.0 / (nz + 1);
+    auto z_at = [&](double k) {  // k: node index counted from mid-width (half-integers for even counts)
+      const double xi = k * dxi;
+      return half * ((1.0 - b) * xi + b * std::sin(0.5 * kPi * xi));
+    };
+    auto dz_dxi = [&](double k) { return half * ((1.0 - b) + b * 0.5 * kPi * std::cos(0.5 * kPi * k * dxi)); };
+    zn.resize(nz);
+    zf.resize(nzf);
+    wz.resize(nz);
+    dzf.resize(nzf);
+    wc.resize(nz);
+    const double mid = 0.5 * (nz + 1);
+    for (int j = 0; j < nz; ++j) {
+      zn[j] = b == 0.0 ? (j + 1 - mid) * dz : z_at(j + 1 - mid);
+      wz[j] = b == 0.0 ? dz : dz_dxi(j + 1 - mid) * dxi;
+    }
+    for (int jf = 0; jf < nzf; ++jf) {
+      zf[jf] = b == 0.0 ? (jf + 0.5 - mid) * dz : z_at(jf + 0.5 - mid);
+      dzf[jf] = b == 0.0 ? dz : dz_dxi(jf + 0.5 - mid) * dxi;
+    }
+    hend = b == 0.0 ? dz : dz_dxi(mid) * dxi;
+    for (int j = 0; j < nz; ++j) wc[j] = b == 0.0 ? dz : zf[j + 1] - zf[j];
+  }
+
   // ---- per-call set-up -------------------------------------------------------------------------------------------
 
   // Fills the half j >= j_first of each full-grid field (n x nz) with its mirror image about mid-width.
@@ -293,7 +332,8 @@ struct FilmSolver::Impl {
       const Hole& ho = g.holes[h];
       const double a = 0.5 * ho.diameter;
       const auto [ux, uz] = from_hole_centre(ho, free_k / nz, free_k % nz);
-      const double across = east ? uz : ux, along = east ? ux : uz, step = east ? dx : dz;
+      const int jf = std::max(free_k % nz, hole_k % nz);  // the axial face between the two (east: unused)
+      const double across = east ? uz : ux, along = east ? ux : uz, step = east ? dx : dzf[jf];
       if (std::abs(across) >= a) return 1.0;
       const double delta = std::abs(along) - std::sqrt(a * a - across * across);
       return step / std::clamp(delta, 0.05 * step, step);
@@ -312,11 +352,10 @@ struct FilmSolver::Impl {
 
   void geometry_arrays(const FilmState& s) {
     const double c = g.clearance;
-    const double kx = dz / (12.0 * eta * dx), kz = dx / (12.0 * eta * dz);
-    const double couette = 0.5 * U * dz, area = dx * dz;
     const int jn = sym ? m : nz;  // rows computed (the rest mirrored)
     for (int j = 0; j < jn; ++j) {
       const double z = zn[j];
+      const double kx = wz[j] / (12.0 * eta * dx), couette = 0.5 * U * wz[j], area = dx * wz[j];
       const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
       const double vxz = s.vx + z * s.dsx, vyz = s.vy + z * s.dsy;
       for (int i = 0; i < n; ++i) {
@@ -335,6 +374,7 @@ struct FilmSolver::Impl {
       const double z = zf[jf];
       const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
       const bool end = jf == 0 || jf == nzf - 1;
+      const double kz = dx / (12.0 * eta * dzf[jf]);
       for (int i = 0; i < n; ++i) {
         const double h = c - exz * ct[i] - eyz * st[i];
         hF[i * nzf + jf] = h;
@@ -982,22 +1022,22 @@ struct FilmSolver::Impl {
       double rp = 0, rz = 0, rc = 0, rpz = 0;
       for (int j = 0; j < nz; ++j) {
         const int k = i * nz + j;
-        const double pk = p[k];
-        rp += pk;
-        rpz += pk * zn[j];
-        rc += theta[k] / hN[k];
-        rz += hE[k] * (p[ie * nz + j] - pk);
+        const double pk = p[k], w = wz[j];
+        rp += pk * w;
+        rpz += pk * zn[j] * w;
+        rc += theta[k] / hN[k] * wc[j];
+        rz += hE[k] * (p[ie * nz + j] - pk) * w;
         pmax = std::max(pmax, pk);
       }
       if (seal_conductance > 0.0) {
         // Behind a seal the land's ends carry p_end = p_amb + (a / c_s) (p_node - p_amb) (flow continuity through
         // the end face a, in series, and the slot c_s); the end strips of width dz/2 between the first node's cell
         // and the land end, negligible at open ends, are integrated with p linear from p_end to the face.
-        const double zend = 0.5 * g.length - 0.25 * dz;
+        const double strip = zf[0] + 0.5 * g.length, zend = 0.5 * g.length - 0.5 * strip;
         const double p0 = p[i * nz], p1 = p[i * nz + nz - 1];
         const double e0 = pamb + aF[i * nzf] / seal_conductance * (p0 - pamb);
         const double e1 = pamb + aF[i * nzf + nz] / seal_conductance * (p1 - pamb);
-        const double s0 = (3.0 * e0 + p0) / 8.0, s1 = (3.0 * e1 + p1) / 8.0;  // strip integral / dz
+        const double s0 = (3.0 * e0 + p0) / 4.0 * strip, s1 = (3.0 * e1 + p1) / 4.0 * strip;  // strip integrals
         rp += s0 + s1;
         rpz += zend * (s1 - s0);
       } else {
@@ -1007,11 +1047,14 @@ struct FilmSolver::Impl {
         // differences, makes them converge faster in the axial step (docs/reynolds.md §2). The force's term only
         // in columns without hole or groove nodes, whose profile kinks at the hole's edge (there it made the
         // forces worse); the moment's in every column (a hole at mid-width hardly weighs in it).
+        // On a graded grid the rule is the trapezoidal one in the mapped coordinate xi, for F = f dz/dxi: its end
+        // slope F' = f' (dz/dxi)^2 (f = 0 there) from the same differences of F, with hend = dxi dz/dxi(end).
         const double* pc = &p[i * nz];
-        const double slope_lo = (4.0 * pc[0] - pc[1] - 3.0 * pamb) / (2.0 * dz);
-        const double slope_hi = (3.0 * pamb - 4.0 * pc[nz - 1] + pc[nz - 2]) / (2.0 * dz);
-        if (plain_column[i]) rp -= dz / 12.0 * (slope_hi - slope_lo);  // f = p - p_amb
-        rpz -= dz / 12.0 * 0.5 * g.length * (slope_hi + slope_lo);  // f = (p - p_amb) z
+        const double r1 = wz[1] / wz[0];  // 1 on the uniform grid
+        const double slope_lo = (4.0 * (pc[0] - pamb) - r1 * (pc[1] - pamb)) * wz[0] / (2.0 * hend * hend);
+        const double slope_hi = -(4.0 * (pc[nz - 1] - pamb) - r1 * (pc[nz - 2] - pamb)) * wz[0] / (2.0 * hend * hend);
+        if (plain_column[i]) rp -= hend * hend / 12.0 * (slope_hi - slope_lo);  // f = p - p_amb
+        rpz -= hend * hend / 12.0 * 0.5 * g.length * (slope_hi + slope_lo);  // f = (p - p_amb) z
         end_slope_lo[i] = slope_lo;
         end_slope_hi[i] = slope_hi;
       }
@@ -1033,7 +1076,7 @@ struct FilmSolver::Impl {
         if (!plain_column[i] || !plain_column[ie]) continue;
         const double hl = c - (s.ex + zl * s.sx) * cte[i] - (s.ey + zl * s.sy) * ste[i];
         const double hu = c - (s.ex + zu * s.sx) * cte[i] - (s.ey + zu * s.sy) * ste[i];
-        pois -= dz / 12.0 * (hu * (end_slope_hi[ie] - end_slope_hi[i]) - hl * (end_slope_lo[ie] - end_slope_lo[i]));
+        pois -= hend * hend / 12.0 * (hu * (end_slope_hi[ie] - end_slope_hi[i]) - hl * (end_slope_lo[ie] - end_slope_lo[i]));
       }
     }
     double ends = 0.0;
@@ -1042,15 +1085,14 @@ struct FilmSolver::Impl {
       const double hu = c - (s.ex + zu * s.sx) * ct[i] - (s.ey + zu * s.sy) * st[i];
       ends += 0.5 * (theta[i * nz] / hl + theta[i * nz + nz - 1] / hu);
     }
-    couette += ends;
-    const double area = dx * dz;
-    r.fx = -R * dth * dz * sc;
-    r.fy = -R * dth * dz * ss;
-    r.my = -R * dth * dz * zc;  // sum of z dFx
-    r.mx = R * dth * dz * zs;   // -sum of z dFy
+    couette += ends * 2.0 * (zf[0] + 0.5 * g.length);  // the end strips
+    r.fx = -R * dth * sc;
+    r.fy = -R * dth * ss;
+    r.my = -R * dth * zc;  // sum of z dFx
+    r.mx = R * dth * zs;   // -sum of z dFy
     if (sym) r.mx = r.my = 0.0;
-    const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * area;
-    const double tp = -R * 0.5 * pois * dz;
+    const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * dx;
+    const double tp = -R * 0.5 * pois;
     r.torque_inner = tc + tp;
     r.torque_outer = -tc + tp;
     double qe = 0.0;
@@ -1233,6 +1275,7 @@ const std::vector<double>& FilmSolver::pressure() const { return impl_->p; }
 const std::vector<double>& FilmSolver::film_fraction() const { return impl_->ff; }
 std::vector<double> FilmSolver::theta_nodes() const { return impl_->th; }
 std::vector<double> FilmSolver::z_nodes() const { return impl_->zn; }
+std::vector<double> FilmSolver::z_widths() const { return impl_->wz; }
 void FilmSolver::reset_warm_start() { impl_->warm = false; }
 bool FilmSolver::set_viscosity(double viscosity) {
   Impl& d = *impl_;
@@ -1252,7 +1295,6 @@ void FilmSolver::assemble_full_film_system(const FilmState& s, Eigen::SparseMatr
   const Impl& d = *impl_;
   const int n = d.n, nz = d.nz, N = n * nz;
   const double c = d.g.clearance, U = d.g.radius * (s.omega_inner + s.omega_outer);
-  const double kx = d.dz / (12.0 * d.eta * d.dx), kz = d.dx / (12.0 * d.eta * d.dz);
   auto h_at = [&](double cth, double sth, double z) {
     return c - (s.ex + z * s.sx) * cth - (s.ey + z * s.sy) * sth;
   };
@@ -1281,10 +1323,12 @@ void FilmSolver::assemble_full_film_system(const FilmState& s, Eigen::SparseMatr
       const double z = d.zn[j];
       const double he = h_at(d.cte[i], d.ste[i], z), hw = h_at(d.cte[iw], d.ste[iw], z);
       const double hs = h_at(d.ct[i], d.st[i], d.zf[j]), hn = h_at(d.ct[i], d.st[i], d.zf[j + 1]);
+      const double kx = d.wz[j] / (12.0 * d.eta * d.dx), ks = d.dx / (12.0 * d.eta * d.dzf[j]),
+                   kn = d.dx / (12.0 * d.eta * d.dzf[j + 1]);
       const double ae = kx * he * he * he * fit_e[k], aw = kx * hw * hw * hw * fit_e[iw * nz + j],
-                   as = kz * hs * hs * hs * fit_a[i * d.nzf + j], an = kz * hn * hn * hn * fit_a[i * d.nzf + j + 1];
+                   as = ks * hs * hs * hs * fit_a[i * d.nzf + j], an = kn * hn * hn * hn * fit_a[i * d.nzf + j + 1];
       const double hdot = -((s.vx + z * s.dsx) * d.ct[i] + (s.vy + z * s.dsy) * d.st[i]);
-      double rhs = -0.5 * U * d.dz * (he - hw) - hdot * d.dx * d.dz;
+      double rhs = -0.5 * U * d.wz[j] * (he - hw) - hdot * d.dx * d.wz[j];
       t.emplace_back(k, k, ae + aw + as + an);
       auto couple = [&](int kn, double a) {
         if (d.kind[kn] != -1)

@@ -108,6 +108,9 @@ struct SolverOptions {
   /// free node's distance to the hole's circle instead of the grid step (Shortley & Weller 1938), so the hole's
   /// size does not jump with the grid. False: the hole is the grid nodes inside its circle.
   bool fitted_holes = true;
+  /// Axial nodes drawn towards both ends, where the pressure profile is steepest: z = (L/2) G(xi) on uniform xi,
+  /// G = (1 - b) xi + b sin(pi xi / 2), b in [0, 1); 0 is the uniform grid (docs/reynolds.md §2).
+  double axial_grading = 0.0;
 };
 
 /// Short-bearing (Ocvirk) and long-bearing (Sommerfeld) closed forms, half-Sommerfeld (Gumbel) cavitation, steady,
@@ -166,7 +169,8 @@ class FilmSolver {
   /// the full film and 0 where the Swift-Stieber constraint is active.
   const std::vector<double>& film_fraction() const;
   std::vector<double> theta_nodes() const;  ///< rad, i * 2 pi / n_circ
-  std::vector<double> z_nodes() const;      ///< m, -L/2 + (j + 1) L / (n_axial + 1)
+  std::vector<double> z_nodes() const;      ///< m, -L/2 + (j + 1) L / (n_axial + 1) on the uniform grid
+  std::vector<double> z_widths() const;     ///< m, axial width of each node's control volume
 
   /// Forget the warm-start state (the next solve starts cold).
   void reset_warm_start();

@@ -168,6 +168,9 @@ void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width)
   f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
   f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
   check_film_grid(r, f.n_circ, f.n_axial);
+  f.axial_grading = r.quantity_or("axial_grading", dim::dimensionless, f.axial_grading, Bound::NonNegative);
+  if (!(f.axial_grading >= 0.0 && f.axial_grading < 1.0))
+    r.fail("axial_grading", "must be in [0, 1) (0: uniform axial nodes)");
   f.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
   check_viscosity(r, "oil_temperature", oil, f.oil_temperature);
   f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
@@ -280,6 +283,9 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
   f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
   check_film_grid(r, f.n_circ, f.n_axial);
+  f.axial_grading = r.quantity_or("axial_grading", dim::dimensionless, f.axial_grading, Bound::NonNegative);
+  if (!(f.axial_grading >= 0.0 && f.axial_grading < 1.0))
+    r.fail("axial_grading", "must be in [0, 1) (0: uniform axial nodes)");
   f.inner_oil_temperature = r.quantity_or("inner_oil_temperature", dim::temperature, 0.0, Bound::Positive);
   f.outer_oil_temperature = r.quantity_or("outer_oil_temperature", dim::temperature, 0.0, Bound::Positive);
   check_viscosity(r, "inner_oil_temperature", oil, f.inner_oil_temperature);

@@ -86,6 +86,7 @@ struct JournalBearingSpec {
   double clearance = 0.0;       ///< m, radial clearance
   Cavitation cavitation = Cavitation::Gumbel;
   int n_circ = 60, n_axial = 12;
+  double axial_grading = 0.0;   ///< film nodes drawn towards the ends (reynolds::SolverOptions::axial_grading)
   double oil_temperature = 0.0; ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0; ///< Pa gauge at the feed hole
   double feed_hole_diameter = 0.0;  ///< m; 0 = no feed hole
@@ -104,6 +105,7 @@ struct FloatingRingSpec {
   bool ring_tilt = true;             ///< the ring tilts (2 DOF); false holds it aligned with the housing
   Cavitation cavitation = Cavitation::Gumbel;
   int n_circ = 60, n_axial = 12;
+  double axial_grading = 0.0;   ///< film nodes drawn towards the ends (reynolds::SolverOptions::axial_grading)
   double inner_oil_temperature = 0.0, outer_oil_temperature = 0.0;  ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0;      ///< Pa gauge at the housing feed hole (outer film)
   double feed_hole_diameter = 0.0;   ///< m
@@ -137,6 +139,7 @@ struct DamperSpec {
   double centring_stiffness = 0.0;  ///< N/m, isotropic centring spring (0 = none)
   Cavitation cavitation = Cavitation::Gumbel;
   int n_circ = 60, n_axial = 12;
+  double axial_grading = 0.0;   ///< film nodes drawn towards the ends (reynolds::SolverOptions::axial_grading)
   double oil_temperature = 0.0;     ///< K; 0 = the [oil] temperature
   double supply_pressure = 0.0;     ///< Pa gauge at the feed hole
   double feed_hole_diameter = 0.0;  ///< m; 0 = none

@@ -239,6 +239,19 @@ INSTANTIATE_TEST_SUITE_P(
       return n.substr(0, n.find('.'));
     });
 
+TEST(ModelFile, AxialGradingOfTheFilms) {
+  // Read for every film kind (docs/model-format.md); out of [0, 1) it is refused with the key.
+  const MachineSpec m =
+      load_model(example("reference_floating_ring.toml"), {parse_override("bearings.compressor.axial_grading=0.4")});
+  ASSERT_EQ(m.bearings.size(), 2u);
+  for (const BearingSpec& b : m.bearings)
+    EXPECT_EQ(b.ring.axial_grading, b.name == "compressor" ? 0.4 : 0.0) << b.name;
+  EXPECT_THAT(error_of(example("reference_floating_ring.toml"), {parse_override("bearings.turbine.axial_grading=1")}),
+              AllOf(HasSubstr("bearings.turbine.axial_grading"), HasSubstr("[0, 1)")));
+  EXPECT_THAT(error_of(example("reference_journal.toml"), {parse_override("bearings.compressor.axial_grading=-0.2")}),
+              HasSubstr("bearings.compressor.axial_grading"));
+}
+
 TEST(ModelFile, DidYouMean) {
   EXPECT_EQ(closest_match("outer_diamter", {"length", "outer_diameter", "inner_diameter"}), "outer_diameter");
   EXPECT_EQ(closest_match("zzzzzz", {"length", "outer_diameter"}), "");
