@@ -53,7 +53,7 @@ struct FilmSolver::Impl {
   double eta = 0;
   SolverOptions o;
   int n = 0, nz = 0, nzf = 0;  // circumferential nodes, axial nodes, axial faces (nz + 1)
-  double dth = 0, dx = 0, dz = 0;  // dz: the uniform axial step L / (n_axial + 1) in the mapped coordinate
+  double dth = 0, dx = 0, dz = 0;  // dz: the uniform grid's axial step L / (n_axial + 1)
   // Axial grid (uniform, or graded towards the ends, SolverOptions::axial_grading; axial_grid()): per node the
   // control volume's width wz, which is also the loads' quadrature weight (the trapezoidal rule in the mapped
   // coordinate), per face the distance dzf it conducts over, and the mapped step at the ends (hend, = dz when

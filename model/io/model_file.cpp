@@ -22,12 +22,20 @@ using namespace input;
 
 // ----------------------------------------------------------------------------------------------- checks
 
-// A film grid of n_circ x n_axial nodes within limits::kMaxFilmNodes (each key is range-checked on its own).
-void check_film_grid(Reader& r, long n_circ, long n_axial) {
-  if (n_circ * n_axial > limits::kMaxFilmNodes)
-    r.fail("n_circ", "a film grid of " + std::to_string(n_circ) + " x " + std::to_string(n_axial) + " = " +
-                         std::to_string(n_circ * n_axial) + " nodes is more than the limit of " +
+// The film grid keys shared by every film spec (JournalBearingSpec, DamperSpec, FloatingRingSpec): n_circ x n_axial
+// nodes, each range-checked and together within limits::kMaxFilmNodes, and the axial grading in [0, 1).
+template <class Film>
+void read_film_grid(Reader& r, Film& f) {
+  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
+  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
+  const long nodes = static_cast<long>(f.n_circ) * f.n_axial;
+  if (nodes > limits::kMaxFilmNodes)
+    r.fail("n_circ", "a film grid of " + std::to_string(f.n_circ) + " x " + std::to_string(f.n_axial) + " = " +
+                         std::to_string(nodes) + " nodes is more than the limit of " +
                          std::to_string(limits::kMaxFilmNodes) + " (docs/model-format.md, Limits)");
+  f.axial_grading = r.quantity_or("axial_grading", dim::dimensionless, f.axial_grading, Bound::NonNegative);
+  if (!(f.axial_grading >= 0.0 && f.axial_grading < 1.0))
+    r.fail("axial_grading", "must be in [0, 1) (0: uniform axial nodes)");
 }
 
 // A quantity the loader derives from several keys (a disk's mass from its geometry, the viscosity at a film's
@@ -165,12 +173,7 @@ void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width)
     r.fail("clearance", "is not small against the diameter (the film model needs c << D): a unit mistake?");
   f.cavitation =
       read_choice<Cavitation>(r, "cavitation", {"gumbel", "mass-conserving", "none"}, to_string(f.cavitation));
-  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
-  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
-  check_film_grid(r, f.n_circ, f.n_axial);
-  f.axial_grading = r.quantity_or("axial_grading", dim::dimensionless, f.axial_grading, Bound::NonNegative);
-  if (!(f.axial_grading >= 0.0 && f.axial_grading < 1.0))
-    r.fail("axial_grading", "must be in [0, 1) (0: uniform axial nodes)");
+  read_film_grid(r, f);
   f.oil_temperature = r.quantity_or("oil_temperature", dim::temperature, 0.0, Bound::Positive);
   check_viscosity(r, "oil_temperature", oil, f.oil_temperature);
   f.supply_pressure = r.quantity_or("supply_pressure", dim::pressure, 0.0, Bound::NonNegative);
@@ -280,12 +283,7 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   f.ring_tilt = r.flag_or("ring_tilt", f.ring_tilt);
   f.cavitation =
       read_choice<Cavitation>(r, "cavitation", {"gumbel", "mass-conserving", "none"}, to_string(f.cavitation));
-  f.n_circ = static_cast<int>(r.integer_or("n_circ", f.n_circ, 8, limits::kMaxFilmCirc));
-  f.n_axial = static_cast<int>(r.integer_or("n_axial", f.n_axial, 4, limits::kMaxFilmAxial));
-  check_film_grid(r, f.n_circ, f.n_axial);
-  f.axial_grading = r.quantity_or("axial_grading", dim::dimensionless, f.axial_grading, Bound::NonNegative);
-  if (!(f.axial_grading >= 0.0 && f.axial_grading < 1.0))
-    r.fail("axial_grading", "must be in [0, 1) (0: uniform axial nodes)");
+  read_film_grid(r, f);
   f.inner_oil_temperature = r.quantity_or("inner_oil_temperature", dim::temperature, 0.0, Bound::Positive);
   f.outer_oil_temperature = r.quantity_or("outer_oil_temperature", dim::temperature, 0.0, Bound::Positive);
   check_viscosity(r, "inner_oil_temperature", oil, f.inner_oil_temperature);

@@ -25,9 +25,10 @@ inline FilmGeometry plain(double l_over_d, int n_circ = 60, int n_axial = 12, do
   return g;
 }
 
-inline SolverOptions with(Cavitation cav) {
+inline SolverOptions with(Cavitation cav, double axial_grading = 0.0) {
   SolverOptions o;
   o.cavitation = cav;
+  o.axial_grading = axial_grading;
   return o;
 }
 

@@ -18,11 +18,7 @@ namespace {
 using ::testing::HasSubstr;
 using namespace turbodyn::reynolds::testing;
 
-SolverOptions graded(Cavitation cav, double b = 0.4) {
-  SolverOptions o = with(cav);
-  o.axial_grading = b;
-  return o;
-}
+SolverOptions graded(Cavitation cav, double b = 0.4) { return with(cav, b); }
 
 TEST(GradedGrid, NodesAreDrawnTowardsTheEndsSymmetrically) {
   FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);

@@ -186,18 +186,14 @@ TEST(Torques, BalanceOfTheFilm) {
   // ends (SolverOptions::axial_grading; reynolds_graded_test.cpp).
   for (const double grading : {0.0, 0.4}) {
     for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel}) {
-      SolverOptions o = with(cav);
-      o.axial_grading = grading;
-      FilmSolver solver(plain(1.0), kEta, o);
+      FilmSolver solver(plain(1.0), kEta, with(cav, grading));
       const FilmState s = journal(0.5, 0.7);
       const FilmResult r = solve_ok(solver, s);
       const double couple = -(s.ex * r.fy - s.ey * r.fx);
       EXPECT_NEAR(r.torque_inner + r.torque_outer, couple, 5e-3 * std::abs(couple)) << to_string(cav) << grading;
     }
     // Centred (Petroff): T = -eta (omega_i - omega_o) R^3 2 pi L / c on the journal, the opposite on the bush.
-    SolverOptions o = with(Cavitation::Gumbel);
-    o.axial_grading = grading;
-    FilmSolver solver(plain(1.0), kEta, o);
+    FilmSolver solver(plain(1.0), kEta, with(Cavitation::Gumbel, grading));
     FilmState s = journal(0.0);
     s.omega_outer = 0.25 * kOmega;
     const FilmResult r = solve_ok(solver, s);
@@ -397,9 +393,7 @@ TEST(Solver, FullFilmMatchesSparseLu) {
   // The band L D L^T with its periodic border against Eigen's SparseLU on the same assembled system, on the uniform
   // axial grid and on one graded towards the ends.
   for (const double grading : {0.0, 0.4}) {
-    SolverOptions o = with(Cavitation::None);
-    o.axial_grading = grading;
-    FilmSolver solver(awkward(), 0.0108, o);
+    FilmSolver solver(awkward(), 0.0108, with(Cavitation::None, grading));
     const FilmState s = tilted_state();
     const FilmResult r = solve_ok(solver, s);
     EXPECT_FALSE(r.symmetric);
@@ -453,8 +447,7 @@ TEST(Solver, MidWidthSymmetryMatchesTheFullGrid) {
       for (const Cavitation cav : {Cavitation::None, Cavitation::Gumbel, Cavitation::MassConserving}) {
         FilmGeometry g = plain(0.7, 60, nz, 0.005, 15e-6);
         g.holes = {Hole{kPi / 2, 0.0, 0.002, 4.5e5}, Hole{kPi, 0.002, 0.001, 1e5}, Hole{kPi, -0.002, 0.001, 1e5}};
-        SolverOptions o = with(cav);
-        o.axial_grading = grading;
+        const SolverOptions o = with(cav, grading);
         SolverOptions full = o;
         full.use_symmetry = false;
         FilmSolver half_solver(g, 0.0108, o), full_solver(g, 0.0108, full);
