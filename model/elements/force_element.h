@@ -133,6 +133,13 @@ class ForceElement {
     return 1e-6;
   }
 
+  /// The magnitude of internal state i that a scaled absolute tolerance (solver.atol_scaling = "typical") resolves
+  /// to the same fraction as 1 um of rotor displacement. By default state_scale(i). An element overrides it for
+  /// velocities of parts that vibrate far faster than the rotor: a displacement tolerance of atol at frequency w
+  /// corresponds to a velocity tolerance of w atol, and resolving the velocity more finely than that only
+  /// resolves the part's own vibration, which its displacement tolerance already bounds.
+  virtual double tolerance_scale(int i) const { return state_scale(i); }
+
   /// Relative step of the engine's forward differences; elements computed by iterative solvers need more than
   /// sqrt(eps) to stay above their solver tolerance.
   virtual double fd_relative_step() const { return 1.4901161193847656e-08; }

@@ -427,7 +427,7 @@ Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
   a.segment(n, n).setConstant(atol * kVel / kDisp);
   for (std::size_t k = 0; k < elements_.size(); ++k)
     for (int i = 0; i < elements_[k]->n_states(); ++i) {
-      const double typical = elements_[k]->state_scale(i);
+      const double typical = elements_[k]->tolerance_scale(i);
       a(state_offsets_[k] + i) = atol * (typical > 0.0 ? typical : kDisp) / kDisp;
     }
   a.tail(2).setConstant(atol / kDisp);  // energy accounts (J)

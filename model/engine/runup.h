@@ -104,7 +104,8 @@ class RunupModel {
   void SolveNewton(double gamma, const double* b, double* x, RunupWorkspace& ws) const;
   /// Absolute tolerance of each state (n_states() values) for a displacement tolerance atol (m). scaled: every
   /// state's tolerance is atol times its typical magnitude over 1 um: rotor displacements 1 um, rotor velocities
-  /// 1 mm/s, element states ForceElement::state_scale() (the magnitudes the finite-difference Jacobian uses),
+  /// 1 mm/s, element states ForceElement::tolerance_scale() (by default the magnitudes the finite-difference
+  /// Jacobian uses, ForceElement::state_scale(); larger for the velocities of fast parts such as balls),
   /// energy accounts 1 J per um, i.e. each state is resolved to the same fraction of its typical size. Otherwise
   /// atol for every state.
   Eigen::VectorXd AbsoluteTolerances(double atol, bool scaled) const;

@@ -309,6 +309,19 @@ double BallBearingElement::state_scale(int i) const {
   return (i - 2) < 2 ? 1e-6 : 1e-3;
 }
 
+double BallBearingElement::tolerance_scale(int i) const {
+  const int nb = kBallStates * spec_.n_balls;
+  if (i < nb) {
+    const int k = i % kBallStates;
+    if (k == 4 || k == 5) return kBallVelocityTolerance;                       // radial, axial velocity
+    if (k >= 6) return kBallVelocityTolerance / (0.5 * spec_.ball_diameter);  // spin rates
+    return state_scale(i);
+  }
+  const int c = i - nb;
+  if (c >= 4 && c <= 6) return kCageVelocityTolerance;  // the cage's translational velocities
+  return state_scale(i);
+}
+
 void BallBearingElement::calc_bearing(const SpinState& st, const double* q, const double* v, const double* z,
                                      const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
                                      BallShare* shares) const {

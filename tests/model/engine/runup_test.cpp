@@ -174,6 +174,7 @@ class WithoutJacobian final : public ForceElement {
       : ForceElement(inner->name(), inner->dofs(), inner->n_states()), inner_(std::move(inner)) {}
   void initial_states(double* z) const override { inner_->initial_states(z); }
   double state_scale(int i) const override { return inner_->state_scale(i); }
+  double tolerance_scale(int i) const override { return inner_->tolerance_scale(i); }
 
  protected:
   void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
@@ -323,7 +324,7 @@ TEST(Runup, TighterToleranceChangesMaximaByLessThanOnePercent) {
 
 TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
   // atol_scaling = "typical": displacements get atol, velocities atol x (1 mm/s / 1 um), element states atol x their
-  // typical magnitude / 1 um; "uniform" gives atol for every state.
+  // tolerance scale / 1 um (the pedestals' typical magnitudes); "uniform" gives atol for every state.
   MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
                                 {"bearings.compressor.pedestal_stiffness", "2e7"}});
   const auto model = make_runup_model(spec);
@@ -340,7 +341,7 @@ TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
   for (std::size_t k = 0; k < model->elements().size(); ++k)
     for (int i = 0; i < model->elements()[k]->n_states(); ++i)
       EXPECT_DOUBLE_EQ(a(model->state_offset(static_cast<int>(k)) + i),
-                       1e-10 * model->elements()[k]->state_scale(i) / 1e-6);
+                       1e-10 * model->elements()[k]->tolerance_scale(i) / 1e-6);
   // A run with the scaled tolerances gives the same maxima as the default within the accuracy both ask for.
   spec.speed.end = 30000 * kRpm;
   spec.speed.duration = 0.8;

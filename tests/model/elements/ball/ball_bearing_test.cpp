@@ -1,6 +1,7 @@
 // Ball bearing as a multibody element: forces as the gradient of the contact potential, energy conservation
 // without friction and damping, the energy balance with them, evaluation caching, bad input.
 #include "model/elements/ball/ball_bearing.h"
+#include "model/elements/ball/ball_bearing_quasistatic.h"
 
 #include <algorithm>
 #include <cmath>
@@ -271,6 +272,41 @@ TEST(BallBearing, LubricatedTractionHasItsViscousAndLimitingRanges) {
   }
   std::printf("\n");
   EXPECT_EQ(eyring_traction_per_slip(lub, hz, 0.0, kU, 1.0), 0.0);
+}
+
+TEST(BallBearing, ScaledTolerancesOfTheBallAndCageVelocitiesFollowTheirContactFrequencies) {
+  // A scaled absolute tolerance resolves 1 um of displacement to atol; a part ringing at w on its contacts then
+  // has 1 um of displacement per w x 1 um of velocity. The balls' and the cage's velocity tolerances must not be
+  // looser than that (they would let the integrator misplace the contacts), and they are what lets it step over
+  // the 40-kHz ringing it does not need to resolve. Reference bearing at rest under its preload: each ball on its
+  // two contacts, the cage on one pocket at 1 N.
+  const BallBearingSpec s = reference_bearing();
+  const BallBearingElement e("b", s, 0, 0.0);
+  const BallBearingEquilibrium r = BallBearingQuasiStatic(e).solve(0.0, Eigen::Vector3d::Zero());
+  const auto contact_stiffness = [](const HertzPointContact& c, double load) {
+    return 1.5 * std::pow(c.stiffness, 2.0 / 3.0) * std::cbrt(load);  // dQ/d(delta) of Q = K delta^1.5
+  };
+  const QuasiStaticBall& b = r.balls.at(0);
+  ASSERT_GT(b.inner_load, 1.0);
+  const double k_ball = contact_stiffness(e.inner_contact(), b.inner_load) + contact_stiffness(e.outer_contact(),
+                                                                                               b.outer_load);
+  const double w_ball = std::sqrt(k_ball / e.ball_mass());
+  const double w_cage = std::sqrt(1.5 * std::pow(e.pocket_stiffness(), 2.0 / 3.0) / s.cage_mass);
+  std::printf("[ validation ] ball on its races %.1f kHz (1 um: %.3f m/s), cage on a pocket at 1 N %.1f kHz "
+              "(%.3f m/s)\n", w_ball / 2e3 / M_PI, w_ball * 1e-6, w_cage / 2e3 / M_PI, w_cage * 1e-6);
+  EXPECT_LE(BallBearingElement::kBallVelocityTolerance, w_ball * ForceElement::kTypicalDisplacement);
+  EXPECT_LE(BallBearingElement::kCageVelocityTolerance, w_cage * ForceElement::kTypicalDisplacement);
+  // Which states: a ball's radial and axial velocities and its spins (as surface speeds), the cage's velocities;
+  // every other state keeps its typical magnitude.
+  const int cage = BallBearingElement::kBallStates * s.n_balls;
+  for (int i = 0; i < e.n_states(); ++i) {
+    const int k = i < cage ? i % BallBearingElement::kBallStates : -1;
+    double expected = e.state_scale(i);
+    if (k == 4 || k == 5) expected = 0.1;
+    if (k >= 6) expected = 0.1 / (0.5 * s.ball_diameter);
+    if (i >= cage + 4 && i <= cage + 6) expected = 0.05;
+    EXPECT_DOUBLE_EQ(e.tolerance_scale(i), expected) << "state " << i;
+  }
 }
 
 TEST(BallBearing, BadSpecValuesThrowNamingTheField) {
