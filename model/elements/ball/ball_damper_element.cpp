@@ -131,6 +131,10 @@ double BallDamperElement::state_scale(int i) const {
   return i < n_core_ + 2 ? 1e-6 : 1e-3;
 }
 
+double BallDamperElement::tolerance_scale(int i) const {
+  return i < n_core_ ? bearing_.tolerance_scale(i) : state_scale(i);
+}
+
 const BallDamperElement::Evaluation& BallDamperElement::Evaluate(const SpinState& s, const double* q,
                                                                  const double* v, const double* z,
                                                                  ElementWorkspace& ws) const {

@@ -25,8 +25,7 @@ class BallDamperElement final : public ForceElement {
   void initial_states(double* z) const override;
   void initial_states_at_speed(double speed, double* z) const override;
   double state_scale(int i) const override;
-  // tolerance_scale() stays state_scale(): with the bearing's looser velocity scales (BallBearingElement::
-  // tolerance_scale) the damper ring's force spikes at e/c near 1 moved by far more than before (docs/ball-bearing.md).
+  double tolerance_scale(int i) const override;  // the bearing's for its states, the ring's typical magnitudes
   /// The bearing's balls and cage, and the damper ring's centre and velocity as housing-frame pairs. Only for a
   /// film that is the same in every direction (no feed hole, no supply pressure) and without gravity: then the
   /// ring's steady place is the centre; otherwise false.
