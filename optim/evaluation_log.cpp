@@ -35,7 +35,8 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     if (m.spec.order_min != plain.order_min || m.spec.order_max != plain.order_max)
       metrics.back()["order_band"] = nlohmann::json::array({m.spec.order_min, m.spec.order_max});
   }
-  return {{"model", s.model.filename().string()}, {"fixed", overrides_json(s.fixed)},
+  return {{"model", s.model.filename().string()}, {"model_digest", studies::file_digest(s.model)},
+          {"fixed", overrides_json(s.fixed)},
           {"speed_window", {s.speed_window_min, s.speed_window_max}}, {"variables", vars}, {"cases", cases},
           {"metrics", metrics}};
 }
@@ -69,7 +70,7 @@ EvaluationLog::EvaluationLog(const nlohmann::json& fp, const std::filesystem::pa
   log_ = std::make_unique<studies::RunLog>(
       file_, nlohmann::json{{"fingerprint", fp}},
       "holds the evaluations of a different problem (model, fixed overrides, speed window, variables, cases or "
-      "metrics differ); choose another output directory or delete the file");
+      "metrics differ, or the model file has changed since); choose another output directory or delete the file");
   for (const nlohmann::json& j : log_->records()) {
     try {
       Evaluation e = evaluation_from_json(j);

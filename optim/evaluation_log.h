@@ -16,8 +16,8 @@
 
 namespace turbodyn::optim {
 
-/// Identifies what an evaluation depends on: model, fixed overrides, speed window, variables (paths and units),
-/// cases and metrics. Bounds, start, algorithm, objective and constraints are not part of it: changing them keeps
+/// Identifies what an evaluation depends on: model (file name and content), fixed overrides, speed window, variables
+/// (paths and units), cases and metrics. Bounds, start, algorithm, objective and constraints are not part of it: changing them keeps
 /// the cached evaluations valid.
 nlohmann::json fingerprint(const OptimizationSpec& spec);
 

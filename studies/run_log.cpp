@@ -1,10 +1,28 @@
 #include "studies/run_log.h"
 
+#include <cstdint>
 #include <sstream>
 
 #include "model/spec/errors.h"
 
 namespace turbodyn::studies {
+
+std::string file_digest(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return "unreadable";
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bit
+  char buffer[4096];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(buffer[i]);
+      h *= 1099511628211ull;
+    }
+  }
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string digest(16, '0');
+  for (int i = 15; i >= 0; --i, h >>= 4) digest[i] = kHex[h & 0xf];
+  return digest;
+}
 
 RunLogContents read_run_log(const std::filesystem::path& file, const nlohmann::json& header,
                             const std::string& mismatch) {

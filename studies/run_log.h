@@ -22,6 +22,10 @@ struct RunLogContents {
 /// The lines of `file` (none if it does not exist); a last line cut short by a kill (no newline) is skipped. Throws
 /// ModelError "FILE: `mismatch`" when the first complete line is not `header`, i.e. the file belongs to another
 /// batch, and "FILE:LINE: a damaged line" for a complete line that is not JSON.
+/// A digest of the bytes of `file` (64-bit FNV-1a, 16 hex digits; "unreadable" if it cannot be read). A batch's
+/// header carries its model file's digest, so that a log written for an earlier version of the model is not resumed.
+std::string file_digest(const std::filesystem::path& file);
+
 RunLogContents read_run_log(const std::filesystem::path& file, const nlohmann::json& header,
                             const std::string& mismatch);
 

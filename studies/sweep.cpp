@@ -27,9 +27,10 @@ namespace {
 
 constexpr const char* kRunsFile = "runs.jsonl";
 constexpr const char* kOtherStudy =
-    "holds the runs of a different study (parameters, design or metrics differ); choose another output directory";
+    "holds the runs of a different study (parameters, design or metrics differ, or the model file has changed "
+    "since); choose another output directory";
 
-// Identifies the study a runs.jsonl belongs to: same parameters, design and metrics.
+// Identifies the study a runs.jsonl belongs to: same model file (name and content), parameters, design and metrics.
 nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
   nlohmann::json metrics = nlohmann::json::array();
   // A metric's window, threshold and band are part of it (only where set, so that a log of a study without them
@@ -46,7 +47,8 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
       id << ":order_band=" << m.order_min << "," << m.order_max;
     metrics.push_back(id.str());
   }
-  return {{"study", s.name}, {"model", s.model.filename().string()}, {"paths", d.paths},
+  return {{"study", s.name}, {"model", s.model.filename().string()}, {"model_digest", file_digest(s.model)},
+          {"paths", d.paths},
           {"units", s.parameter_units}, {"also", s.parameter_also}, {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
 }
 

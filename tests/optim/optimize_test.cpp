@@ -347,6 +347,28 @@ TEST(Optimizer, LogOfAnotherProblemIsRefused) {
   }
 }
 
+TEST(Optimizer, LogOfAnEarlierVersionOfTheModelIsRefused) {
+  // The cache was keyed by the model's file name only, so an edited model (a tolerance, a clearance) resumed the
+  // evaluations of the old one. A copy of the model, evaluated, then changed by one character in a comment
+  // (anything in the file counts: the log cannot know which change matters).
+  const auto dir = temp_dir("edited_model");
+  std::filesystem::copy_file(testing::source_dir() + "/tests/data/optim/jeffcott.toml", dir / "jeffcott.toml");
+  OptimizationSpec s = load_optimization(kJeffcottStudy);
+  s.model = dir / "jeffcott.toml";
+  s.algorithm.maxeval = 2;
+  OptimizerOptions o;
+  o.log_file = dir / "evaluations.jsonl";
+  (void)optimize(s, model_evaluator(s), o);
+  EXPECT_EQ(optimize(s, model_evaluator(s), o).cached_evaluations, 2u);  // unchanged: resumed
+  std::ofstream(s.model, std::ios::app) << "# edited\n";
+  try {
+    (void)optimize(s, model_evaluator(s), o);
+    FAIL() << "accepted";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("the model file has changed"));
+  }
+}
+
 // ------------------------------------------------------------------------------------------ study-file errors
 
 // A study file next to a copy of the Jeffcott model: the valid study with `edits` (from, to) substituted.

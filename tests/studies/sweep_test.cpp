@@ -155,6 +155,24 @@ TEST(Sweep, ResumesWithoutRedoingFinishedRuns) {
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(again.runs[i].metrics, full.runs[i].metrics);
 }
 
+TEST(Sweep, DoesNotResumeTheRunsOfAnEarlierVersionOfTheModel) {
+  // The log was keyed by the model's file name only: an edited model resumed the old model's runs. Any change of
+  // the file's bytes (here a comment) makes it another study's log.
+  const auto f = write_study("edited_model", std::string(kCheap) + kSmallLhs);
+  const StudySpec s = load_study(f);
+  SweepOptions o;
+  o.output_dir = temp_dir("edited_model_out");
+  ASSERT_TRUE(run_sweep(s, o).complete);
+  EXPECT_EQ(run_sweep(s, o).resumed, 4u);  // unchanged: resumed
+  std::ofstream(f.parent_path() / "reference_linear.toml", std::ios::app) << "# edited\n";
+  try {
+    (void)run_sweep(s, o);
+    FAIL() << "resumed the runs of the earlier model";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("the model file has changed"));
+  }
+}
+
 TEST(Sweep, ShardsCoverTheDesignAndMergeToTheSameTable) {
   const StudySpec s = load_study(write_study("shards", std::string(kCheap) + kSmallLhs));
   SweepOptions a, b;
