@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The long validation studies on the paper's variants, with the pictures their documents show:
-#   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~15 min on 2 cores),
+#   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~2 min on 2 cores),
 #   damper optimisation of variant III to convergence (docs/optimization.md, ~14 min on 2 cores),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl (docs/studies.md, ~25 min on 2 cores),
