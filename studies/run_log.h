@@ -19,13 +19,13 @@ struct RunLogContents {
   std::size_t complete_bytes = 0;       ///< the length of the file up to the end of its last complete line
 };
 
-/// The lines of `file` (none if it does not exist); a last line cut short by a kill (no newline) is skipped. Throws
-/// ModelError "FILE: `mismatch`" when the first complete line is not `header`, i.e. the file belongs to another
-/// batch, and "FILE:LINE: a damaged line" for a complete line that is not JSON.
 /// A digest of the bytes of `file` (64-bit FNV-1a, 16 hex digits; "unreadable" if it cannot be read). A batch's
 /// header carries its model file's digest, so that a log written for an earlier version of the model is not resumed.
 std::string file_digest(const std::filesystem::path& file);
 
+/// The lines of `file` (none if it does not exist); a last line cut short by a kill (no newline) is skipped. Throws
+/// ModelError "FILE: `mismatch`" when the first complete line is not `header`, i.e. the file belongs to another
+/// batch, and "FILE:LINE: a damaged line" for a complete line that is not JSON.
 RunLogContents read_run_log(const std::filesystem::path& file, const nlohmann::json& header,
                             const std::string& mismatch);
 

@@ -159,8 +159,6 @@ struct FilmSolver::Impl {
       iwest[i] = (i + n - 1) % n;
       ieast[i] = (i + 1) % n;
     }
-    zn.resize(nz);
-    zf.resize(nzf);
     axial_grid();
 
     const int N = n * nz;

@@ -310,15 +310,14 @@ double BallBearingElement::state_scale(int i) const {
 }
 
 double BallBearingElement::tolerance_scale(int i) const {
-  const int nb = kBallStates * spec_.n_balls;
-  if (i < nb) {
+  const int c = i - cage_offset();
+  if (c < 0) {
     const int k = i % kBallStates;
     if (k == 4 || k == 5) return kBallVelocityTolerance;                       // radial, axial velocity
     if (k >= 6) return kBallVelocityTolerance / (0.5 * spec_.ball_diameter);  // spin rates
-    return state_scale(i);
+  } else if (c >= 4 && c <= 6) {
+    return kCageVelocityTolerance;  // the cage's translational velocities
   }
-  const int c = i - nb;
-  if (c >= 4 && c <= 6) return kCageVelocityTolerance;  // the cage's translational velocities
   return state_scale(i);
 }
 
