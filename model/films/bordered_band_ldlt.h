@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/films/byte_flag.h"
+
 namespace turbodyn::reynolds {
 
 // Symmetric positive definite system whose unknowns split into a band part (n unknowns, half-bandwidth m) and a
@@ -192,7 +194,7 @@ class BorderedBandLdlt {
     double* y = y_.data();
     double* ya = ya_.data();
     const double* inv_d = inv_d_.data();
-    const std::uint8_t* fixed = fixed_.data();
+    const ByteFlag* fixed = fixed_.data();
     std::fill(y + n, y + n + M + 1, 0.0);
     double a[M];  // forward: y[r .. r + M - 1] with the updates of the rows above r
 #pragma GCC unroll 16
@@ -310,7 +312,7 @@ class BorderedBandLdlt {
 
   int n_ = 0, m_ = 0, na_ = 0;
   std::vector<double> band_, border_, corner_, corner_d_, inv_d_, y_, ya_;
-  std::vector<std::uint8_t> fixed_;
+  std::vector<ByteFlag> fixed_;
 };
 
 }  // namespace turbodyn::reynolds

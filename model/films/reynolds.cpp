@@ -1,6 +1,7 @@
 #include "model/films/reynolds.h"
 
 #include "model/films/bordered_band_ldlt.h"
+#include "model/films/byte_flag.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,7 +75,7 @@ struct FilmSolver::Impl {
   std::vector<double> end_slope_lo, end_slope_hi;  // per column, dp/dz at z = -L/2, +L/2 (outputs, open ends)
   std::vector<char> plain_column;                  // per column: no hole or groove node (fixed by the geometry)
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
-  std::vector<std::uint8_t> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
+  std::vector<ByteFlag> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
   // The band holds the factorisation of the last successful None or Gumbel solve, for the cavitated set in cr and
   // the film thickness of (ex, ey, sx, sy) = factored_at (solve_same_matrix).
@@ -87,7 +88,7 @@ struct FilmSolver::Impl {
   double w_last = 1.0;  // row weight of the last reduced row (1/2 for the mid-width row when nz is odd)
   std::vector<double> Cw, Ce, Cs, Cn, Dg, FE, SQ, b0, pr, thr;
   std::vector<double> pr0, res;  // the factorisation's own solution (solve_linearised) and a residual
-  std::vector<std::uint8_t> dirr, cr, fr;
+  std::vector<ByteFlag> dirr, cr, fr;
   std::vector<int> colcount, border_j;
   int i0 = 0, last_col = 0, na = 0;
   // Mass-conserving model: cavitated nodes feeding a full node, and GMRES storage.
@@ -100,7 +101,7 @@ struct FilmSolver::Impl {
   int mk_count = 0;
   bool mk_generic = false;
   static constexpr int kMaxSwitches = 6;
-  std::vector<std::uint8_t> switches;  // per cell and call
+  std::vector<ByteFlag> switches;  // per cell and call
   BorderedBandLdlt band;
   double U = 0, pcav = 0, pamb = 0;
   double pscale = 1, fscale = 1;
@@ -928,7 +929,7 @@ struct FilmSolver::Impl {
         for (int j = 0; j < m; ++j) {
           const int kr = i * m + j;
           if (dirr[kr] || switches[kr] > kMaxSwitches) continue;
-          const std::uint8_t before = cr[kr];
+          const int before = cr[kr];
           switch (cr[kr]) {
             case kFull:
               if (consistent && pr[kr] < pcav - tol * pscale) {
@@ -951,7 +952,10 @@ struct FilmSolver::Impl {
                 ++changed;
               }
           }
-          if (cr[kr] != before && ++switches[kr] > kMaxSwitches) cr[kr] = kFallback;
+          if (cr[kr] != before) {
+            switches[kr] = switches[kr] + 1;
+            if (switches[kr] > kMaxSwitches) cr[kr] = kFallback;
+          }
         }
       if (changed == 0) {
         if (!consistent) return fail("mass-conserving iteration failed (no film fraction for the cavitated set)");
@@ -1223,7 +1227,7 @@ struct FilmSolver::Impl {
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < m; ++j) {
         const int kr = i * m + j, k = i * nz + j;
-        cr[kr] = warm ? cav[k] : 0;
+        cr[kr] = warm ? cav[k] : ByteFlag(0);
         thr[kr] = warm ? theta[k] : 1.0;
         pr[kr] = dirr[kr] ? dval[k] : (warm ? p[k] : pamb);
       }
