@@ -105,6 +105,10 @@ struct FilmSolver::Impl {
   BorderedBandLdlt band;
   double U = 0, pcav = 0, pamb = 0;
   double pscale = 1, fscale = 1;
+  double amax = 0;  // largest diagonal of the couplings (reduced_system)
+  // The thickness-dependent arrays (hN, hE, aE, hF, aF, the couplings, dirr, amax) hold the thickness of the
+  // factorisation (factored_at): solve() sets it, solve_linearised() clears it (it fills them for another thickness).
+  bool thickness_current = false;
   // Faces between a free node and a hole node, with the factor of their conductance (fitted_holes): east faces by
   // the full-grid node index k, axial faces by i * nzf + jf.
   std::vector<std::pair<int, double>> fit_east, fit_axial;
@@ -349,9 +353,25 @@ struct FilmSolver::Impl {
       }
   }
 
-  void geometry_arrays(const FilmState& s) {
+  // rates_only: the thickness is that of the last call (thickness_current), so only the Couette and squeeze
+  // terms (speeds, velocities) are computed anew.
+  void geometry_arrays(const FilmState& s, bool rates_only = false) {
     const double c = g.clearance;
     const int jn = sym ? m : nz;  // rows computed (the rest mirrored)
+    if (rates_only) {
+      for (int j = 0; j < jn; ++j) {
+        const double z = zn[j];
+        const double couette = 0.5 * U * wz[j], area = dx * wz[j];
+        const double vxz = s.vx + z * s.dsx, vyz = s.vy + z * s.dsy;
+        for (int i = 0; i < n; ++i) {
+          const int k = i * nz + j;
+          cE[k] = couette * hE[k];
+          sq[k] = -(vxz * ct[i] + vyz * st[i]) * area;
+        }
+      }
+      if (sym) mirror_axially(jn, cE, sq);
+      return;
+    }
     for (int j = 0; j < jn; ++j) {
       const double z = zn[j];
       const double kx = wz[j] / (12.0 * eta * dx), couette = 0.5 * U * wz[j], area = dx * wz[j];
@@ -397,8 +417,11 @@ struct FilmSolver::Impl {
 
   // Coefficients of the reduced system: per node west/east/south/north couplings, diagonal, Couette flux through
   // the east face for a full film (FE), squeeze volume rate (SQ), and the full-film source with the end terms (b0).
-  void reduced_system() {
-    double amax = 0.0, fmax = 0.0;
+  // rates_only: the couplings (Cw, Ce, Cs, Cn, Dg) and their largest diagonal are those of the last call, only the
+  // sources are new (geometry_arrays(s, true)).
+  void reduced_system(bool rates_only = false) {
+    double fmax = 0.0;
+    if (!rates_only) amax = 0.0;
     const int last = sym ? m - 1 : -1;
     for (int i = 0; i < n; ++i) {
       const int iw = iwest[i];
@@ -411,17 +434,19 @@ struct FilmSolver::Impl {
       for (int j = 0; j < m; ++j) {
         const int kr = i * m + j;
         const double w = j == last ? w_last : 1.0;
-        const double cw = w * aEw[j], ce = w * aEi[j], cs = aFi[j], cn = j == last ? 0.0 : aFi[j + 1];
-        Cw[kr] = cw;
-        Ce[kr] = ce;
-        Cs[kr] = cs;
-        Cn[kr] = cn;
-        Dg[kr] = cw + ce + cs + cn;
+        if (!rates_only) {
+          const double cw = w * aEw[j], ce = w * aEi[j], cs = aFi[j], cn = j == last ? 0.0 : aFi[j + 1];
+          Cw[kr] = cw;
+          Ce[kr] = ce;
+          Cs[kr] = cs;
+          Cn[kr] = cn;
+          Dg[kr] = cw + ce + cs + cn;
+          amax = std::max(amax, Dg[kr]);
+          dirr[kr] = kindi[j] != -1;
+        }
         FE[kr] = w * cEi[j];
         SQ[kr] = w * sqi[j];
-        amax = std::max(amax, Dg[kr]);
         fmax = std::max(fmax, std::abs(FE[kr]) + std::abs(SQ[kr]));
-        dirr[kr] = kindi[j] != -1;
       }
     }
     for (int k : dir_nodes) {
@@ -1169,6 +1194,7 @@ struct FilmSolver::Impl {
   // first order in the film thickness (the error is A0^-1 (A0 - A)(p - p0), second order in the change).
   bool solve_linearised(const FilmState& s, FilmResult& r) {
     if (!can_reuse_factorisation(s, "solve_linearised", false)) return false;
+    thickness_current = false;
     geometry_arrays(s);
     reduced_system();  // new couplings, sources and hole values; Dirichlet nodes take their values in pr
     for (int kr = 0; kr < n * m; ++kr)
@@ -1192,8 +1218,10 @@ struct FilmSolver::Impl {
 
   bool solve_same_matrix(const FilmState& s, FilmResult& r) {
     if (!can_reuse_factorisation(s, "solve_same_matrix", true)) return false;
-    geometry_arrays(s);  // the same thickness; new squeeze and Couette terms
-    reduced_system();    // the same couplings; new sources and hole values
+    // The same thickness: new squeeze and Couette terms, the same couplings, new sources and hole values.
+    geometry_arrays(s, thickness_current);
+    reduced_system(thickness_current);
+    thickness_current = true;
     // The cavitated set (cr) and the free set (fr) of the factorisation are kept.
     for (int kr = 0; kr < n * m; ++kr)
       if (cr[kr]) pr[kr] = pcav;
@@ -1207,6 +1235,7 @@ struct FilmSolver::Impl {
   bool solve(const FilmState& s, FilmResult& r) {
     err.clear();
     factored = false;
+    thickness_current = false;
     if (!finite_state(s)) return fail("state is not finite");
     if (closes(s)) return false;
     set_inputs(s);
@@ -1250,6 +1279,7 @@ struct FilmSolver::Impl {
     outputs(s, r);
     warm = true;
     factored = o.cavitation != Cavitation::MassConserving;
+    thickness_current = factored;
     factored_at[0] = s.ex;
     factored_at[1] = s.ey;
     factored_at[2] = s.sx;
@@ -1286,6 +1316,7 @@ bool FilmSolver::set_viscosity(double viscosity) {
   if (d.seal_conductance > 0.0) d.seal_conductance *= d.eta / viscosity;  // gap^3 / (12 eta length)
   d.eta = viscosity;
   d.factored = false;
+  d.thickness_current = false;  // aE, aF depend on the viscosity
   return true;
 }
 const FilmGeometry& FilmSolver::geometry() const { return impl_->g; }
