@@ -6,10 +6,12 @@
 #include <sstream>
 
 #include "model/io/output_file.h"
+#include "model/io/result_header.h"
 #include "post/plot.h"
 #include "post/plot_style.h"
 #include "post/run_pictures.h"
 #include "post/signal.h"
+#include "studies/run_log.h"
 #include "studies/table.h"
 
 namespace turbodyn::identification {
@@ -118,9 +120,11 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
     }
   rms = cnt ? std::sqrt(rms / static_cast<double>(cnt)) : NAN;
   const SolverSpec& s = study.solver;
-  return {{"study", study.name},
+  return {{"turbodyn_version", turbodyn_version()},
+          {"study", study.name},
           {"study_file", study.source.string()},
           {"model", study.model.string()},
+          {"model_digest", studies::file_digest(study.model)},
           {"method", study.method == Method::Response ? "response" : "runup"},
           {"measurement", study.measurement.file.string()},
           {"parameters", params},

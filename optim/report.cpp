@@ -8,6 +8,8 @@
 #include "post/plot.h"
 #include "post/plot_style.h"
 #include "post/run_pictures.h"
+#include "model/io/result_header.h"
+#include "studies/run_log.h"
 #include "studies/table.h"
 
 namespace turbodyn::optim {
@@ -82,9 +84,11 @@ void write_history_csv(const OptimizationSpec& s, const OptimizationResult& r, c
 
 nlohmann::json result_json(const OptimizationSpec& s, const OptimizationResult& r) {
   nlohmann::json j;
+  j["turbodyn_version"] = turbodyn_version();
   j["study"] = s.name;
   j["study_file"] = s.source.string();
   j["model"] = s.model.string();
+  j["model_digest"] = studies::file_digest(s.model);
   const AlgorithmOptions& a = s.algorithm;
   j["algorithm"] = {{"name", a.name}, {"as_run", r.algorithm}, {"note", r.note}, {"local", a.local},
                     {"xtol_rel", a.xtol_rel}, {"xtol_abs", a.xtol_abs}, {"ftol_rel", a.ftol_rel},

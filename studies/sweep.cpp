@@ -16,6 +16,7 @@
 #include "post/run_pictures.h"
 #include "model/engine/integrator.h"
 #include "model/io/output_file.h"
+#include "model/io/result_header.h"
 #include "studies/metrics.h"
 #include "studies/parallel.h"
 #include "studies/run_log.h"
@@ -192,8 +193,10 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
     files.push_back("results.csv");
   }
   nlohmann::json j;
+  j["turbodyn_version"] = turbodyn_version();
   j["study"] = study.name;
   j["model"] = study.model.string();
+  j["model_digest"] = file_digest(study.model);
   j["parameters"] = nlohmann::json::array();
   for (std::size_t p = 0; p < design.paths.size(); ++p)
     j["parameters"].push_back({{"path", design.paths[p]}, {"unit", study.parameter_units[p]}});

@@ -24,6 +24,8 @@ case $case in
       spectrogram_bearing.compressor.fx_comparison.png
     [ "$(wc -l < "$out/opt/history.csv")" -eq 4 ] || fail "history.csv: expected 3 evaluations: $(cat "$out/opt/history.csv")"
     grep -q '"nlopt_result": "MAXEVAL_REACHED"' "$out/opt/result.json" || fail "result.json: $(head -20 "$out/opt/result.json")"
+    grep -q '"turbodyn_version": "' "$out/opt/result.json" || fail "result.json without the program's version"
+    grep -Eq '"model_digest": "[0-9a-f]{16}"' "$out/opt/result.json" || fail "result.json without the model's digest"
     head -1 "$out/opt/best.toml" | grep -q "^# Optimised by \`turbodyn optimize" || fail "best.toml header"
     "$exe" check "$out/opt/best.toml" > "$out/check.log" 2>&1 || fail "best.toml does not load: $(cat "$out/check.log")"
     ;;

@@ -8,12 +8,15 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "identification/identify.h"
 #include "identification/identify_study.h"
 #include "identification/measurement.h"
 #include "identification/report.h"
 #include "model/io/model_file.h"
+#include "model/io/result_header.h"
+#include "studies/run_log.h"
 #include "model/io/toml_reader.h"
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
@@ -90,7 +93,13 @@ TEST(Identify, LinearJeffcottBearingStiffnessAndDampingFromNoisyUnbalanceRespons
   write_identify_results(study, r, dir / "out", false, warnings);
   const MachineSpec fitted = load_model(dir / "out" / "fitted.toml");
   EXPECT_NEAR(fitted.bearings[0].linear.k[0].front(), r.estimate[0], 1e-6 * r.estimate[0]);
-  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "estimates.json"));
+  {
+    // estimates.json says which program and which model file (by its content) made it.
+    std::ifstream in(dir / "out" / "estimates.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j.at("turbodyn_version"), turbodyn_version());
+    EXPECT_EQ(j.at("model_digest"), studies::file_digest(study.model));
+  }
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "features.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "ceres_summary.txt"));
 }

@@ -1,6 +1,11 @@
 // Parameter studies: analytic trends, thread-count invariance, failing runs, resume and shards.
 #include "studies/sweep.h"
 
+#include <nlohmann/json.hpp>
+
+#include "model/io/result_header.h"
+#include "studies/run_log.h"
+
 #include <cmath>
 #include <fstream>
 
@@ -188,8 +193,15 @@ TEST(Sweep, ShardsCoverTheDesignAndMergeToTheSameTable) {
   std::vector<RunRecord> merged = read_runs(s, a.output_dir);
   for (RunRecord& r : read_runs(s, b.output_dir)) merged.push_back(r);
   EXPECT_EQ(merged.size(), 4u);
-  const auto files = write_results(s, ra.design, merged, temp_dir("merged"), false);
+  const auto dir = temp_dir("merged");
+  const auto files = write_results(s, ra.design, merged, dir, false);
   EXPECT_THAT(files, ::testing::Contains("results.csv"));
+  // results.json says which program and which model file (by its content) made it.
+  std::ifstream in(dir / "results.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("turbodyn_version"), turbodyn_version());
+  EXPECT_EQ(j.at("model_digest"), file_digest(s.model));
+  EXPECT_EQ(j.at("model_digest").get<std::string>().size(), 16u);
 }
 
 TEST(Sweep, AnotherStudysDirectoryIsRefused) {
