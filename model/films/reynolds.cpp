@@ -107,7 +107,8 @@ struct FilmSolver::Impl {
   double pscale = 1, fscale = 1;
   double amax = 0;  // largest diagonal of the couplings (reduced_system)
   // The thickness-dependent arrays (hN, hE, aE, hF, aF, the couplings, dirr, amax) hold the thickness of the
-  // factorisation (factored_at): solve() sets it, solve_linearised() clears it (it fills them for another thickness).
+  // factorisation (factored_at): solve() and solve_same_matrix() set it, solve_linearised() (it fills them for
+  // another thickness) and set_viscosity() (aE, aF depend on it) clear it.
   bool thickness_current = false;
   // Faces between a free node and a hole node, with the factor of their conductance (fitted_holes): east faces by
   // the full-grid node index k, axial faces by i * nzf + jf.
@@ -354,7 +355,8 @@ struct FilmSolver::Impl {
   }
 
   // rates_only: the thickness is that of the last call (thickness_current), so only the Couette and squeeze
-  // terms (speeds, velocities) are computed anew.
+  // terms (speeds, velocities) are computed anew, by the same formulas as the full loop below (kept fused there:
+  // a separate rates pass after the thickness cost about 1 % of variant I's window).
   void geometry_arrays(const FilmState& s, bool rates_only = false) {
     const double c = g.clearance;
     const int jn = sym ? m : nz;  // rows computed (the rest mirrored)

@@ -16,13 +16,13 @@
 #include "identification/report.h"
 #include "model/io/model_file.h"
 #include "model/io/result_header.h"
-#include "studies/run_log.h"
 #include "model/io/toml_reader.h"
 #include "model/rotor/response.h"
 #include "model/rotor/rotor.h"
 #include "model/engine/integrator.h"
 #include "model/io/timeseries_file.h"
 #include "studies/channels.h"
+#include "studies/run_log.h"
 #include "tests/support/temp_dir.h"
 
 namespace turbodyn::identification {

@@ -1,17 +1,15 @@
 // Parameter studies: analytic trends, thread-count invariance, failing runs, resume and shards.
 #include "studies/sweep.h"
 
-#include <nlohmann/json.hpp>
-
-#include "model/io/result_header.h"
-#include "studies/run_log.h"
-
 #include <cmath>
 #include <fstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include "model/io/result_header.h"
+#include "studies/run_log.h"
 #include "tests/support/test_support.h"
 #include "tests/support/temp_dir.h"
 
