@@ -53,7 +53,7 @@ std::string design_text(const optim::OptimizationSpec& spec, const std::vector<d
 
 // The run-up of one design in the first operating case, for the spectrograms.
 RunupResult final_run(const optim::OptimizationSpec& spec, const std::vector<double>& design, MachineSpec& machine) {
-  machine = load_model(spec.model, optim::run_overrides(spec, design, &spec.cases.front()));
+  machine = studies::load_base_model(spec, optim::run_overrides(spec, design, &spec.cases.front()));
   const auto model = make_runup_model(machine);
   RunupOptions ro = runup_options(machine);
   ro.cancel = InterruptGuard::flag();
@@ -191,7 +191,7 @@ int run_optimize_command(const OptimizeCommandOptions& options) {
         header << "\n";
       }
     const std::vector<Override> o = optim::run_overrides(spec, best.evaluation.design, nullptr);
-    write_patched_model(spec.model, o, header.str(), dir / "best.toml");
+    studies::write_patched_base_model(spec, o, header.str(), dir / "best.toml");
     written.push_back("best.toml");
   }
   if (options.plots && !r.history.empty()) {

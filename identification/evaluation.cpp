@@ -76,14 +76,14 @@ Evaluator::Evaluator(const IdentifyStudy& study) : study_(study) {
   // The start values and both bounds must be accepted by the model loader (units, ranges).
   MachineSpec spec;
   try {
-    spec = load_model(study.model, overrides(start));
+    spec = studies::load_base_model(study, overrides(start));
     std::vector<double> lo, hi;
     for (const ParameterSpec& p : study.parameters) {
       lo.push_back(p.lower);
       hi.push_back(p.upper);
     }
-    (void)load_model(study.model, overrides(lo));
-    (void)load_model(study.model, overrides(hi));
+    (void)studies::load_base_model(study, overrides(lo));
+    (void)studies::load_base_model(study, overrides(hi));
   } catch (const ModelError& e) {
     throw ModelError(study.source.string() + ": the parameters do not apply to the model: " + e.what());
   }
@@ -126,7 +126,7 @@ Evaluation Evaluator::evaluate(const std::vector<double>& values, bool keep_reco
   try {
     const std::vector<SensorSpec>& sensors = study_.measurement.sensors;
     if (study_.method == Method::Response) {
-      const Rotor rotor = build_rotor(load_model(study_.model, overrides(values)));
+      const Rotor rotor = build_rotor(studies::load_base_model(study_, overrides(values)));
       std::vector<ResponseProbe> probes;
       for (const SensorSpec& s : sensors) probes.push_back(response_probe(rotor, s.probe));
       auto response = [&](double speed_hz) {

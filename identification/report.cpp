@@ -11,7 +11,7 @@
 #include "post/plot_style.h"
 #include "post/run_pictures.h"
 #include "post/signal.h"
-#include "studies/run_log.h"
+#include "studies/study.h"
 #include "studies/table.h"
 
 namespace turbodyn::identification {
@@ -124,7 +124,7 @@ nlohmann::json estimates_json(const IdentifyStudy& study, const IdentifyResult& 
           {"study", study.name},
           {"study_file", study.source.string()},
           {"model", study.model.string()},
-          {"model_digest", studies::file_digest(study.model)},
+          {"model_digest", studies::base_model_digest(study)},
           {"method", study.method == Method::Response ? "response" : "runup"},
           {"measurement", study.measurement.file.string()},
           {"parameters", params},
@@ -181,7 +181,7 @@ std::vector<std::string> write_identify_results(const IdentifyStudy& study, cons
       for (const std::string& path : p.paths) o.push_back({path, format_value(r.estimate[i], p.unit)});
     }
     header << "Sample run:\n  turbodyn run " << (dir / "fitted.toml").string() << " -o out/fitted";
-    write_patched_model(study.model, o, header.str(), dir / "fitted.toml");
+    studies::write_patched_base_model(study, o, header.str(), dir / "fitted.toml");
     files.push_back("fitted.toml");
   }
   {

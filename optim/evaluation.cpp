@@ -29,7 +29,7 @@ CaseResult evaluate_case(const OptimizationSpec& spec, const std::vector<studies
       std::any_of(spec.metrics.begin(), spec.metrics.end(), [](const Metric& m) { return m.response(); });
   if (any_response && c.status == "ok") {
     try {
-      const Rotor rotor = build_rotor(load_model(spec.model, overrides));
+      const Rotor rotor = build_rotor(studies::load_base_model(spec, overrides));
       for (std::size_t m = 0; m < spec.metrics.size(); ++m)
         if (spec.metrics[m].response()) c.metrics[m] = response_metric(spec.metrics[m].spec, spec.metrics[m].points, rotor);
     } catch (const std::exception& e) {

@@ -35,7 +35,7 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     if (m.spec.order_min != plain.order_min || m.spec.order_max != plain.order_max)
       metrics.back()["order_band"] = nlohmann::json::array({m.spec.order_min, m.spec.order_max});
   }
-  return {{"model", s.model.filename().string()}, {"model_digest", studies::file_digest(s.model)},
+  return {{"model", s.model.filename().string()}, {"model_digest", studies::base_model_digest(s)},
           {"fixed", overrides_json(s.fixed)},
           {"speed_window", {s.speed_window_min, s.speed_window_max}}, {"variables", vars}, {"cases", cases},
           {"metrics", metrics}};

@@ -9,7 +9,7 @@
 #include "post/plot_style.h"
 #include "post/run_pictures.h"
 #include "model/io/result_header.h"
-#include "studies/run_log.h"
+#include "studies/study.h"
 #include "studies/table.h"
 
 namespace turbodyn::optim {
@@ -88,7 +88,7 @@ nlohmann::json result_json(const OptimizationSpec& s, const OptimizationResult& 
   j["study"] = s.name;
   j["study_file"] = s.source.string();
   j["model"] = s.model.string();
-  j["model_digest"] = studies::file_digest(s.model);
+  j["model_digest"] = studies::base_model_digest(s);
   const AlgorithmOptions& a = s.algorithm;
   j["algorithm"] = {{"name", a.name}, {"as_run", r.algorithm}, {"note", r.note}, {"local", a.local},
                     {"xtol_rel", a.xtol_rel}, {"xtol_abs", a.xtol_abs}, {"ftol_rel", a.ftol_rel},

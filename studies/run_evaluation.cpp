@@ -13,7 +13,7 @@ namespace turbodyn::studies {
 RunupRun run_runup(const StudyCommon& study, const std::vector<Override>& overrides,
                    const std::atomic<bool>* cancel) {
   RunupRun run;
-  run.spec = load_model(study.model, overrides);
+  run.spec = load_base_model(study, overrides);
   run.model = make_runup_model(run.spec);
   run.options = runup_options(run.spec);
   run.options.cancel = cancel;

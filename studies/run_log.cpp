@@ -7,21 +7,40 @@
 
 namespace turbodyn::studies {
 
-std::string file_digest(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return "unreadable";
+namespace {
+
+struct Fnv1a {
   std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bit
-  char buffer[4096];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      h ^= static_cast<unsigned char>(buffer[i]);
+  void add(const char* data, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      h ^= static_cast<unsigned char>(data[i]);
       h *= 1099511628211ull;
     }
   }
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string digest(16, '0');
-  for (int i = 15; i >= 0; --i, h >>= 4) digest[i] = kHex[h & 0xf];
-  return digest;
+  std::string hex() const {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string digest(16, '0');
+    std::uint64_t v = h;
+    for (int i = 15; i >= 0; --i, v >>= 4) digest[i] = kHex[v & 0xf];
+    return digest;
+  }
+};
+
+}  // namespace
+
+std::string file_digest(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return "unreadable";
+  Fnv1a f;
+  char buffer[4096];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) f.add(buffer, static_cast<std::size_t>(in.gcount()));
+  return f.hex();
+}
+
+std::string text_digest(const std::string& bytes) {
+  Fnv1a f;
+  f.add(bytes.data(), bytes.size());
+  return f.hex();
 }
 
 RunLogContents read_run_log(const std::filesystem::path& file, const nlohmann::json& header,

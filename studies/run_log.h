@@ -22,6 +22,8 @@ struct RunLogContents {
 /// A digest of the bytes of `file` (64-bit FNV-1a, 16 hex digits; "unreadable" if it cannot be read). A batch's
 /// header carries its model file's digest, so that a log written for an earlier version of the model is not resumed.
 std::string file_digest(const std::filesystem::path& file);
+/// The same digest of bytes already read.
+std::string text_digest(const std::string& bytes);
 
 /// The lines of `file` (none if it does not exist); a last line cut short by a kill (no newline) is skipped. Throws
 /// ModelError "FILE: `mismatch`" when the first complete line is not `header`, i.e. the file belongs to another

@@ -7,7 +7,9 @@
 #include <limits>
 #include <sstream>
 
+#include "model/io/overrides.h"
 #include "model/io/toml_reader.h"
+#include "studies/run_log.h"
 #include "studies/study_keys.h"
 #include "studies/table.h"
 #include "model/spec/constants.h"
@@ -104,6 +106,7 @@ StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& fil
   if (model.empty()) r.fail_missing("model", "the base model file");
   s.model = std::filesystem::path(model).is_absolute() ? std::filesystem::path(model) : file.parent_path() / model;
   if (!std::filesystem::exists(s.model)) r.fail("model", "no such file: " + s.model.string());
+  set_base_model(s, s.model);
   s.threads = static_cast<int>(r.integer_or("threads", 0, 0, 4096));
   const std::vector<double> window = r.quantity_list("speed_window", dim::angular_speed, Bound::NonNegative);
   if (!window.empty()) {
@@ -135,14 +138,41 @@ auto in_study_context(const StudyCommon& study, F&& read) {
 
 }  // namespace
 
+void set_base_model(StudyCommon& study, const std::filesystem::path& model) {
+  study.model = model;
+  study.model_text = input::read_text_file(model, "model file");
+  study.model_digest = text_digest(study.model_text);
+}
+
 MachineSpec load_study_model(const StudyCommon& study, const std::vector<Override>& overrides) {
-  return in_study_context(study, [&] { return load_model(study.model, overrides); });
+  return in_study_context(study, [&] { return load_base_model(study, overrides); });
+}
+
+MachineSpec load_base_model(const StudyCommon& study, const std::vector<Override>& overrides) {
+  if (study.model_text.empty()) return load_model(study.model, overrides);
+  return load_model_from_string(study.model_text, study.model.string(), overrides);
+}
+
+std::string base_model_digest(const StudyCommon& study) {
+  return study.model_text.empty() ? file_digest(study.model) : study.model_digest;
+}
+
+void write_patched_base_model(const StudyCommon& study, const std::vector<Override>& overrides,
+                              const std::string& header, const std::filesystem::path& file) {
+  if (study.model_text.empty()) return write_patched_model(study.model, overrides, header, file);
+  const std::string text = patched_model_text(study.model_text, study.model.string(), overrides, header);
+  std::ofstream out(file, std::ios::binary);
+  if (!out || !(out << text) || !out.flush()) throw ModelError(file.string() + ": cannot write");
 }
 
 void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
                         const std::vector<std::pair<std::string, std::string>>& key_and_path) {
   const std::vector<std::string> numeric =
-      in_study_context(study, [&] { return numeric_model_keys(study.model, overrides); });
+      in_study_context(study, [&] {
+        return study.model_text.empty()
+                   ? numeric_model_keys(study.model, overrides)
+                   : numeric_model_keys_from_string(study.model_text, study.model.string(), overrides);
+      });
   for (const auto& [key, path] : key_and_path) {
     if (std::binary_search(numeric.begin(), numeric.end(), path)) continue;
     const std::string hint = closest_match(path, numeric);

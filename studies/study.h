@@ -51,8 +51,16 @@ struct StudyCommon {
   double speed_window_min = 0.0; ///< rad/s: a run starts where the ramp reaches this speed (0 = start)
   double speed_window_max = 0.0; ///< rad/s: a run stops where the ramp reaches this speed (0 = end)
   std::vector<Override> fixed;   ///< applied to every run before the run's own overrides
+  /// The model file's bytes and their digest (run_log.h: text_digest), read once with the study file: every run of
+  /// the batch loads this text, so a model file edited while a batch runs changes none of its runs, and the
+  /// results name the model the runs used. Empty for a study built in code, whose runs read the file.
+  std::string model_text;
+  std::string model_digest;
 };
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file);
+/// Sets the study's base model to `model` and reads its text and digest (model_text, model_digest); throws
+/// ModelError if the file cannot be read. Set `model` only through this, or model_text holds another file.
+void set_base_model(StudyCommon& study, const std::filesystem::path& model);
 /// The head table of a study file, `table` ("study", "optimize", "identify"), which must be there: reads the keys
 /// every study has into `common` and returns the table's Reader for the study's own keys (the caller finishes it).
 input::Reader read_study_head(input::Reader& top, const std::string& table, const std::filesystem::path& file,
@@ -64,6 +72,14 @@ input::Reader read_study_head(input::Reader& top, const std::string& table, cons
 /// The study's base model with `overrides` (the study's fixed values, a case's and a design's): a fault in them is
 /// a ModelError that names the study file first, then the override ("STUDY: --set PATH=VALUE: ...").
 MachineSpec load_study_model(const StudyCommon& study, const std::vector<Override>& overrides);
+/// The same without the study file's name in the messages (load_model's errors): what each run loads.
+MachineSpec load_base_model(const StudyCommon& study, const std::vector<Override>& overrides);
+/// The digest of the model the runs load: model_digest, or the file's for a study built in code.
+std::string base_model_digest(const StudyCommon& study);
+/// Writes the base model with `overrides` patched in (model/io/overrides.h: patched_model_text) to `file`, from the
+/// text the runs used; throws ModelError if it cannot be written.
+void write_patched_base_model(const StudyCommon& study, const std::vector<Override>& overrides,
+                              const std::string& header, const std::filesystem::path& file);
 
 void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
                         const std::vector<std::pair<std::string, std::string>>& key_and_path);

@@ -48,7 +48,7 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
       id << ":order_band=" << m.order_min << "," << m.order_max;
     metrics.push_back(id.str());
   }
-  return {{"study", s.name}, {"model", s.model.filename().string()}, {"model_digest", file_digest(s.model)},
+  return {{"study", s.name}, {"model", s.model.filename().string()}, {"model_digest", base_model_digest(s)},
           {"paths", d.paths},
           {"units", s.parameter_units}, {"also", s.parameter_also}, {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
 }
@@ -196,7 +196,7 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   j["turbodyn_version"] = turbodyn_version();
   j["study"] = study.name;
   j["model"] = study.model.string();
-  j["model_digest"] = file_digest(study.model);
+  j["model_digest"] = base_model_digest(study);
   j["parameters"] = nlohmann::json::array();
   for (std::size_t p = 0; p < design.paths.size(); ++p)
     j["parameters"].push_back({{"path", design.paths[p]}, {"unit", study.parameter_units[p]}});

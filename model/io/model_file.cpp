@@ -670,10 +670,15 @@ MachineSpec load_model_from_string(const std::string& toml_text, const std::stri
 }
 
 std::vector<std::string> numeric_model_keys(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  return numeric_model_keys_from_string(input::read_text_file(file, "model file"), file.string(), overrides);
+}
+
+std::vector<std::string> numeric_model_keys_from_string(const std::string& toml_text, const std::string& source_name,
+                                                        const std::vector<Override>& overrides) {
   std::vector<std::string> keys;
   {
     input::NumericKeyRecording recording(keys);
-    (void)load_model(file, overrides);
+    (void)load_model_from_string(toml_text, source_name, overrides);
   }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());

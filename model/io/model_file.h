@@ -34,6 +34,9 @@ std::vector<std::string> accepted_model_keys(const std::filesystem::path& exampl
 /// ("shaft[2].length", "bearings.compressor.kxx", "bearings.turbine.damper.clearance"), present in the file or not:
 /// the keys a study, an optimisation or an identification may vary. Throws ModelError if the model does not load.
 std::vector<std::string> numeric_model_keys(const std::filesystem::path& file, const std::vector<Override>& overrides);
+/// Same, from TOML text (`source_name` as for load_model_from_string).
+std::vector<std::string> numeric_model_keys_from_string(const std::string& toml_text, const std::string& source_name,
+                                                        const std::vector<Override>& overrides);
 
 /// Levenshtein distance (for "did you mean" suggestions).
 std::size_t edit_distance(const std::string& a, const std::string& b);

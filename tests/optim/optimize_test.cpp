@@ -354,13 +354,14 @@ TEST(Optimizer, LogOfAnEarlierVersionOfTheModelIsRefused) {
   const auto dir = temp_dir("edited_model");
   std::filesystem::copy_file(testing::source_dir() + "/tests/data/optim/jeffcott.toml", dir / "jeffcott.toml");
   OptimizationSpec s = load_optimization(kJeffcottStudy);
-  s.model = dir / "jeffcott.toml";
+  studies::set_base_model(s, dir / "jeffcott.toml");
   s.algorithm.maxeval = 2;
   OptimizerOptions o;
   o.log_file = dir / "evaluations.jsonl";
   (void)optimize(s, model_evaluator(s), o);
   EXPECT_EQ(optimize(s, model_evaluator(s), o).cached_evaluations, 2u);  // unchanged: resumed
   std::ofstream(s.model, std::ios::app) << "# edited\n";
+  studies::set_base_model(s, s.model);  // read again, as a new `turbodyn optimize` reads it
   try {
     (void)optimize(s, model_evaluator(s), o);
     FAIL() << "accepted";

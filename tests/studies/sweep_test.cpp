@@ -168,12 +168,42 @@ TEST(Sweep, DoesNotResumeTheRunsOfAnEarlierVersionOfTheModel) {
   ASSERT_TRUE(run_sweep(s, o).complete);
   EXPECT_EQ(run_sweep(s, o).resumed, 4u);  // unchanged: resumed
   std::ofstream(f.parent_path() / "reference_linear.toml", std::ios::app) << "# edited\n";
+  // The study is read again, as a new `turbodyn sweep` reads it (a study read before the edit runs the model it
+  // read: next test).
   try {
-    (void)run_sweep(s, o);
+    (void)run_sweep(load_study(f), o);
     FAIL() << "resumed the runs of the earlier model";
   } catch (const ModelError& e) {
     EXPECT_THAT(e.what(), HasSubstr("the model file has changed"));
   }
+}
+
+TEST(Sweep, AModelFileEditedWhileTheBatchRunsChangesNoneOfItsRuns) {
+  // Each run read the model file when it started, and results.json took the file's digest when it was written: a
+  // model edited during a long batch gave runs of two models under one digest. The study now reads the model once.
+  const auto f = write_study("edited_during", std::string(kCheap) + kSmallLhs);
+  const StudySpec s = load_study(f);
+  EXPECT_EQ(s.model_digest, file_digest(s.model));
+  SweepOptions before;
+  before.output_dir = temp_dir("edited_during_before");
+  const SweepResult a = run_sweep(s, before);
+  ASSERT_TRUE(a.complete);
+  std::ofstream(f.parent_path() / "reference_linear.toml", std::ios::trunc) << "not a model\n";
+  SweepOptions after;
+  after.output_dir = temp_dir("edited_during_after");
+  const SweepResult b = run_sweep(s, after);
+  ASSERT_TRUE(b.complete);
+  ASSERT_EQ(b.runs.size(), a.runs.size());
+  for (std::size_t i = 0; i < a.runs.size(); ++i) {
+    EXPECT_EQ(b.runs[i].status, "ok");
+    EXPECT_EQ(b.runs[i].metrics, a.runs[i].metrics);
+  }
+  const auto dir = temp_dir("edited_during_results");
+  write_results(s, b.design, b.runs, dir, false);
+  std::ifstream in(dir / "results.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("model_digest"), s.model_digest);
+  EXPECT_NE(j.at("model_digest"), file_digest(s.model));
 }
 
 TEST(Sweep, ShardsCoverTheDesignAndMergeToTheSameTable) {

@@ -27,7 +27,9 @@ TEST(GradedGrid, NodesAreDrawnTowardsTheEndsSymmetrically) {
   double sum = 0.0;
   for (int j = 0; j < 10; ++j) {
     EXPECT_DOUBLE_EQ(z[j], -z[9 - j]);
-    if (j > 0) EXPECT_GT(z[j], z[j - 1]);
+    if (j > 0) {
+      EXPECT_GT(z[j], z[j - 1]);
+    }
     sum += w[j];
   }
   // b = 0.4: the spacing next to the ends is 0.6 times, at mid-width 1.23 times the uniform step. The control
