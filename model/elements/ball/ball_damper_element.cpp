@@ -31,12 +31,13 @@ struct BallDamperWorkspace : ElementWorkspace {
   reynolds::FilmSolver solver;
   BallDamperElement::Evaluation eval;
   EvaluationKey key;  // the state of `eval`
-  // add_jacobian: the bearing's workspace, and the film at the ring state of fd_key (x, y, vx, vy), which most
-  // finite-difference evaluations share (only the ring's own columns move the film).
+  // add_jacobian: the bearing's workspace, and the film at the base ring state fd_key (x, y, vx, vy), which most
+  // finite-difference evaluations share (only the ring's own columns move the film); fd_column the film of such a
+  // column, from the base solve's factorisation while fd_factorised says the solver still holds it.
   std::unique_ptr<ElementWorkspace> bearing;
-  reynolds::FilmResult fd_film;
+  reynolds::FilmResult fd_film, fd_column;
   double fd_key[4] = {0, 0, 0, 0};
-  bool fd_valid = false;
+  bool fd_valid = false, fd_factorised = false;
 };
 
 }  // namespace
@@ -60,6 +61,7 @@ std::unique_ptr<ElementWorkspace> BallDamperElement::make_workspace() const {
                                                  n_core_);
   w->bearing = bearing_.make_workspace();
   w->fd_film.hole_flows.reserve(8);
+  w->fd_column.hole_flows.reserve(8);
   return w;
 }
 
@@ -75,15 +77,32 @@ void BallDamperElement::add_jacobian(const SpinState& s, const double* q, const 
       const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
       BallBearingLoads loads;
       e.bearing_.calc_bearing(st, q, v, z, outer, loads, zdot, shares);
-      if (!w.fd_valid || std::memcmp(w.fd_key, ring, sizeof w.fd_key) != 0) {
-        w.fd_valid = false;
-        if (!w.solver.solve(e.FilmState(ring), w.fd_film))
-          throw std::runtime_error("squeeze-film damper of bearing '" + e.name() + "': " + w.solver.last_error());
+      const reynolds::FilmResult* film = &w.fd_film;
+      if (!w.fd_valid) {
+        // The base state (add_jacobian_of evaluates it first).
+        if (!w.solver.solve(e.FilmState(ring), w.fd_film)) fail();
         std::memcpy(w.fd_key, ring, sizeof w.fd_key);
-        w.fd_valid = true;
+        w.fd_valid = w.fd_factorised = true;
+      } else if (std::memcmp(w.fd_key, ring, sizeof w.fd_key) != 0) {
+        // A column of the ring's own states. The film's matrix depends on x, y alone: for a velocity column the
+        // base factorisation gives the film exactly, for a position column one Newton step from it (first order
+        // in the step, the derivative for the base cavitated set; FilmSolver::solve_linearised), as the
+        // floating ring's Jacobian does.
+        const reynolds::FilmState column = e.FilmState(ring);
+        const bool same_thickness = ring[0] == w.fd_key[0] && ring[1] == w.fd_key[1];
+        const bool reused = w.fd_factorised && (same_thickness ? w.solver.solve_same_matrix(column, w.fd_column)
+                                                               : w.solver.solve_linearised(column, w.fd_column));
+        if (!reused) {
+          w.fd_factorised = false;
+          if (!w.solver.solve(column, w.fd_column)) fail();
+        }
+        film = &w.fd_column;
       }
       for (int k = 0; k < 4; ++k) f[k] += loads.shaft[k];
-      e.ring_derivatives(ring, loads, w.fd_film, zdot + e.n_core_);
+      e.ring_derivatives(ring, loads, *film, zdot + e.n_core_);
+    }
+    [[noreturn]] void fail() const {
+      throw std::runtime_error("squeeze-film damper of bearing '" + e.name() + "': " + w.solver.last_error());
     }
     const BallDamperElement& e;
     const SpinState& st;
