@@ -66,9 +66,6 @@ void set_base_model(StudyCommon& study, const std::filesystem::path& model);
 input::Reader read_study_head(input::Reader& top, const std::string& table, const std::filesystem::path& file,
                               StudyCommon& common);
 
-/// Checks the paths a study varies against its base model (loaded with `overrides`): each must be a number the
-/// model file reads (model_file.h: numeric_model_keys), not a name or a choice. Each path comes with the key that
-/// gave it ("parameters[0].path"); throws ModelError "STUDY: KEY: ..." with a suggestion.
 /// The study's base model with `overrides` (the study's fixed values, a case's and a design's): a fault in them is
 /// a ModelError that names the study file first, then the override ("STUDY: --set PATH=VALUE: ...").
 MachineSpec load_study_model(const StudyCommon& study, const std::vector<Override>& overrides);
@@ -81,6 +78,9 @@ std::string base_model_digest(const StudyCommon& study);
 void write_patched_base_model(const StudyCommon& study, const std::vector<Override>& overrides,
                               const std::string& header, const std::filesystem::path& file);
 
+/// Checks the paths a study varies against its base model (loaded with `overrides`): each must be a number the
+/// model file reads (model_file.h: numeric_model_keys), not a name or a choice. Each path comes with the key that
+/// gave it ("parameters[0].path"); throws ModelError "STUDY: KEY: ..." with a suggestion.
 void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
                         const std::vector<std::pair<std::string, std::string>>& key_and_path);
 
