@@ -136,6 +136,12 @@ auto in_study_context(const StudyCommon& study, F&& read) {
   }
 }
 
+// The text the runs load: the one read with the study, or the file's for a study built in code (as load_model
+// reads it).
+std::string base_model_text(const StudyCommon& study) {
+  return study.model_text.empty() ? input::read_text_file(study.model, "model file") : study.model_text;
+}
+
 }  // namespace
 
 void set_base_model(StudyCommon& study, const std::filesystem::path& model) {
@@ -149,8 +155,7 @@ MachineSpec load_study_model(const StudyCommon& study, const std::vector<Overrid
 }
 
 MachineSpec load_base_model(const StudyCommon& study, const std::vector<Override>& overrides) {
-  if (study.model_text.empty()) return load_model(study.model, overrides);
-  return load_model_from_string(study.model_text, study.model.string(), overrides);
+  return load_model_from_string(base_model_text(study), study.model.string(), overrides);
 }
 
 std::string base_model_digest(const StudyCommon& study) {
@@ -159,19 +164,14 @@ std::string base_model_digest(const StudyCommon& study) {
 
 void write_patched_base_model(const StudyCommon& study, const std::vector<Override>& overrides,
                               const std::string& header, const std::filesystem::path& file) {
-  if (study.model_text.empty()) return write_patched_model(study.model, overrides, header, file);
-  const std::string text = patched_model_text(study.model_text, study.model.string(), overrides, header);
-  std::ofstream out(file, std::ios::binary);
-  if (!out || !(out << text) || !out.flush()) throw ModelError(file.string() + ": cannot write");
+  write_patched_model_text(base_model_text(study), study.model.string(), overrides, header, file);
 }
 
 void check_varied_paths(const StudyCommon& study, const std::vector<Override>& overrides,
                         const std::vector<std::pair<std::string, std::string>>& key_and_path) {
   const std::vector<std::string> numeric =
       in_study_context(study, [&] {
-        return study.model_text.empty()
-                   ? numeric_model_keys(study.model, overrides)
-                   : numeric_model_keys_from_string(study.model_text, study.model.string(), overrides);
+        return numeric_model_keys_from_string(base_model_text(study), study.model.string(), overrides);
       });
   for (const auto& [key, path] : key_and_path) {
     if (std::binary_search(numeric.begin(), numeric.end(), path)) continue;

@@ -270,7 +270,13 @@ std::string patched_model(const std::filesystem::path& base, const std::vector<O
 
 void write_patched_model(const std::filesystem::path& base, const std::vector<Override>& overrides,
                          const std::string& header, const std::filesystem::path& file) {
-  const std::string text = patched_model(base, overrides, header);
+  write_patched_model_text(input::read_text_file(base, "model file"), base.string(), overrides, header, file);
+}
+
+void write_patched_model_text(const std::string& base_text, const std::string& source_name,
+                              const std::vector<Override>& overrides, const std::string& header,
+                              const std::filesystem::path& file) {
+  const std::string text = patched_model_text(base_text, source_name, overrides, header);
   std::ofstream out(file, std::ios::binary);
   if (!out || !(out << text) || !out.flush()) throw ModelError(file.string() + ": cannot write");
 }

@@ -55,5 +55,9 @@ std::string patched_model_text(const std::string& text, const std::string& sourc
 /// Writes patched_model(base, overrides, header) to `file`; throws ModelError if it cannot be written.
 void write_patched_model(const std::filesystem::path& base, const std::vector<Override>& overrides,
                          const std::string& header, const std::filesystem::path& file);
+/// Same from model text (patched_model_text).
+void write_patched_model_text(const std::string& text, const std::string& source_name,
+                              const std::vector<Override>& overrides, const std::string& header,
+                              const std::filesystem::path& file);
 
 }  // namespace turbodyn
