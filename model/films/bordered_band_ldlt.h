@@ -49,7 +49,9 @@ class BorderedBandLdlt {
   double* rhs_border() { return ya_.data(); }  // na values
 
   bool factor() {
-    return with_sizes([this]<int M, bool Full>() { return factor_band<M, Full>(); }) && factor_corner();
+    // Without a border the pair step needs none of the border's code (a separate instance keeps its registers).
+    if (na_ == 0) return with_sizes([this]<int M, bool>() { return factor_band<M, false, false>(); });
+    return with_sizes([this]<int M, bool Full>() { return factor_band<M, Full, true>(); }) && factor_corner();
   }
   void solve() {
     with_sizes([this]<int M, bool>() {
@@ -85,9 +87,9 @@ class BorderedBandLdlt {
   }
 
   // Right-looking band L D L^T; M > 0 fixes the half-bandwidth at compile time (loops unroll and vectorise).
-  template <int M, bool FullBorder>
+  template <int M, bool FullBorder, bool Bordered>
   bool factor_band() {
-    const int m = M > 0 ? M : m_, na = FullBorder ? M : na_, n = n_;
+    const int m = M > 0 ? M : m_, na = !Bordered ? 0 : FullBorder ? M : na_, n = n_;
     for (int r = 0; r < n; ++r) {
       if (fixed_[r]) {
         inv_d_[r] = 1.0;
@@ -99,8 +101,9 @@ class BorderedBandLdlt {
       const double inv = 1.0 / d;
       inv_d_[r] = inv;
       double* w = na > 0 ? border_.data() + static_cast<std::ptrdiff_t>(r) * na : nullptr;
-      if (M > 0 && na == 0 && r + m + 1 < n && !fixed_[r + 1]) {
-        // Two columns at once (rank-2 update of the trailing triangle: half the loads and stores).
+      if (M > 0 && r + m + 1 < n && !fixed_[r + 1]) {
+        // Two columns at once (rank-2 update of the trailing triangle: half the loads and stores), with the
+        // border rows and the corner updated the same way.
         double* cs = col + (m + 1);  // column s = r + 1
         double lr[M + 1], ls[M + 1];
 #pragma GCC unroll 16
@@ -120,6 +123,7 @@ class BorderedBandLdlt {
           t[m - j + 1] -= cs[m] * b;
         }
         col[(m + 1) * (m + 1)] -= cs[m] * ls[m];  // diagonal of column r + m + 1
+        if (Bordered) pair_border<M, FullBorder>(r, inv, invs, lr, ls);
         for (int j = 1; j <= m; ++j) {
           col[j] = lr[j];
           cs[j] = ls[j];
@@ -159,6 +163,32 @@ class BorderedBandLdlt {
       for (int j = 1; j <= m; ++j) col[j] *= inv;
     }
     return true;
+  }
+
+  // The border part of eliminating columns r and s = r + 1 together (factor_band's pair step): the border rows
+  // w_r, w_s and those of the rows below them, r + 2 .. r + m + 1, and the corner; lr, ls: the two columns' L.
+  template <int M, bool FullBorder>
+  [[gnu::always_inline]] void pair_border(int r, double inv, double invs, const double* lr, const double* ls) {
+    const int na = FullBorder ? M : na_;
+    double* wr = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
+    double* ws = wr + na;
+    for (int a = 0; a < na; ++a) ws[a] -= wr[a] * lr[1];
+    for (int j = 2; j <= M; ++j) {
+      double* wt = wr + j * na;
+      const double a1 = lr[j], b1 = ls[j - 1];
+      for (int a = 0; a < na; ++a) wt[a] -= wr[a] * a1 + ws[a] * b1;
+    }
+    double* wl = wr + (M + 1) * na;  // row r + m + 1
+    for (int a = 0; a < na; ++a) wl[a] -= ws[a] * ls[M];
+    for (int a = 0; a < na; ++a) {
+      const double ra = wr[a] * inv, sa = ws[a] * invs;
+      double* fr = corner_.data() + a * na;
+      for (int b = 0; b <= a; ++b) fr[b] -= ra * wr[b] + sa * ws[b];
+    }
+    for (int a = 0; a < na; ++a) {
+      wr[a] *= inv;
+      ws[a] *= invs;
+    }
   }
 
   bool factor_corner() {
