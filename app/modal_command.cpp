@@ -221,6 +221,32 @@ void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings) {
                        "(modal, response) do not include them yet, so they would give wrong answers");
 }
 
+namespace {
+
+// The unit written after a value ("150000 rpm" -> "rpm"), empty for a bare number.
+std::string unit_of(const std::string& value) {
+  const std::string t = trim(value);
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (ec != std::errc()) return "";
+  return trim(std::string(end, t.data() + t.size()));
+}
+
+// A bare number among speeds of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
+// "30000, 95000 rpm"); without any unit the values are rad/s.
+std::vector<double> speed_values(const std::vector<std::string>& items, const std::string& text) {
+  std::string unit;
+  for (const std::string& it : items)
+    if (const std::string u = unit_of(it); !u.empty()) unit = u;
+  std::vector<double> out;
+  for (const std::string& it : items)
+    out.push_back(speed_value(!unit.empty() && unit_of(it).empty() && !trim(it).empty() ? trim(it) + " " + unit : it,
+                              text));
+  return out;
+}
+
+}  // namespace
+
 std::vector<double> parse_speed_list(const std::string& text) {
   std::vector<double> out;
   if (text.find(':') != std::string::npos) {
@@ -228,7 +254,8 @@ std::vector<double> parse_speed_list(const std::string& text) {
     std::stringstream ss(text);
     for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
     if (parts.size() != 3) throw ModelError("--speeds '" + text + "': expected START:END:COUNT");
-    const double a = speed_value(parts[0], text), b = speed_value(parts[1], text);
+    const std::vector<double> ab = speed_values({parts[0], parts[1]}, text);
+    const double a = ab[0], b = ab[1];
     const std::string count = trim(parts[2]);
     long n = 0;
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
@@ -239,8 +266,10 @@ std::vector<double> parse_speed_list(const std::string& text) {
     if (!(b > a)) throw ModelError("--speeds '" + text + "': END must be larger than START");
     for (int i = 0; i < n; ++i) out.push_back(a + (b - a) * i / (n - 1));
   } else {
+    std::vector<std::string> items;
     std::stringstream ss(text);
-    for (std::string p; std::getline(ss, p, ',');) out.push_back(speed_value(p, text));
+    for (std::string p; std::getline(ss, p, ',');) items.push_back(p);
+    out = speed_values(items, text);
     for (std::size_t i = 1; i < out.size(); ++i)
       if (!(out[i] > out[i - 1])) throw ModelError("--speeds '" + text + "': speeds must be increasing");
   }

@@ -201,13 +201,14 @@ EOF2
   modal_floating_ring)
     # turbodyn modal on variant I: the films linearised at steady points under the rotor's weight, ring masses as
     # coordinates of their own; the films' forward whirl modes have negative damping ratios (the whirl the run-up
-    # shows), and damping.png is drawn.
-    "$exe" modal "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm:150000 rpm:3" -o "$out" \
+    # shows), and damping.png is drawn. A bare START takes END's unit (the form of the option's help).
+    "$exe" modal "$src/examples/reference_floating_ring.toml" --speeds "30000:150000 rpm:3" -o "$out" \
       > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
     expect_files "$out" modal.json campbell.csv campbell.png damping.png
     python3 - "$out/modal.json" <<'EOF2' || fail "modal.json: $(head -c 2000 "$out/modal.json")"
 import json, sys
 j = json.load(open(sys.argv[1]))
+assert [round(p["speed_rpm"]) for p in j["campbell"]] == [30000, 90000, 150000], [p["speed_rpm"] for p in j["campbell"]]
 for p in j["campbell"]:
     modes = p["modes"]
     assert any(m["whirl"] == "forward" and m["damping_ratio"] < 0 for m in modes), p
@@ -251,8 +252,9 @@ EOF2
     ;;
   stability_reference_ball)
     # Issue 17: turbodyn stability on the ball-bearing rotor finds the growing forward whirl at 95,000 rpm and
-    # none at 30,000 rpm; a floating-ring model is refused naming the bearing, exit 2.
-    "$exe" stability "$src/examples/reference_ball.toml" --speeds "30000 rpm, 95000 rpm" -o "$out" > "$out/log" 2>&1 \
+    # none at 30,000 rpm (the bare 30000 takes the list's unit); a floating-ring model is refused naming the
+    # bearing, exit 2.
+    "$exe" stability "$src/examples/reference_ball.toml" --speeds "30000, 95000 rpm" -o "$out" > "$out/log" 2>&1 \
       || fail "exit $?: $(cat "$out/log")"
     for f in stability.json stability.csv stability_frequencies.png stability_damping.png report.html; do
       [ -s "$out/$f" ] || fail "no $f: $(cat "$out/log")"
