@@ -223,13 +223,20 @@ void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings) {
 
 namespace {
 
-// The unit written after a value ("150000 rpm" -> "rpm"), empty for a bare number.
+// The unit written after a value ("150000 rpm" -> "rpm"), empty for a bare number or text that is no number.
 std::string unit_of(const std::string& value) {
   const std::string t = trim(value);
   double v = 0.0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (ec != std::errc()) return "";
   return trim(std::string(end, t.data() + t.size()));
+}
+
+bool is_bare_number(const std::string& value) {
+  const std::string t = trim(value);
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  return !t.empty() && ec == std::errc() && end == t.data() + t.size();
 }
 
 // A bare number among speeds of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
@@ -240,8 +247,7 @@ std::vector<double> speed_values(const std::vector<std::string>& items, const st
     if (const std::string u = unit_of(it); !u.empty()) unit = u;
   std::vector<double> out;
   for (const std::string& it : items)
-    out.push_back(speed_value(!unit.empty() && unit_of(it).empty() && !trim(it).empty() ? trim(it) + " " + unit : it,
-                              text));
+    out.push_back(speed_value(!unit.empty() && is_bare_number(it) ? trim(it) + " " + unit : it, text));
   return out;
 }
 
