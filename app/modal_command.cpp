@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -42,6 +43,20 @@ double speed_value(const std::string& text, const std::string& whole) {
   if (const std::string why = limits::implausible(v, dim::angular_speed); !why.empty())
     throw ModelError("--speeds '" + whole + "': " + why);
   return v;
+}
+
+// A bare number among speeds of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
+// "30000, 95000 rpm"); without any unit the values are rad/s.
+std::vector<double> speed_values(const std::vector<std::string>& items, const std::string& text) {
+  std::string unit;
+  for (const std::string& it : items)
+    if (const std::optional<std::string> u = quantity_unit(it); u && !u->empty()) unit = *u;
+  std::vector<double> out;
+  for (const std::string& it : items) {
+    const std::optional<std::string> u = quantity_unit(it);
+    out.push_back(speed_value(!unit.empty() && u && u->empty() ? trim(it) + " " + unit : it, text));
+  }
+  return out;
 }
 
 nlohmann::json complex_list(const Eigen::VectorXcd& v, const Rotor& rotor, Dof d) {
@@ -220,38 +235,6 @@ void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings) {
                        ".pedestal_mass: pedestal masses are part of the run-up model only; the linear analyses "
                        "(modal, response) do not include them yet, so they would give wrong answers");
 }
-
-namespace {
-
-// The unit written after a value ("150000 rpm" -> "rpm"), empty for a bare number or text that is no number.
-std::string unit_of(const std::string& value) {
-  const std::string t = trim(value);
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  if (ec != std::errc()) return "";
-  return trim(std::string(end, t.data() + t.size()));
-}
-
-bool is_bare_number(const std::string& value) {
-  const std::string t = trim(value);
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  return !t.empty() && ec == std::errc() && end == t.data() + t.size();
-}
-
-// A bare number among speeds of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
-// "30000, 95000 rpm"); without any unit the values are rad/s.
-std::vector<double> speed_values(const std::vector<std::string>& items, const std::string& text) {
-  std::string unit;
-  for (const std::string& it : items)
-    if (const std::string u = unit_of(it); !u.empty()) unit = u;
-  std::vector<double> out;
-  for (const std::string& it : items)
-    out.push_back(speed_value(!unit.empty() && is_bare_number(it) ? trim(it) + " " + unit : it, text));
-  return out;
-}
-
-}  // namespace
 
 std::vector<double> parse_speed_list(const std::string& text) {
   std::vector<double> out;

@@ -531,6 +531,18 @@ std::string describe(const Dimension& d) {
   return std::string(name->description) + " (" + d.si_unit() + ")";
 }
 
+std::optional<std::string> quantity_unit(std::string_view text) {
+  const std::string_view s = trim(text);
+  const Context context(text, dim::dimensionless);
+  try {
+    const std::optional<Number> number = read_number(s, context);
+    if (!number) return std::nullopt;
+    return std::string(trim(s.substr(number->length)));
+  } catch (const UnitError&) {
+    return std::nullopt;  // out of range or not finite: parse_quantity reports it
+  }
+}
+
 double parse_quantity(std::string_view text, const Dimension& expected) {
   const Context context(text, expected);
   const std::string_view s = trim(text);

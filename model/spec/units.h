@@ -33,6 +33,7 @@
 // missing or extra angle is an error: "1 N*m" given for a rotational stiffness (N*m/rad), or "90 deg" for a
 // plain number, is far more likely a slip than a count of turns. Quantities without angles are unaffected.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -100,5 +101,9 @@ class UnitError : public std::runtime_error {
 // non-finite number, an unknown unit (with suggestions), a dimension other than `expected`, degC inside a
 // compound unit, or a non-integer exponent.
 double parse_quantity(std::string_view text, const Dimension& expected);
+
+// The unit part of a quantity as parse_quantity reads it: the trimmed text after the leading number ("150000 rpm"
+// -> "rpm", "3.5" -> ""), or nullopt if the text does not start with a finite number.
+std::optional<std::string> quantity_unit(std::string_view text);
 
 }  // namespace turbodyn

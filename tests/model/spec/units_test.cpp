@@ -392,5 +392,15 @@ TEST(Dimension, SiUnitParsesBackToOne) {
   }
 }
 
+TEST(Units, QuantityUnitIsTheTextAfterTheNumberParseQuantityReads) {
+  EXPECT_EQ(quantity_unit(" 150000 rpm "), std::optional<std::string>("rpm"));
+  EXPECT_EQ(quantity_unit("7850 kg/m^3"), std::optional<std::string>("kg/m^3"));
+  EXPECT_EQ(quantity_unit("1e-3"), std::optional<std::string>(""));
+  EXPECT_EQ(quantity_unit("+30000"), std::optional<std::string>(""));  // a leading '+' as parse_quantity takes it
+  EXPECT_EQ(quantity_unit("rpm"), std::nullopt);
+  EXPECT_EQ(quantity_unit(""), std::nullopt);
+  EXPECT_EQ(quantity_unit("1e999 rpm"), std::nullopt);  // out of range: parse_quantity reports it
+}
+
 }  // namespace
 }  // namespace turbodyn
