@@ -123,7 +123,7 @@ class BorderedBandLdlt {
           t[m - j + 1] -= cs[m] * b;
         }
         col[(m + 1) * (m + 1)] -= cs[m] * ls[m];  // diagonal of column r + m + 1
-        if (Bordered) pair_border<M, FullBorder>(r, inv, invs, lr, ls);
+        if (Bordered) pair_border<M, FullBorder>(w, inv, invs, lr, ls);
         for (int j = 1; j <= m; ++j) {
           col[j] = lr[j];
           cs[j] = ls[j];
@@ -166,11 +166,11 @@ class BorderedBandLdlt {
   }
 
   // The border part of eliminating columns r and s = r + 1 together (factor_band's pair step): the border rows
-  // w_r, w_s and those of the rows below them, r + 2 .. r + m + 1, and the corner; lr, ls: the two columns' L.
+  // w_r (wr, factor_band's w), w_s and those of the rows below them, r + 2 .. r + m + 1, and the corner; lr, ls: the
+  // two columns' L.
   template <int M, bool FullBorder>
-  [[gnu::always_inline]] void pair_border(int r, double inv, double invs, const double* lr, const double* ls) {
+  [[gnu::always_inline]] void pair_border(double* wr, double inv, double invs, const double* lr, const double* ls) {
     const int na = FullBorder ? M : na_;
-    double* wr = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
     double* ws = wr + na;
     for (int a = 0; a < na; ++a) ws[a] -= wr[a] * lr[1];
     for (int j = 2; j <= M; ++j) {
