@@ -48,13 +48,16 @@ double speed_value(const std::string& text, const std::string& whole) {
 // A bare number among speeds of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
 // "30000, 95000 rpm"); without any unit the values are rad/s.
 std::vector<double> speed_values(const std::vector<std::string>& items, const std::string& text) {
+  std::vector<std::optional<std::string>> units;
   std::string unit;
-  for (const std::string& it : items)
-    if (const std::optional<std::string> u = quantity_unit(it); u && !u->empty()) unit = *u;
-  std::vector<double> out;
   for (const std::string& it : items) {
-    const std::optional<std::string> u = quantity_unit(it);
-    out.push_back(speed_value(!unit.empty() && u && u->empty() ? trim(it) + " " + unit : it, text));
+    units.push_back(quantity_unit(it));
+    if (units.back() && !units.back()->empty()) unit = *units.back();
+  }
+  std::vector<double> out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const bool bare = !unit.empty() && units[i] && units[i]->empty();
+    out.push_back(speed_value(bare ? trim(items[i]) + " " + unit : items[i], text));
   }
   return out;
 }
