@@ -8,7 +8,7 @@
 #   2 cores since a run-up takes 3-5.5 min; 2 h before),
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~4 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
-#   (docs/identification.md, ~15 min on 2 cores).
+#   (docs/identification.md, ~12 min on 2 cores).
 # Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [floating_ring] [ball] [ball_sfd]
 #   (default: all).
 # Build first (scripts/build.sh).
