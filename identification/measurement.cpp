@@ -281,7 +281,9 @@ void from_tacho(const Table& t, const MeasurementSpec& spec, const std::vector<d
       a = 0.5 * (a1 + a2);
       da = 0.5 * (d1 + d2);
     } else {
-      quad(x < pulses[1] ? 0 : np - 3, x, a, da);
+      // Before the second pulse (k = 0, also at a sample exactly on it) the first triple, from the second-to-last
+      // pulse on the last one.
+      quad(k == 0 ? 0 : np - 3, x, a, da);
     }
     angle[i] = a;
     speed_hz[i] = da / kTwoPi;
