@@ -81,7 +81,10 @@ class BorderedBandLdlt {
       case 8: return pick.template operator()<8>();
       case 10: return pick.template operator()<10>();
       case 12: return pick.template operator()<12>();
+      case 14: return pick.template operator()<14>();
       case 16: return pick.template operator()<16>();
+      case 20: return pick.template operator()<20>();
+      case 24: return pick.template operator()<24>();
       default: return f.template operator()<0, false>();
     }
   }

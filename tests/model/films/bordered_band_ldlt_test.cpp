@@ -86,8 +86,8 @@ Eigen::VectorXd band_solve(const Grid& g, BorderedBandLdlt& s) {
 }
 
 TEST(BorderedBandLdlt, EqualsADenseSolveForEveryKernelBorderAndFixedPattern) {
-  // 4-16: compile-time kernels; 9 and 3: the run-time one.
-  for (int m : {3, 4, 5, 6, 7, 8, 9, 10, 12, 16})
+  // 4-24: compile-time kernels; 9 and 3: the run-time one.
+  for (int m : {3, 4, 5, 6, 7, 8, 9, 10, 12, 14, 16, 20, 24})
     for (int border : {0, 1, m / 2, m})
       for (bool runs : {false, true}) {
         SCOPED_TRACE("m = " + std::to_string(m) + ", border " + std::to_string(border) + (runs ? ", runs" : ""));
