@@ -247,12 +247,21 @@ IdentifyResult identify(const IdentifyStudy& study, const IdentifyOptions& optio
     throw ModelError(study.measurement.file.string() + ": cannot extract the features: " + e.what());
   }
   for (std::size_t f = 0; f < study.features.size(); ++f) {
+    // Speeds without a measured value: beyond the speeds the record's analysis windows (each wholly inside the
+    // record) or the measured spectra cover. Named, so a user sees which end of the speed range to move.
     const FeatureTrack& t = out.measured_features[f];
     std::size_t missing = 0;
-    for (double a : t.amplitude) missing += !std::isfinite(a);
+    std::string which;
+    for (std::size_t k = 0; k < t.amplitude.size(); ++k) {
+      if (std::isfinite(t.amplitude[k])) continue;
+      if (missing++ < 4) which += (which.empty() ? "" : ", ") + std::to_string(std::lround(t.speed_hz[k] * 60.0));
+    }
+    if (missing > 4) which += ", ...";
     if (missing)
-      out.warnings.push_back("feature '" + study.features[f].name + "': " + std::to_string(missing) +
-                             " of its speeds lie outside the measured record and are not compared");
+      out.warnings.push_back("feature '" + study.features[f].name + "': " + std::to_string(missing) + " of its " +
+                             std::to_string(t.amplitude.size()) + " speeds (" + which +
+                             " rpm) have no measured value (beyond the speeds the measured record's analysis "
+                             "windows or spectra cover) and are not compared");
   }
   const Residuals residuals(study.features, out.measured_features, resolution_of(study, out.measured));
   out.rows = residuals.rows();

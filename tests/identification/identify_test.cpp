@@ -104,6 +104,25 @@ TEST(Identify, LinearJeffcottBearingStiffnessAndDampingFromNoisyUnbalanceRespons
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "ceres_summary.txt"));
 }
 
+// A feature whose speed range reaches beyond the measured spectra (1000-6000 rpm): those speeds are left out of
+// the fit, and the warning names them.
+TEST(Identify, SpeedsBeyondTheMeasurementAreNamedInTheWarning) {
+  const auto dir = scratch("jeffcott_beyond");
+  const std::filesystem::path file = jeffcott_study(dir);
+  std::string text = input::read_text_file(file, "study");
+  const std::string range = "speed_range = [\"1000 rpm\", \"6000 rpm\"]\nn_speeds = 101";
+  const std::size_t at = text.find(range);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, range.size(), "speed_range = [\"1000 rpm\", \"7000 rpm\"]\nn_speeds = 15");
+  write(file, text);
+  const IdentifyResult r = identify(load_identify_study(file));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("feature 'order1x_x': 3 of its 15 speeds (6143, 6571, 7000 rpm) have no measured value"),
+            std::string::npos)
+      << r.warnings[0];
+  EXPECT_LT(std::abs(r.estimate[0] / kTrueK - 1.0), 0.01);  // the speeds inside still identify k
+}
+
 // ------------------------------------------------------------------------------ nonlinear: journal bearings
 
 // A run-up of tests/data/identification/journal_rotor.toml (clearance 30 um, viscosity 10 mPa s: the file's
