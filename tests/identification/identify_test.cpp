@@ -432,48 +432,14 @@ upper = 1e6
   }
 }
 
-// The tacho path: the angle from pulses of a constant-acceleration run-up is exact (quadratic interpolation).
-TEST(Identify, TachoAngleOfALinearRampIsExact) {
-  const auto dir = scratch("tacho");
-  const double f0 = 50.0, alpha = 500.0, fs = 5000.0;  // Hz, Hz/s, 1/s
+// A measured record of n samples at fs whose tacho pulses once per revolution of the rotor angle angle(t) [rad]
+// (rising edge through 2.5 V at angle 0, 1.5 rad wide), with a zero sensor channel x, read back.
+template <class Angle>
+MeasuredData tacho_record(const std::string& name, int n, double fs, Angle angle) {
+  const auto dir = scratch(name);
   std::ostringstream csv;
   csv << "time,tacho,x\n" << std::setprecision(17);
-  for (int i = 0; i < 2000; ++i) {
-    const double t = i / fs, a = 2.0 * M_PI * (f0 * t + 0.5 * alpha * t * t);
-    const double w = a - 2.0 * M_PI * std::floor(a / (2.0 * M_PI) + 0.5);
-    csv << t << ',' << 5.0 * std::min(std::clamp(0.5 + w / 1.5, 0.0, 1.0), std::clamp(0.5 - (w - 2.0) / 1.5, 0.0, 1.0))
-        << ",0\n";
-  }
-  write(dir / "m.csv", csv.str());
-  MeasurementSpec m;
-  m.file = dir / "m.csv";
-  m.tacho = "tacho";
-  SensorSpec s;
-  s.name = "x";
-  s.column = {"x", "m"};
-  m.sensors.push_back(s);
-  const MeasuredData d = read_measurement(m);
-  double worst = 0.0, worst_speed = 0.0;
-  for (std::size_t i = 0; i < d.record.time.size(); ++i) {
-    const double t = d.record.time[i], a = 2.0 * M_PI * (f0 * t + 0.5 * alpha * t * t);
-    worst = std::max(worst, std::abs(std::remainder(d.record.angle[i] - a, 2.0 * M_PI)));
-    worst_speed = std::max(worst_speed, std::abs(d.record.speed_hz[i] - (f0 + alpha * t)));
-  }
-  EXPECT_LT(worst, 1e-4);        // rad (the pulse times come from linear interpolation between samples)
-  EXPECT_LT(worst_speed, 2e-3);  // Hz, of 50 .. 250 Hz
-}
-
-// A run-up from rest whose tacho passes the threshold exactly at a sample on the second pulse (as synthetic records
-// written with a few decimals do): the angle there came from the last pulses' quadratic, far off, and the order
-// tracking refused the record ("the rotor angle must be monotonic"). Times are multiples of 2^-12 s, so the pulse
-// time interpolated between samples is that sample's time exactly.
-TEST(Identify, TachoAngleFromRestWithAPulseExactlyOnASample) {
-  const auto dir = scratch("tacho_rest");
-  const double alpha = 64.0, fs = 4096.0;  // Hz/s from rest: revolution 2 at t = 0.25 s, sample 1024
-  auto angle = [&](double t) { return M_PI * alpha * t * t; };
-  std::ostringstream csv;
-  csv << "time,tacho,x\n" << std::setprecision(17);
-  for (int i = 0; i < 4096; ++i) {
+  for (int i = 0; i < n; ++i) {
     const double t = i / fs, a = angle(t);
     const double w = a - 2.0 * M_PI * std::floor(a / (2.0 * M_PI) + 0.5);
     csv << t << ',' << 5.0 * std::min(std::clamp(0.5 + w / 1.5, 0.0, 1.0), std::clamp(0.5 - (w - 2.0) / 1.5, 0.0, 1.0))
@@ -487,7 +453,32 @@ TEST(Identify, TachoAngleFromRestWithAPulseExactlyOnASample) {
   s.name = "x";
   s.column = {"x", "m"};
   m.sensors.push_back(s);
-  const MeasuredData d = read_measurement(m);
+  return read_measurement(m);
+}
+
+// The tacho path: the angle from pulses of a constant-acceleration run-up is exact (quadratic interpolation).
+TEST(Identify, TachoAngleOfALinearRampIsExact) {
+  const double f0 = 50.0, alpha = 500.0, fs = 5000.0;  // Hz, Hz/s, 1/s
+  auto angle = [&](double t) { return 2.0 * M_PI * (f0 * t + 0.5 * alpha * t * t); };
+  const MeasuredData d = tacho_record("tacho", 2000, fs, angle);
+  double worst = 0.0, worst_speed = 0.0;
+  for (std::size_t i = 0; i < d.record.time.size(); ++i) {
+    const double t = d.record.time[i];
+    worst = std::max(worst, std::abs(std::remainder(d.record.angle[i] - angle(t), 2.0 * M_PI)));
+    worst_speed = std::max(worst_speed, std::abs(d.record.speed_hz[i] - (f0 + alpha * t)));
+  }
+  EXPECT_LT(worst, 1e-4);        // rad (the pulse times come from linear interpolation between samples)
+  EXPECT_LT(worst_speed, 2e-3);  // Hz, of 50 .. 250 Hz
+}
+
+// A run-up from rest whose tacho passes the threshold exactly at a sample on the second pulse (as synthetic records
+// written with a few decimals do): the angle there came from the last pulses' quadratic, far off, and the order
+// tracking refused the record ("the rotor angle must be monotonic"). Times are multiples of 2^-12 s, so the pulse
+// time interpolated between samples is that sample's time exactly.
+TEST(Identify, TachoAngleFromRestWithAPulseExactlyOnASample) {
+  const double alpha = 64.0, fs = 4096.0;  // Hz/s from rest: revolution 2 at t = 0.25 s, sample 1024
+  auto angle = [&](double t) { return M_PI * alpha * t * t; };
+  const MeasuredData d = tacho_record("tacho_rest", 4096, fs, angle);
   ASSERT_EQ(d.record.time[1024], 0.25);
   double worst = 0.0, worst_speed = 0.0;
   for (std::size_t i = 0; i < d.record.time.size(); ++i) {
