@@ -1,9 +1,106 @@
 #include "model/engine/block_arrow_lu.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace turbodyn {
+
+namespace {
+
+// A ball's states (BallBearingElement::independent_state_blocks()): the block size whose kernels are compiled with
+// it fixed, so that their loops unroll. Other sizes run the same loops with the size known at run time.
+constexpr int kFixedBlock = 9;
+
+// inv = (shift I + scale D)^-1 for the s x s block D (column-major, leading dimension ld) by Gauss-Jordan
+// elimination with partial pivoting (Golub & Van Loan, Matrix Computations, 4th ed., Sec. 3.4; the pivots are those
+// of the partial-pivoting LU). a (s * s) and l (s) are scratch, apart from D and inv. False if a pivot is zero or not
+// finite.
+template <int S>
+bool invert(const double* __restrict D, int ld, int s_run, double scale, double shift, double* __restrict a,
+            double* __restrict l, double* __restrict inv) {
+  const int s = S > 0 ? S : s_run;
+  for (int c = 0; c < s; ++c)
+    for (int r = 0; r < s; ++r) {
+      a[c * s + r] = scale * D[c * ld + r] + (r == c ? shift : 0.0);
+      inv[c * s + r] = r == c ? 1.0 : 0.0;
+    }
+  bool regular = true;
+  for (int k = 0; k < s; ++k) {
+    int p = k;
+    for (int r = k + 1; r < s; ++r)
+      if (std::abs(a[k * s + r]) > std::abs(a[k * s + p])) p = r;
+    const double pivot = a[k * s + p];
+    if (!(std::isfinite(pivot) && pivot != 0.0)) {
+      regular = false;
+      continue;
+    }
+    if (p != k)
+      for (int c = 0; c < s; ++c) {
+        std::swap(a[c * s + k], a[c * s + p]);
+        std::swap(inv[c * s + k], inv[c * s + p]);
+      }
+    const double rp = 1.0 / pivot;
+    for (int c = k; c < s; ++c) a[c * s + k] *= rp;
+    for (int c = 0; c < s; ++c) inv[c * s + k] *= rp;
+    // Column k out of every other row: the multipliers l (column k, zero in row k) times row k's entries. Columns
+    // left of k are not read again.
+    for (int r = 0; r < s; ++r) l[r] = r == k ? 0.0 : a[k * s + r];
+    for (int c = k + 1; c < s; ++c) {
+      const double f = a[c * s + k];
+      for (int r = 0; r < s; ++r) a[c * s + r] -= f * l[r];
+    }
+    for (int c = 0; c < s; ++c) {
+      const double f = inv[c * s + k];
+      for (int r = 0; r < s; ++r) inv[c * s + r] -= f * l[r];
+    }
+  }
+  return regular;
+}
+
+// Y (rows x k, leading dimension ldy) = alpha M X, or += with Accumulate, for M (rows x s, column-major) and X
+// (s x k, leading dimension ldx), a column at a time. R and S fix rows and s at compile time (0: known at run
+// time); with R fixed the column of Y is summed in registers. M, X and Y do not overlap.
+template <int R, int S, bool Accumulate>
+void multiply(double alpha, const double* __restrict M, int rows_run, int s_run, const double* __restrict X, int ldx,
+              int k, double* __restrict Y, int ldy) {
+  const int rows = R > 0 ? R : rows_run, s = S > 0 ? S : s_run;
+  for (int c = 0; c < k; ++c) {
+    double* y = Y + c * ldy;
+    const double* x = X + c * ldx;
+    if constexpr (R > 0) {
+      double acc[R];
+      for (int r = 0; r < R; ++r) acc[r] = Accumulate ? y[r] : 0.0;
+      for (int j = 0; j < s; ++j) {
+        const double f = alpha * x[j];
+        const double* m = M + j * R;
+        for (int r = 0; r < R; ++r) acc[r] += f * m[r];
+      }
+      for (int r = 0; r < R; ++r) y[r] = acc[r];
+    } else {
+      if (!Accumulate)
+        for (int r = 0; r < rows; ++r) y[r] = 0.0;
+      for (int j = 0; j < s; ++j) {
+        const double f = alpha * x[j];
+        const double* m = M + j * rows;
+        for (int r = 0; r < rows; ++r) y[r] += f * m[r];
+      }
+    }
+  }
+}
+
+// f.template operator()<S, B>() with the block size S and the border B fixed at compile time for a ball (9 states)
+// in a ball bearing (border 10: cage and outer ring) or in a squeeze-film damper (14: the outer ring's 4 more), else
+// with both 0 (run time).
+template <class F>
+decltype(auto) with_sizes(int s, int b, F&& f) {
+  if (s == kFixedBlock && b == 10) return f.template operator()<kFixedBlock, 10>();
+  if (s == kFixedBlock && b == 14) return f.template operator()<kFixedBlock, 14>();
+  return f.template operator()<0, 0>();
+}
+
+}  // namespace
 
 BlockArrowLU::BlockArrowLU(int n, const std::vector<int>& blocks, int max_rhs) : n_(n) {
   int off = 0, largest = 0;
@@ -17,52 +114,85 @@ BlockArrowLU::BlockArrowLU(int n, const std::vector<int>& blocks, int max_rhs) :
   if (off > n) throw std::invalid_argument("BlockArrowLU: blocks larger than the matrix");
   border_ = n - off;
   for (int s : size_) {
-    lu_.emplace_back(s);
     inverse_.emplace_back(Eigen::MatrixXd::Zero(s, s));
     X_.emplace_back(Eigen::MatrixXd::Zero(s, border_));
     C_.emplace_back(Eigen::MatrixXd::Zero(border_, s));
   }
-  lu_s_ = Eigen::PartialPivLU<Eigen::MatrixXd>(border_);
   S_.setZero(border_, border_);
-  work_.setZero(largest, std::max({max_rhs, border_, 1}));
+  S_inverse_.setZero(border_, border_);
+  const int widest = std::max(largest, border_);
+  scratch_.setZero(widest * (widest + 1));
+  work_.setZero(largest, std::max(max_rhs, 1));
   border_work_.setZero(border_, std::max(max_rhs, 1));
 }
 
-bool BlockArrowLU::compute(const Eigen::MatrixXd& A) {
-  const int b = border_, nb = n_ - b;
+template <int S, int B>
+bool BlockArrowLU::factor_block(const double* G, int ld, double scale, double shift, std::size_t i) {
+  const int b = border_, nb = n_ - b, o = offset_[i], s = size_[i];
+  double* a = scratch_.data();
+  const bool regular = invert<S>(G + o * ld + o, ld, s, scale, shift, a, a + s * s, inverse_[i].data());
+  if (b == 0) return regular;
+  // X_i = D_i^-1 B_i, C_i, S -= C_i X_i (B_i, C_i and S: the scaled entries of G, no shift off the diagonal).
+  multiply<S, S, false>(scale, inverse_[i].data(), s, s, G + nb * ld + o, ld, b, X_[i].data(), s);
+  double* C = C_[i].data();
+  for (int c = 0; c < s; ++c)
+    for (int r = 0; r < b; ++r) C[c * b + r] = scale * G[(o + c) * ld + nb + r];
+  multiply<B, S, true>(-1.0, C, b, s, X_[i].data(), s, b, S_.data(), b);
+  return regular;
+}
+
+bool BlockArrowLU::compute(const Eigen::MatrixXd& A) { return compute(A, 1.0, 0.0); }
+
+bool BlockArrowLU::compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double scale, double shift) {
+  const int b = border_, ld = static_cast<int>(G.outerStride());
   bool regular = true;
-  if (b > 0) S_ = A.bottomRightCorner(b, b);
-  for (std::size_t i = 0; i < lu_.size(); ++i) {
-    const int o = offset_[i], s = size_[i];
-    lu_[i].compute(A.block(o, o, s, s));
-    regular = regular && HasRegularPivots(lu_[i]);
-    inverse_[i] = lu_[i].inverse();
-    if (b == 0) continue;
-    X_[i].noalias() = inverse_[i].lazyProduct(A.block(o, nb, s, b));
-    C_[i] = A.block(nb, o, b, s);
-    S_.noalias() -= C_[i].lazyProduct(X_[i]);
-  }
   if (b > 0) {
-    lu_s_.compute(S_);
-    regular = regular && HasRegularPivots(lu_s_);
+    S_ = scale * G.bottomRightCorner(b, b);
+    S_.diagonal().array() += shift;
+  }
+  for (std::size_t i = 0; i < size_.size(); ++i)
+    regular = with_sizes(size_[i], b,
+                         [&]<int S, int B>() { return factor_block<S, B>(G.data(), ld, scale, shift, i); }) &&
+              regular;
+  if (b > 0) {
+    double* a = scratch_.data();
+    regular = invert<0>(S_.data(), b, b, 1.0, 0.0, a, a + b * b, S_inverse_.data()) && regular;
   }
   return regular;
 }
 
+// y_i = D_i^-1 r_i, r_b -= C_i y_i.
+template <int S, int B>
+void BlockArrowLU::forward_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i) {
+  const int b = border_, nb = n_ - b, k = static_cast<int>(x.cols()), o = offset_[i], s = size_[i];
+  const int ld = static_cast<int>(x.outerStride()), lw = static_cast<int>(work_.outerStride());
+  double* xd = x.data();
+  multiply<S, S, false>(1.0, inverse_[i].data(), s, s, xd + o, ld, k, work_.data(), lw);
+  for (int c = 0; c < k; ++c)
+    for (int r = 0; r < s; ++r) xd[c * ld + o + r] = work_.data()[c * lw + r];
+  if (b > 0) multiply<B, S, true>(-1.0, C_[i].data(), b, s, xd + o, ld, k, xd + nb, ld);
+}
+
+// x_i = y_i - X_i x_b.
+template <int S, int B>
+void BlockArrowLU::back_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i) {
+  const int b = border_, nb = n_ - b, k = static_cast<int>(x.cols()), o = offset_[i], s = size_[i];
+  const int ld = static_cast<int>(x.outerStride());
+  multiply<S, B, true>(-1.0, X_[i].data(), s, b, x.data() + nb, ld, k, x.data() + o, ld);
+}
+
 void BlockArrowLU::solve_in_place(Eigen::Ref<Eigen::MatrixXd> x) {
-  const int b = border_, k = static_cast<int>(x.cols());
-  // Forward: y_i = D_i^-1 r_i, r_b - sum_i C_i y_i; the border solve; back: x_i = y_i - X_i x_b.
-  for (std::size_t i = 0; i < lu_.size(); ++i) {
-    const int o = offset_[i], s = size_[i];
-    work_.topLeftCorner(s, k).noalias() = inverse_[i].lazyProduct(x.middleRows(o, s));
-    x.middleRows(o, s) = work_.topLeftCorner(s, k);
-    if (b > 0) x.bottomRows(b).noalias() -= C_[i].lazyProduct(x.middleRows(o, s));
-  }
+  const int b = border_, nb = n_ - b, k = static_cast<int>(x.cols());
+  for (std::size_t i = 0; i < size_.size(); ++i)
+    with_sizes(size_[i], b, [&]<int S, int B>() { forward_block<S, B>(x, i); });
   if (b == 0) return;
-  border_work_.leftCols(k).noalias() = lu_s_.solve(x.bottomRows(b));
-  x.bottomRows(b) = border_work_.leftCols(k);
-  for (std::size_t i = 0; i < lu_.size(); ++i)
-    x.middleRows(offset_[i], size_[i]).noalias() -= X_[i].lazyProduct(x.bottomRows(b));
+  const int ld = static_cast<int>(x.outerStride()), lw = static_cast<int>(border_work_.outerStride());
+  double* xd = x.data();
+  multiply<0, 0, false>(1.0, S_inverse_.data(), b, b, xd + nb, ld, k, border_work_.data(), lw);
+  for (int c = 0; c < k; ++c)
+    for (int r = 0; r < b; ++r) xd[c * ld + nb + r] = border_work_.data()[c * lw + r];
+  for (std::size_t i = 0; i < size_.size(); ++i)
+    with_sizes(size_[i], b, [&]<int S, int B>() { back_block<S, B>(x, i); });
 }
 
 }  // namespace turbodyn

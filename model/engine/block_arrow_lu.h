@@ -33,19 +33,30 @@ class BlockArrowLU {
 
   /// Factors A (n x n); false if a pivot block or the Schur complement is singular.
   bool compute(const Eigen::MatrixXd& A);
+  /// Factors A = shift I + scale G without forming it (a Newton block I - gamma J from J itself).
+  bool compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double scale, double shift);
   /// Overwrites x (n x k, k <= max_rhs) with A^-1 x.
   void solve_in_place(Eigen::Ref<Eigen::MatrixXd> x);
 
  private:
+  // The work of diagonal block i, with its size S and the border B fixed at compile time (a ball's 9 states, the
+  // ball bearing's border) or 0: known at run time.
+  template <int S, int B>
+  bool factor_block(const double* G, int ld, double scale, double shift, std::size_t i);
+  template <int S, int B>
+  void forward_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i);
+  template <int S, int B>
+  void back_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i);
+
   int n_ = 0, border_ = 0;
   std::vector<int> offset_, size_;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;  // per block
-  // Per block, D_i^-1 from its LU: the blocks are small (a ball's 9 states), where a coefficient-wise product
-  // with the inverse costs a fraction of Eigen's blocked triangular solves and matrix products.
-  std::vector<Eigen::MatrixXd> inverse_;
-  std::vector<Eigen::MatrixXd> X_, C_;                   // per block: D_i^-1 B_i (s_i x b), C_i (b x s_i)
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_s_;            // Schur complement (b x b)
-  Eigen::MatrixXd S_, work_, border_work_;
+  // Per block D_i^-1 (Gauss-Jordan), D_i^-1 B_i (s_i x b) and C_i (b x s_i); the Schur complement and its inverse.
+  // The blocks are small (a ball's 9 states), where products with the inverses in loops of a size known at compile
+  // time cost a fraction of Eigen's blocked LU, triangular solves and products (bench/README.md).
+  std::vector<Eigen::MatrixXd> inverse_, X_, C_;
+  Eigen::MatrixXd S_, S_inverse_;
+  Eigen::MatrixXd work_, border_work_;  // solve scratch (largest block or border x max_rhs)
+  Eigen::VectorXd scratch_;             // of the inversions
 };
 
 }  // namespace turbodyn

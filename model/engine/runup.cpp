@@ -121,7 +121,6 @@ RunupWorkspace::Element::Element(const ForceElement& e, int n) {
   fd_in.setZero(2 * d + m);
   fd_out0.setZero(d + m);
   fd_out1.setZero(d + m);
-  newton_block.setZero(m, m);
   lu = BlockArrowLU(m, e.independent_state_blocks(), std::max(d, 1));
   Y.setZero(m, d);
   T.setZero(m, d);
@@ -359,10 +358,7 @@ bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
     if (m == 0) continue;
     RunupWorkspace::Element& we = ws.elements[k];
     const Eigen::MatrixXd& J = we.jacobian;  // rows [f (d); z' (m)], columns [q (d), v (d), z (m)]
-    Eigen::MatrixXd& Ak = we.newton_block;
-    Ak = -g * J.block(d, 2 * d, m, m);
-    Ak.diagonal().array() += 1.0;
-    regular = we.lu.compute(Ak) && regular;
+    regular = we.lu.compute(J.block(d, 2 * d, m, m), -g, 1.0) && regular;  // I - g G_zz
     // Y = A_k^-1 (-g (G_zv + g G_zq)) in the element's local DOFs; the Schur term -(-g F_z) Y enters as g R' F_z Y R.
     we.T = -g * J.block(d, d, m, d) - (g * g) * J.block(d, 0, m, d);
     we.Y = we.T;

@@ -24,9 +24,8 @@ struct RunupWorkspace {
     Eigen::MatrixXd jacobian;        // d[f; zdot] / d[q; v; z], (d + m) x (2d + m)
     Eigen::VectorXd fd_in;           // perturbed inputs [q; v; z] of the forward differences
     Eigen::VectorXd fd_out0, fd_out1;  // outputs [f; zdot] of the forward differences
-    // Newton matrix: the block I - g G_zz, its factors, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), the
+    // Newton matrix: the factors of the block I - g G_zz, Y = (I - g G_zz)^-1 (-g (G_zv + g G_zq)) (m x d), the
     // right-hand side of Y (m x d), F_z Y (d x d), R' F_z Y (n x d); w, w0 (m) and u (d) are solve scratch.
-    Eigen::MatrixXd newton_block;
     BlockArrowLU lu;
     Eigen::MatrixXd Y, T, JY, RJY;
     Eigen::VectorXd w, w0, u;

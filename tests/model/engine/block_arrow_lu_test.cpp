@@ -1,5 +1,6 @@
 // BlockArrowLU against a dense LU of the same matrix.
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -28,25 +29,30 @@ Eigen::MatrixXd block_arrow(const std::vector<int>& blocks, int border, unsigned
   return A;
 }
 
-TEST(BlockArrowLU, SolvesLikeADenseLUForBlocksWithAndWithoutBorder) {
+// lu, factored from A, solves four right-hand sides at once and one alone as a dense LU of A does.
+void expect_solves_like_dense_lu(BlockArrowLU& lu, const Eigen::MatrixXd& A, const std::string& label) {
   constexpr double kTolerance = 1e-12;
+  const int n = static_cast<int>(A.rows());
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 4);
+  Eigen::MatrixXd x = b;
+  lu.solve_in_place(x);
+  const Eigen::MatrixXd reference = A.partialPivLu().solve(b);
+  EXPECT_LT((x - reference).cwiseAbs().maxCoeff(), kTolerance * reference.cwiseAbs().maxCoeff()) << label;
+  Eigen::VectorXd v = b.col(0);  // one column, as the Newton solve gives it
+  lu.solve_in_place(v);
+  EXPECT_LT((v - reference.col(0)).cwiseAbs().maxCoeff(), kTolerance * reference.cwiseAbs().maxCoeff()) << label;
+}
+
+TEST(BlockArrowLU, SolvesLikeADenseLUForBlocksWithAndWithoutBorder) {
   const std::vector<std::pair<std::vector<int>, int>> cases = {
-      {{9, 9, 9, 9, 9, 9, 9, 9}, 10}, {{9, 9, 9}, 0}, {{}, 7}, {{3, 5}, 1}};
+      {{9, 9, 9, 9, 9, 9, 9, 9}, 10}, {{9, 9, 9, 9, 9, 9, 9, 9}, 14}, {{9, 9, 9}, 0}, {{}, 7}, {{3, 5}, 1}};
   unsigned seed = 1;
   for (const auto& [blocks, border] : cases) {
     const Eigen::MatrixXd A = block_arrow(blocks, border, seed++);
     const int n = static_cast<int>(A.rows());
     BlockArrowLU lu(n, blocks, 4);
     ASSERT_TRUE(lu.compute(A));
-    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 4);
-    Eigen::MatrixXd x = b;
-    lu.solve_in_place(x);
-    const Eigen::MatrixXd reference = A.partialPivLu().solve(b);
-    EXPECT_LT((x - reference).cwiseAbs().maxCoeff(), kTolerance * reference.cwiseAbs().maxCoeff())
-        << blocks.size() << " blocks, border " << border;
-    Eigen::VectorXd v = b.col(0);  // one column, as the Newton solve gives it
-    lu.solve_in_place(v);
-    EXPECT_LT((v - reference.col(0)).cwiseAbs().maxCoeff(), kTolerance * reference.cwiseAbs().maxCoeff());
+    expect_solves_like_dense_lu(lu, A, std::to_string(blocks.size()) + " blocks, border " + std::to_string(border));
   }
 }
 
@@ -54,6 +60,37 @@ TEST(BlockArrowLU, ReportsASingularBlock) {
   Eigen::MatrixXd A = block_arrow({4, 4}, 3, 7);
   A.block(4, 4, 4, 4).setZero();  // the second diagonal block
   BlockArrowLU lu(11, {4, 4}, 1);
+  EXPECT_FALSE(lu.compute(A));
+}
+
+// The Newton block I - g J is factored from J itself: a block of a larger matrix (its outer stride), scaled and
+// shifted, for the compiled ball sizes (blocks of 9, borders 10 and 14) and any other.
+TEST(BlockArrowLU, FactorsAShiftedScaledBlockOfALargerMatrix) {
+  const std::vector<std::pair<std::vector<int>, int>> cases = {
+      {{9, 9, 9, 9, 9, 9, 9, 9}, 10}, {{9, 9, 9, 9, 9, 9, 9, 9}, 14}, {{4, 6}, 3}};
+  unsigned seed = 11;
+  for (const auto& [blocks, border] : cases) {
+    const Eigen::MatrixXd G = block_arrow(blocks, border, seed++);
+    const int n = static_cast<int>(G.rows());
+    Eigen::MatrixXd J = Eigen::MatrixXd::Random(n + 5, n + 7);  // G sits at (3, 5) of J
+    J.block(3, 5, n, n) = G;
+    const double scale = -0.37, shift = 1.0;
+    BlockArrowLU lu(n, blocks, 4);
+    ASSERT_TRUE(lu.compute(J.block(3, 5, n, n), scale, shift));
+    const Eigen::MatrixXd A = shift * Eigen::MatrixXd::Identity(n, n) + scale * G;
+    expect_solves_like_dense_lu(lu, A, std::to_string(blocks.size()) + " blocks, border " + std::to_string(border));
+  }
+}
+
+TEST(BlockArrowLU, ReportsASingularBallBlockAndASingularSchurComplement) {
+  const std::vector<int> balls(8, 9);
+  Eigen::MatrixXd A = block_arrow(balls, 10, 5);
+  A.block(27, 27, 9, 9).setZero();  // the fourth ball
+  BlockArrowLU lu(82, balls, 1);
+  EXPECT_FALSE(lu.compute(A));
+  // Regular blocks, but a border row of zeros: A and its Schur complement are singular.
+  A = block_arrow(balls, 10, 6);
+  A.row(81).setZero();
   EXPECT_FALSE(lu.compute(A));
 }
 
