@@ -1,16 +1,17 @@
 #pragma once
-// LU factorisation of a square matrix with block-arrow structure,
+// Factorisation of a square matrix with block-arrow structure,
 //
 //       [ D_1            B_1 ]
 //   A = [      ...       ... ]      D_i dense square (s_i x s_i), independent of one another;
 //       [           D_p  B_p ]      B, C, E dense; b = border size.
 //       [ C_1  ...  C_p  E   ]
 //
-// by eliminating each diagonal block on its own and factoring the Schur complement S = E - sum_i C_i D_i^-1 B_i
-// (Golub & Van Loan, Matrix Computations, 4th ed., Sec. 4.5.4 on block elimination). The entries of A outside
-// the blocks, the border rows and the border columns are not read: the caller vouches that they are zero. With no
-// blocks it is a plain partial-pivoting LU of A. A ball bearing's Newton block (8 balls of 9 states bordered by
-// cage and outer ring) factors in a few percent of the dense cost. Allocates only in the constructor.
+// by eliminating each diagonal block on its own and inverting the Schur complement S = E - sum_i C_i D_i^-1 B_i
+// (Golub & Van Loan, Matrix Computations, 4th ed., Sec. 4.5.4 on block elimination); the blocks and S are
+// inverted by Gauss-Jordan elimination with partial pivoting. The entries of A outside the blocks, the border rows
+// and the border columns are not read: the caller vouches that they are zero. With no blocks A itself is inverted.
+// A ball bearing's Newton block (8 balls of 9 states bordered by cage and outer ring) factors in a few percent of
+// the dense cost. Allocates only in the constructor.
 #include <vector>
 #include <Eigen/Dense>
 
