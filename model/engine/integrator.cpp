@@ -27,6 +27,7 @@ struct Integration {
   std::string last_error;
   const std::atomic<bool>* cancel = nullptr;  // RunupOptions::cancel
   bool cancelled = false;       // a right-hand side saw the cancel flag and stopped the integrator
+  bool have_jacobian = false;   // the elements' Jacobians have been computed at least once
   long jacobian_step = 0;       // integrator step count at the last Jacobian
   long jacobian_failures = 0;   // nonlinear-solver failures counted at the last Jacobian
   // Newton convergence monitor (ls_solve): the attempt (step count and time) of the last solve, its iteration,
@@ -77,6 +78,7 @@ int ls_setup(SUNLinearSolver S, SUNMatrix) {
     return -1;
   try {
     in->model->Jacobian(tcur, N_VGetArrayPointer(ypred), *in->ws);
+    in->have_jacobian = true;
   } catch (const std::exception& e) {
     in->last_error = e.what();
     return 1;
@@ -90,14 +92,16 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
   const RunupModel& model = *in->model;
   RunupWorkspace& ws = *in->ws;
   // CVODE does not call the setup of a matrix-embedded solver on its own schedule, so the solve keeps the Newton
-  // matrix current: a new Jacobian when the spin speed (which scales the gyroscopic terms) has moved by more than
-  // 2 % since the last one, when the nonlinear solver failed since then (the Jacobian is stale: nonlinear films),
-  // every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51), and at the start of an
-  // attempt after a Newton iteration converged slowly (a correction larger than kSlowConvergence times the one
-  // before) with a Jacobian at least kSlowAge steps old: such a Jacobian is going stale, and refreshing it before
-  // the iteration fails saves the failure's step cut (by 4). A slow iteration with a younger Jacobian is the
-  // problem's nonlinearity (contacts, the damper's impacts), which a new Jacobian does not cure. A new
-  // factorisation when gamma (the step size) changed. bench/README.md has the measurements.
+  // matrix current: a new Jacobian when the nonlinear solver failed since the last one (the Jacobian is stale:
+  // nonlinear films), every kJacobianMaxSteps steps (CVODE's own default for matrix-based solvers is 51), and at the
+  // start of an attempt after a Newton iteration converged slowly (a correction larger than kSlowConvergence times
+  // the one before) with a Jacobian at least kSlowAge steps old: such a Jacobian is going stale, and refreshing it
+  // before the iteration fails saves the failure's step cut (by 4). A slow iteration with a younger Jacobian is the
+  // problem's nonlinearity (contacts, the damper's impacts), which a new Jacobian does not cure. When only the spin
+  // speed has moved by more than 2 % since the last Jacobian, the rotor's gyroscopic terms are moved to it exactly
+  // and the elements' blocks kept (RespinJacobian: in the run-ups' low-speed windows a tenth of the Jacobians, each
+  // as dear as a few right-hand sides). A new factorisation when gamma (the step size) changed. bench/README.md has
+  // the measurements.
   constexpr double kJacobianSpeedChange = 0.02;
   constexpr long kJacobianMaxSteps = 50;
   constexpr double kSlowConvergence = 0.3;
@@ -116,9 +120,13 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
     in->attempt_t = tcur;
     in->iteration = 0;
   }
-  if (std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0) ||
-      failures > in->jacobian_failures || steps - in->jacobian_step >= kJacobianMaxSteps ||
-      (in->slow && in->iteration == 0 && steps - in->jacobian_step >= kSlowAge)) {
+  const bool stale = !in->have_jacobian || failures > in->jacobian_failures ||
+                     steps - in->jacobian_step >= kJacobianMaxSteps ||
+                     (in->slow && in->iteration == 0 && steps - in->jacobian_step >= kSlowAge);
+  if (!stale && std::abs(w - w_jac) > kJacobianSpeedChange * std::max(std::abs(w_jac), 1.0)) {
+    model.RespinJacobian(tcur, ws);
+    in->gamma_factored = -1.0;
+  } else if (stale) {
     in->slow = false;
     in->jacobian_step = steps;
     in->jacobian_failures = failures;
@@ -128,6 +136,7 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) 
       in->last_error = e.what();
       return 1;
     }
+    in->have_jacobian = true;
     in->gamma_factored = -1.0;
   }
   if (gamma != in->gamma_factored) {

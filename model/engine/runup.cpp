@@ -349,6 +349,14 @@ void RunupModel::Jacobian(double t, const double* y, RunupWorkspace& ws) const {
   }
 }
 
+void RunupModel::RespinJacobian(double t, RunupWorkspace& ws) const {
+  const SpinState s = spin(t);
+  ws.Fq -= (s.acceleration - ws.jac_spin.acceleration) * G_;
+  ws.Fv -= (s.speed - ws.jac_spin.speed) * G_;
+  ws.jac_t = t;
+  ws.jac_spin = s;
+}
+
 bool RunupModel::FactorNewton(double gamma, RunupWorkspace& ws) const {
   const double g = gamma;
   ws.A = M_ - g * ws.Fv - (g * g) * ws.Fq;

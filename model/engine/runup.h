@@ -84,6 +84,10 @@ class RunupModel {
   /// Fills the Jacobian blocks of ws (F_q, F_v, F_z, G_q, G_v, G_z) at (t, y): exact for the rotor, analytic or
   /// forward differences for the elements.
   void Jacobian(double t, const double* y, RunupWorkspace& ws) const;
+  /// Moves the last Jacobian's rotor terms that depend on the spin (-Omega G in dF/dv, -Omega' G in dF/dq) to the
+  /// spin at t, exactly; the elements' blocks are kept as they were (the integrator's cheap refresh when only the
+  /// speed has moved).
+  void RespinJacobian(double t, RunupWorkspace& ws) const;
   /// Initial state: element initial states, then (static_equilibrium) the static equilibrium under gravity at t;
   /// throws std::runtime_error if Newton's method fails.
   void InitialState(double t, bool static_equilibrium, double* y, RunupWorkspace& ws) const;

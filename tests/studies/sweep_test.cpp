@@ -61,7 +61,10 @@ std::string sweep_error(const std::string& name, const std::string& body) {
 
 TEST(Sweep, ResponseIsLinearInTheUnbalance) {
   // A linear rotor: every response scales exactly with the single unbalance (superposition), so max |x| / U is
-  // the same for every level.
+  // the same for every level, to the integration error. That is not the tolerance's 1e-6: through the lightly damped
+  // first critical the smallest level (25 um at atol 1 nm) can be 4e-4 off a run at rtol 1e-9, atol 1e-13, for a
+  // step sequence that differs from a 2e-6-accurate one by round-off only (rtol 1.0000001e-6 instead of 1e-6 puts
+  // the 300 mg mm level 4.3e-4 off); a wrong level would be off by 1e-1 or more.
   const auto f = write_study("linear", one_parameter_study("kind = \"full-factorial\"",
                                                            "path = \"disks.turbine.unbalance\"\n"
                                                            "levels = [\"100 mg*mm\", \"300 mg*mm\", \"900 mg*mm\"]",
@@ -75,7 +78,7 @@ TEST(Sweep, ResponseIsLinearInTheUnbalance) {
   const double per_unit = r.runs[0].metrics[0] / r.runs[0].parameters[0];
   for (const RunRecord& run : r.runs) {
     EXPECT_EQ(run.status, "ok") << run.error;
-    EXPECT_NEAR(run.metrics[0] / run.parameters[0] / per_unit, 1.0, 1e-4);
+    EXPECT_NEAR(run.metrics[0] / run.parameters[0] / per_unit, 1.0, 2e-3);
   }
 }
 

@@ -167,6 +167,36 @@ TEST(Jacobian, BlockEliminatedNewtonSolveMatchesTheFullSystem) {
   EXPECT_LT(testing::newton_solve_residual(*model, *ws, J, gamma), kResidualTolerance);
 }
 
+TEST(Jacobian, RespunJacobianSolvesAsAFreshOneWhereOnlyTheRotorDependsOnTheSpeed) {
+  // The integrator's cheap refresh when only the speed has moved: the rotor's gyroscopic terms moved to the new spin,
+  // the elements' blocks kept. With linear pedestal bearings (speed-independent blocks) the Newton solve must then
+  // be that of a fresh Jacobian, and differ from that of the old one (the ramp's speed doubles).
+  MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
+                                {"bearings.compressor.pedestal_stiffness", "2e7"},
+                                {"bearings.compressor.pedestal_damping", "300"}});
+  spec.speed.end = 150000 * kRpm;
+  const auto model = make_runup_model(spec);
+  auto ws = model->make_workspace();
+  const int ny = model->n_states();
+  const Eigen::VectorXd y = Eigen::VectorXd::Random(ny) * 1e-5, b = Eigen::VectorXd::Random(ny);
+  const double t0 = 1.0, t1 = 2.0, gamma = 1e-4;
+  auto newton = [&] {
+    Eigen::VectorXd x(ny);
+    EXPECT_TRUE(model->FactorNewton(gamma, *ws));
+    model->SolveNewton(gamma, b.data(), x.data(), *ws);
+    return x;
+  };
+  model->Jacobian(t1, y.data(), *ws);
+  const Eigen::VectorXd fresh = newton();
+  model->Jacobian(t0, y.data(), *ws);
+  const Eigen::VectorXd old = newton();
+  model->RespinJacobian(t1, *ws);
+  const Eigen::VectorXd respun = newton();
+  const double scale = fresh.cwiseAbs().maxCoeff();
+  EXPECT_LT((respun - fresh).cwiseAbs().maxCoeff(), 1e-10 * scale);
+  EXPECT_GT((old - fresh).cwiseAbs().maxCoeff(), 1e-4 * scale);
+}
+
 // Forwards an element but hides its analytic Jacobian, so the engine differentiates it numerically.
 class WithoutJacobian final : public ForceElement {
  public:
