@@ -168,8 +168,7 @@ void BlockArrowLU::forward_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i) {
   const int ld = static_cast<int>(x.outerStride()), lw = static_cast<int>(work_.outerStride());
   double* xd = x.data();
   multiply<S, S, false>(1.0, inverse_[i].data(), s, s, xd + o, ld, k, work_.data(), lw);
-  for (int c = 0; c < k; ++c)
-    for (int r = 0; r < s; ++r) xd[c * ld + o + r] = work_.data()[c * lw + r];
+  x.middleRows(o, s) = work_.topLeftCorner(s, k);
   if (b > 0) multiply<B, S, true>(-1.0, C_[i].data(), b, s, xd + o, ld, k, xd + nb, ld);
 }
 
@@ -189,8 +188,7 @@ void BlockArrowLU::solve_in_place(Eigen::Ref<Eigen::MatrixXd> x) {
   const int ld = static_cast<int>(x.outerStride()), lw = static_cast<int>(border_work_.outerStride());
   double* xd = x.data();
   multiply<0, 0, false>(1.0, S_inverse_.data(), b, b, xd + nb, ld, k, border_work_.data(), lw);
-  for (int c = 0; c < k; ++c)
-    for (int r = 0; r < b; ++r) xd[c * ld + nb + r] = border_work_.data()[c * lw + r];
+  x.bottomRows(b) = border_work_.leftCols(k);
   for (std::size_t i = 0; i < size_.size(); ++i)
     with_sizes(size_[i], b, [&]<int S, int B>() { back_block<S, B>(x, i); });
 }

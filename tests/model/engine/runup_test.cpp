@@ -26,6 +26,13 @@ MachineSpec reference(std::vector<Override> overrides = {}) {
   return load_model(testing::source_dir() + "/examples/reference_linear.toml", overrides);
 }
 
+// A damped pedestal under the compressor bearing: its mass's states give the model an element state block.
+std::vector<Override> compressor_pedestal() {
+  return {{"bearings.compressor.pedestal_mass", "0.5"},
+          {"bearings.compressor.pedestal_stiffness", "2e7"},
+          {"bearings.compressor.pedestal_damping", "300"}};
+}
+
 int channel(const RunupResult& r, const std::string& name) {
   for (std::size_t c = 0; c < r.channels.size(); ++c)
     if (r.channels[c].name == name) return static_cast<int>(c);
@@ -116,9 +123,7 @@ TEST(Reduction, ARotorThatCanMoveRigidlyAtItsBoundaryIsAModelErrorNamingTheFileA
 TEST(Jacobian, AssembledJacobianMatchesFiniteDifferencesOfTheRhs) {
   // Pedestal bearings add internal states; the exact rotor part, the analytic element Jacobian and the
   // scattering into the blocks are all checked against forward differences of the full right-hand side.
-  MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
-                                {"bearings.compressor.pedestal_stiffness", "2e7"},
-                                {"bearings.compressor.pedestal_damping", "300"}});
+  MachineSpec spec = reference(compressor_pedestal());
   spec.speed.end = 60000 * kRpm;
   const auto model = make_runup_model(spec);
   auto ws = model->make_workspace();
@@ -150,12 +155,11 @@ TEST(Jacobian, BlockEliminatedNewtonSolveMatchesTheFullSystem) {
   // complement; its answer must satisfy the full system (I - gamma dF/dy) x = b to round-off. Two pedestal bearings
   // of different masses give two state blocks; a step gamma of 1e-5 s weighs all blocks comparably.
   constexpr double kResidualTolerance = 1e-10;
-  MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
-                                {"bearings.compressor.pedestal_stiffness", "2e7"},
-                                {"bearings.compressor.pedestal_damping", "300"},
-                                {"bearings.turbine.pedestal_mass", "0.8"},
-                                {"bearings.turbine.pedestal_stiffness", "5e7"},
-                                {"bearings.turbine.pedestal_damping", "100"}});
+  std::vector<Override> overrides = compressor_pedestal();
+  overrides.insert(overrides.end(), {{"bearings.turbine.pedestal_mass", "0.8"},
+                                     {"bearings.turbine.pedestal_stiffness", "5e7"},
+                                     {"bearings.turbine.pedestal_damping", "100"}});
+  MachineSpec spec = reference(overrides);
   spec.speed.end = 60000 * kRpm;
   const auto model = make_runup_model(spec);
   ASSERT_GT(model->n_element_states(), 4);
@@ -171,9 +175,7 @@ TEST(Jacobian, RespunJacobianSolvesAsAFreshOneWhereOnlyTheRotorDependsOnTheSpeed
   // The integrator's cheap refresh when only the speed has moved: the rotor's gyroscopic terms moved to the new spin,
   // the elements' blocks kept. With linear pedestal bearings (speed-independent blocks) the Newton solve must then
   // be that of a fresh Jacobian, and differ from that of the old one (the ramp's speed doubles).
-  MachineSpec spec = reference({{"bearings.compressor.pedestal_mass", "0.5"},
-                                {"bearings.compressor.pedestal_stiffness", "2e7"},
-                                {"bearings.compressor.pedestal_damping", "300"}});
+  MachineSpec spec = reference(compressor_pedestal());
   spec.speed.end = 150000 * kRpm;
   const auto model = make_runup_model(spec);
   auto ws = model->make_workspace();
