@@ -78,6 +78,10 @@ TEST(Optimizer, RosenbrockMinimumWithLocalGlobalAndGradientAlgorithms) {
     SCOPED_TRACE(c.algorithm);
     OptimizationSpec s = analytic_spec(c.algorithm, false);
     if (s.algorithm.name == "mma" || s.algorithm.name == "slsqp") s.algorithm.gradient_step = 1e-7;
+    // MMA's conservative approximations crawl along the curved valley, and how fast depends on the round-off of the
+    // finite-difference gradient: within 4,000 evaluations on a baseline x86-64 build, 14,430 to reach xtol_rel
+    // with fused multiply-adds (x86-64-v3).
+    if (s.algorithm.name == "mma") s.algorithm.maxeval = 20000;
     if (is_global(c.algorithm)) {
       s.algorithm.maxeval = 3000;
       s.algorithm.xtol_rel = 0.0;
