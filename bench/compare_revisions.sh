@@ -13,6 +13,9 @@
 #   COMPARE_DIR   where the revisions are checked out and built (default /tmp/turbodyn-compare); a revision's
 #                 build is kept there and reused by the next call (delete the directory to force a rebuild)
 #   JOBS          build jobs (default 2)
+#   ARCH          passed as -DTURBODYN_ARCH (auto, baseline, x86-64-v3, native; revisions before 7deaca0 ignore it and
+#                 build for the baseline); unset: each revision's own default. Set it to compare across 7deaca0 like
+#                 with like. Builds for a set ARCH go to build-ARCH.
 #
 # Each revision is checked out with `git worktree add --detach` as COMPARE_DIR/<commit> and built in its build/
 # (Release, Ninja and ccache if present, only the `turbodyn` program); examples are read from that checkout. The cases, all with --no-plots:
@@ -31,26 +34,28 @@ rev_a=$1 rev_b=$2 n=${3:-3}
 cases=(${CASES:-floating_ring ball ball_sfd})
 dir=${COMPARE_DIR:-/tmp/turbodyn-compare}
 jobs=${JOBS:-2}
+arch=${ARCH:-}
 mkdir -p "$dir"
 
 # Builds revision $1 (if not built yet) and prints the path of its turbodyn program.
 build_revision() {
   local sha src bld
   sha=$(git -C "$root" rev-parse --verify "$1^{commit}")
-  src=$dir/$sha bld=$dir/$sha/build
+  src=$dir/$sha bld=$dir/$sha/build${arch:+-$arch}
   if [[ ! -x $bld/app/turbodyn ]]; then
     if [[ ! -d $src ]]; then
       git -C "$root" worktree add --detach "$src" "$sha" > /dev/null 2>&1 ||
         { echo "compare_revisions: cannot check out $1 ($sha) in $src" >&2; return 1; }
     fi
-    local gen=() launcher=()
+    local gen=() launcher=() archflag=()
+    [[ -n $arch ]] && archflag=(-DTURBODYN_ARCH="$arch")
     command -v ninja > /dev/null && gen=(-G Ninja)
     command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
     echo "compare_revisions: building $1 ($sha) in $bld" >&2
     # build/ inside each checkout and one ccache base directory above them all: the compiler sees the same relative
     # paths for every revision, so unchanged files come from the cache.
     (export CCACHE_BASEDIR=$dir
-     cmake -S "$src" -B "$bld" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" > "$dir/$sha.build.log" 2>&1 &&
+     cmake -S "$src" -B "$bld" "${gen[@]}" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "${archflag[@]}" > "$dir/$sha.build.log" 2>&1 &&
        cmake --build "$bld" --target turbodyn -j "$jobs" >> "$dir/$sha.build.log" 2>&1) ||
       { echo "compare_revisions: build of $1 failed (see $dir/$sha.build.log)" >&2; return 1; }
   fi
