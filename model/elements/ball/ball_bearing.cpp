@@ -76,6 +76,7 @@ HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y,
   // delta = K(e) [ (9 / (2 E(e) R)) (F / (pi k E'))^2 ]^(1/3) (Hamrock & Dowson 1981, ch. 3), inverted.
   h.stiffness = kPi * k * modulus * std::sqrt(2.0 * h.integral_e * R / 9.0) / std::pow(h.integral_k, 1.5);
   // Semi-axes a = (6 k^2 E F R / (pi E'))^(1/3), b = (6 E F R / (pi k E'))^(1/3) (same source).
+  h.cbrt_stiffness = std::cbrt(h.stiffness);
   h.radius_factor = std::cbrt(6.0 * h.integral_e * R / (kPi * modulus)) * std::pow(k, 1.0 / 6.0);
   return h;
 }
@@ -109,24 +110,6 @@ struct BallBearingWorkspace : ElementWorkspace {
   BallBearingLoads loads;
 };
 
-// Pocket of a ball: ball centre relative to the pocket centre (orbital basis) and the pocket centre relative
-// to the cage centre. dpsi = psi - (cage angle + 2 pi j / Z).
-struct PocketGeometry {
-  Vec3 delta_vec, pocket;
-  double dist = 0.0;
-};
-
-inline void pocket_geometry(double rho, double zeta, double dpsi, double Rp, const Vec3& cage_centre,
-                            PocketGeometry& g) {
-  const double half = 0.5 * std::remainder(dpsi, 2.0 * kPi);
-  const double sh = std::sin(half), ch = std::cos(half);
-  const double sd = 2.0 * sh * ch, one_minus_cos = 2.0 * sh * sh;
-  g.pocket = Vec3(Rp * (1.0 - one_minus_cos), -Rp * sd, 0.0);
-  g.delta_vec = Vec3(rho + Rp * one_minus_cos - cage_centre.x(), Rp * sd - cage_centre.y(), zeta - cage_centre.z());
-  g.dist = g.delta_vec.norm();
-}
-
-
 }  // namespace
 
 BallBearingElement::BallBearingElement(const std::string& name, const BallBearingSpec& spec, int node_dof,
@@ -142,6 +125,12 @@ BallBearingElement::BallBearingElement(const std::string& name, const BallBearin
   n_core_ = kBallStates * spec.n_balls + kCageStates + 2;
   const double D = spec.ball_diameter, dm = spec.pitch_diameter, a0 = spec.contact_angle, s = spec.side;
   pitch_radius_ = 0.5 * dm;
+  pocket_cos_.resize(spec.n_balls);
+  pocket_sin_.resize(spec.n_balls);
+  for (int j = 0; j < spec.n_balls; ++j) {
+    pocket_cos_[j] = std::cos(2.0 * kPi * j / spec.n_balls);
+    pocket_sin_[j] = std::sin(2.0 * kPi * j / spec.n_balls);
+  }
   m_ball_ = spec.ball_density * kPi * D * D * D / 6.0;
   i_ball_ = m_ball_ * D * D / 10.0;
   i_cage_ = spec.cage_polar_inertia > 0.0 ? spec.cage_polar_inertia : spec.cage_mass * pitch_radius_ * pitch_radius_;
@@ -336,11 +325,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   const bool spin = friction && spec_.spin_friction;
   const bool planar = spec_.race_traction == RaceTraction::Planar;
   // mu(v)/v of paper Eq. 23 for v >= 0, finite at v = 0: the friction force is -Q (mu(|v_t|)/|v_t|) v_t.
-  const auto mu_over_v = [=](double vt) {
-    const double x = vt / v2;
-    const double t = x < 1e-4 ? (1.0 - x * x / 3.0) / v2 : std::tanh(x) / vt;
-    return (mur + (mu0 - mur) * std::exp(-vt / v1)) * t;
-  };
+  const auto mu_over_v = [=](double vt) { return eq23_mu_over_slip(vt, mu0, mur, v1, v2); };
   constexpr double kSpinMoment = 3.0 * kPi / 16.0;  // M = (3 pi / 16) mu Q a: uniform mu, Hertz pressure
 
   // Shaft: inner ring centre, tilt and angular velocity (spin about the tilted axis) in the housing frame.
@@ -349,6 +334,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   // Cage and outer ring.
   const double* cg = z + cage_offset();
   const double zo = z[outer_offset()], vzo = z[outer_offset() + 1];
+  const double cage_c = std::cos(cg[3]), cage_s = std::sin(cg[3]);  // the pockets' angles: cg[3] + 2 pi j / Z
 
   Vec3 F_shaft = Vec3::Zero(), M_shaft = Vec3::Zero();  // housing frame
   Vec3 F_outer = Vec3::Zero(), F_cage = Vec3::Zero();
@@ -388,7 +374,8 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
       const HertzPointContact& hz = k == 0 ? hertz_inner_ : hertz_outer_;
       RaceGeometry geo;
       if (!race_geometry(race, R, rho, zeta, geo)) continue;
-      const double QH = hz.stiffness * geo.delta * std::sqrt(geo.delta);
+      const double root_delta = std::sqrt(geo.delta);
+      const double QH = hz.stiffness * geo.delta * root_delta;
       const double ddot = geo.u.dot(Vb - race.velocity) - geo.u_l.dot(race.tilt_rate.cross(geo.p));
       const double Q = std::max(0.0, QH + d_race * ddot);
       diss += (Q - QH) * ddot;
@@ -428,7 +415,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
         friction_loss -= Ft.dot(vt);
         if (k == 0) loads.shaft_power_friction -= Ft.dot(race.velocity) + lever.cross(Ft).dot(race.tilt_rate);
         if (spin) {
-          const double a = hz.radius_factor * std::cbrt(Q);
+          const double a = hz.radius_factor * load_cbrt(Q, QH, hz.cbrt_stiffness * root_delta);
           const double ws = (wb - race.omega).dot(geo.u);
           // Coulomb: (3 pi / 16) mu Q a; lubricated: the traction at the slip a |w_s| gives the same moment
           // with mu = F / Q.
@@ -458,7 +445,10 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     {
       const Vec3 cage_centre = to_orbital(cg[0], cg[1], cg[2], c, sn);
       PocketGeometry pg;
-      pocket_geometry(rho, zeta, psi - cg[3] - 2.0 * kPi * j / Z, Rp, cage_centre, pg);
+      double sd, cd;
+      pocket_offset(c, sn, cage_c * pocket_cos_[j] - cage_s * pocket_sin_[j],
+                    cage_s * pocket_cos_[j] + cage_c * pocket_sin_[j], sd, cd);
+      pocket_geometry(rho, zeta, sd, cd, Rp, cage_centre, pg);
       const double delta = pg.dist - cp;
       if (delta > 0.0) {
         const Vec3 n = pg.delta_vec / pg.dist;
@@ -741,6 +731,7 @@ double BallBearingElement::core_potential_energy(const double* q, const double* 
   const double Rp = pitch_radius_;
   const double* cg = z + cage_offset();
   const double zo = z[outer_offset()];
+  const double cage_c = std::cos(cg[3]), cage_s = std::sin(cg[3]);
   Race inner, outer_race;
   inner.dr = inner_dr_, inner.dz = inner_z_, inner.r0 = inner_r_;
   outer_race.dr = outer_dr_, outer_race.dz = outer_z_, outer_race.r0 = outer_r_;
@@ -758,7 +749,10 @@ double BallBearingElement::core_potential_energy(const double* q, const double* 
     if (race_geometry(outer_race, R, b[1], b[2], geo))
       V += 0.4 * hertz_outer_.stiffness * geo.delta * geo.delta * std::sqrt(geo.delta);
     PocketGeometry pg;
-    pocket_geometry(b[1], b[2], b[0] - cg[3] - 2.0 * kPi * j / Z, Rp, to_orbital(cg[0], cg[1], cg[2], c, sn), pg);
+    double sd, cd;
+    pocket_offset(c, sn, cage_c * pocket_cos_[j] - cage_s * pocket_sin_[j],
+                  cage_s * pocket_cos_[j] + cage_c * pocket_sin_[j], sd, cd);
+    pocket_geometry(b[1], b[2], sd, cd, Rp, to_orbital(cg[0], cg[1], cg[2], c, sn), pg);
     const double dp = pg.dist - spec_.pocket_clearance;
     if (dp > 0.0) V += 0.4 * k_pocket_ * dp * dp * std::sqrt(dp);
     V += m_ball_ * gravity_ * R * sn;

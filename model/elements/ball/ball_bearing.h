@@ -29,6 +29,7 @@ struct HertzPointContact {
   double integral_k = 0.0;     ///< K(e), complete elliptic integral of the first kind
   double integral_e = 0.0;     ///< E(e), second kind
   double stiffness = 0.0;      ///< K_c in N/m^1.5: F = K_c delta^1.5
+  double cbrt_stiffness = 0.0; ///< K_c^(1/3): F^(1/3) = K_c^(1/3) delta^(1/2)
   /// sqrt(a b) = radius_factor * F^(1/3) (m / N^(1/3)), mean radius of the contact ellipse.
   double radius_factor = 0.0;
   double curvature_x = 0.0;    ///< 1/R_x, curvature sum in the rolling direction (1/m), as given
@@ -229,6 +230,7 @@ class BallBearingElement final : public ForceElement {
   double k_pocket_ = 0.0;
   double m_ball_ = 0.0, i_ball_ = 0.0, i_cage_ = 0.0;
   double pitch_radius_ = 0.0;
+  std::vector<double> pocket_cos_, pocket_sin_;  // cos, sin of 2 pi j / Z: the pockets' angles in the cage
   // Groove-centre circles: radius offset from the pitch radius and axial position (ring frames), and the
   // unloaded distance (f - 1/2) D from the groove centre to the ball centre.
   double inner_dr_ = 0.0, inner_z_ = 0.0, inner_r_ = 0.0;

@@ -56,4 +56,63 @@ inline Eigen::Vector3d to_orbital(double x, double y, double z, double c, double
   return Eigen::Vector3d(x * c + y * s, -x * s + y * c, z);
 }
 
+/// Q^(1/3) of a contact load Q = Q_H + (damping) from Q_H^(1/3) = K^(1/3) delta^(1/2), which the Hertz law gives
+/// without a cube root: three Halley steps on y^3 = Q (relative error below 5e-16 for |Q/Q_H - 1| <= 0.1, checked
+/// against std::cbrt by `BallBearing.LoadCubeRootFromTheHertzApproachIsStdCbrt`), std::cbrt otherwise.
+inline double load_cbrt(double Q, double QH, double cbrt_QH) {
+  if (Q == QH) return cbrt_QH;
+  if (!(std::abs(Q - QH) <= 0.1 * QH)) return std::cbrt(Q);
+  double y = cbrt_QH;
+  for (int i = 0; i < 3; ++i) {
+    const double y3 = y * y * y;
+    y *= (y3 + 2.0 * Q) / (2.0 * y3 + Q);
+  }
+  return y;
+}
+
+/// mu(v) / v of the paper's Eq. 23, mu(v) = (mu_r + (mu_0 - mu_r) exp(-v / v_1)) tanh(v / v_2), for a slip speed
+/// v >= 0; finite at v = 0 (mu_0 / v_2). Between v / v_2 = 0.5 and 20 tanh comes from one exp (cheaper than libm's
+/// tanh, which goes through expm1; no cancellation there), above 20 it is 1 to double precision.
+/// `BallBearing.Eq23FrictionLawIsTheClosedForm` checks it against std::tanh.
+inline double eq23_mu_over_slip(double v, double mu0, double mur, double v1, double v2) {
+  const double x = v / v2;
+  double t;
+  if (x < 1e-4) {
+    t = (1.0 - x * x / 3.0) / v2;
+  } else if (x < 0.5) {
+    t = std::tanh(x) / v;
+  } else if (x < 20.0) {
+    const double e = std::exp(-2.0 * x);  // <= 1/e
+    t = (1.0 - e) / ((1.0 + e) * v);
+  } else {
+    t = 1.0 / v;  // exp(-40) = 4e-18
+  }
+  return (mur + (mu0 - mur) * std::exp(-v / v1)) * t;
+}
+
+/// Pocket of a ball: ball centre relative to the pocket centre (orbital basis) and the pocket centre relative to the
+/// cage centre, from the sine and cosine (sd, cd) of dpsi = psi - (cage angle + 2 pi j / Z)
+/// (`BallBearing.PocketGeometryIsTheCartesianOne`).
+struct PocketGeometry {
+  Eigen::Vector3d delta_vec, pocket;
+  double dist = 0.0;
+};
+
+inline void pocket_geometry(double rho, double zeta, double sd, double cd, double Rp,
+                            const Eigen::Vector3d& cage_centre, PocketGeometry& g) {
+  // 1 - cos dpsi without cancellation where the ball is near its pocket (cos dpsi > 0): sin^2 / (1 + cos).
+  const double one_minus_cos = cd > 0.0 ? sd * sd / (1.0 + cd) : 1.0 - cd;
+  g.pocket = Eigen::Vector3d(Rp * (1.0 - one_minus_cos), -Rp * sd, 0.0);
+  g.delta_vec = Eigen::Vector3d(rho + Rp * one_minus_cos - cage_centre.x(), Rp * sd - cage_centre.y(),
+                                zeta - cage_centre.z());
+  g.dist = g.delta_vec.norm();
+}
+
+/// Sine and cosine of dpsi = psi - phi from those of the ball's angle psi (c, sn) and of its pocket's angle phi
+/// (cp, sp): no second sincos and no reduction of the difference of two large angles.
+inline void pocket_offset(double c, double sn, double cp, double sp, double& sd, double& cd) {
+  sd = sn * cp - c * sp;
+  cd = c * cp + sn * sp;
+}
+
 }  // namespace turbodyn::ball_detail

@@ -2,6 +2,7 @@
 // without friction and damping, the energy balance with them, evaluation caching, bad input.
 #include "model/elements/ball/ball_bearing.h"
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/elements/ball/race_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -207,6 +208,96 @@ TEST(BallBearing, PowerFlowProbesSplitTheShaftPowerAndTheLosses) {
   e.eval_probes(s, q, v, z.data(), *ws, out.data());
   EXPECT_EQ(probe("cage_x"), 3e-6);
   EXPECT_EQ(probe("cage_y"), -2e-6);
+}
+
+TEST(BallBearing, Eq23FrictionLawIsTheClosedForm) {
+  // mu(v) / v of the paper's Eq. 23 against the closed form with std::tanh, on both sides of each branch of the
+  // evaluation (v / v2 = 1e-4, 0.5, 20) and over nine decades of slip; mu_0 / v2 at v = 0.
+  const double mu0 = 0.10, mur = 0.05, v1 = 0.05, v2 = 0.005;
+  const auto closed = [&](double v) { return (mur + (mu0 - mur) * std::exp(-v / v1)) * std::tanh(v / v2) / v; };
+  EXPECT_DOUBLE_EQ(ball_detail::eq23_mu_over_slip(0.0, mu0, mur, v1, v2), mu0 / v2);
+  std::vector<double> slips;
+  for (double x : {1e-4, 0.5, 20.0})
+    for (double f : {1.0 - 1e-12, 1.0, 1.0 + 1e-12, 0.9, 1.1}) slips.push_back(x * f * v2);
+  for (double v = 1e-9; v < 10.0; v *= 1.37) slips.push_back(v);
+  for (double v : slips) {
+    const double got = ball_detail::eq23_mu_over_slip(v, mu0, mur, v1, v2), want = closed(v);
+    // Below v / v2 = 1e-4 the series 1 - x^2/3 of tanh(x)/x is exact to 2e-17; elsewhere a few ulp.
+    EXPECT_NEAR(got, want, 2e-15 * want) << "slip " << v << " m/s";
+  }
+}
+
+TEST(BallBearing, LoadCubeRootFromTheHertzApproachIsStdCbrt) {
+  // The spin moment's contact radius needs Q^(1/3); load_cbrt starts from Q_H^(1/3) = K^(1/3) delta^(1/2) and
+  // refines it when damping has moved Q off Q_H, or falls back to std::cbrt.
+  for (double K : {3.1e9, 8.7e9})
+    for (double delta = 1e-9; delta < 1e-4; delta *= 3.1) {
+      const double root = std::sqrt(delta), QH = K * delta * root, cbrt_QH = std::cbrt(K) * root;
+      for (double ratio : {0.0, 0.5, 0.89, 0.9, 0.95, 0.999, 1.0, 1.0001, 1.05, 1.1, 1.11, 2.0}) {
+        const double Q = ratio * QH;
+        EXPECT_NEAR(ball_detail::load_cbrt(Q, QH, cbrt_QH), std::cbrt(Q), 1e-15 * std::cbrt(Q))
+            << "delta " << delta << ", Q / Q_H " << ratio;
+      }
+    }
+}
+
+TEST(BallBearing, PocketGeometryIsTheCartesianOne) {
+  // The pocket geometry from the angles' sines and cosines against the same construction in housing coordinates:
+  // ball centre ((R_p + rho) cos psi, (R_p + rho) sin psi, zeta), pocket centre c + R_p (cos phi, sin phi, 0),
+  // their difference turned into the ball's orbital basis. Small and large offsets of either sign, one beyond
+  // a quarter turn (the cos < 0 branch), and angles of thousands of radians.
+  const double Rp = 8.75e-3, rho = 3e-7, zeta = -2e-6;
+  const Eigen::Vector3d c_h(4e-6, -7e-6, 1e-6);  // cage centre, housing frame
+  for (double psi : {0.3, -2.1, 6283.4})
+    for (double dpsi : {0.0, 1e-9, -1e-5, 0.0137, -0.02, 2.0, -3.1}) {
+      const double phi = psi - dpsi;
+      const double c = std::cos(psi), sn = std::sin(psi);
+      double sd, cd;
+      ball_detail::pocket_offset(c, sn, std::cos(phi), std::sin(phi), sd, cd);
+      ball_detail::PocketGeometry g;
+      ball_detail::pocket_geometry(rho, zeta, sd, cd, Rp, ball_detail::to_orbital(c_h.x(), c_h.y(), c_h.z(), c, sn), g);
+      const Eigen::Vector3d ball((Rp + rho) * c, (Rp + rho) * sn, zeta);
+      const Eigen::Vector3d pocket_h = Rp * Eigen::Vector3d(std::cos(phi), std::sin(phi), 0.0);
+      const Eigen::Vector3d d_h = ball - c_h - pocket_h;
+      const Eigen::Vector3d d_o = ball_detail::to_orbital(d_h.x(), d_h.y(), d_h.z(), c, sn);
+      const Eigen::Vector3d p_o = ball_detail::to_orbital(pocket_h.x(), pocket_h.y(), 0.0, c, sn);
+      // Tolerance: the housing-frame construction subtracts two vectors of length R_p (round-off 2e-18 m) and
+      // psi - dpsi near 6,283 rad rounds phi by up to 5e-13 rad (4e-15 m at R_p).
+      const double tol = (psi > 100.0 ? 1e-14 : 1e-17);
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(g.delta_vec(i), d_o(i), tol) << "psi " << psi << ", dpsi " << dpsi << ", component " << i;
+        EXPECT_NEAR(g.pocket(i), p_o(i), tol + 1e-15 * Rp) << "psi " << psi << ", dpsi " << dpsi;
+      }
+      EXPECT_NEAR(g.dist, d_h.norm(), tol);
+    }
+}
+
+TEST(BallBearing, PocketContactsRepeatWithTheOrbitAngle) {
+  // The pockets' geometry comes from the sines and cosines of the ball and cage angles (no reduction of their
+  // difference): a thousand turns added to every ball and to the cage give the same forces to the precision the
+  // angles carry (psi near 6,300 rad has an ulp of 9e-13 rad, 8 pm at the pitch circle, against a pocket
+  // penetration of 20 um). Ball 2 pressed into its pocket from either side of the cage angle's zero.
+  BallBearingSpec spec = reference_bearing();
+  const BallBearingElement e("ref", spec, 0, 9.81);
+  const double W = 60000 * kRpm;
+  const SpinState s{0.0, W, 0.0, 0.0};
+  for (double sign : {1.0, -1.0}) {
+    std::vector<double> z(e.n_states()), zdot0(e.n_states()), zdot1(e.n_states());
+    e.initial_states(z.data());
+    e.steady_states(W, z.data());
+    z[e.ball_offset(2) + 0] += sign * 1.2 * spec.pocket_clearance / (0.5 * spec.pitch_diameter);
+    const double q[4] = {2e-6, -1e-6, 2e-5, -1e-5}, v[4] = {0.02, -0.01, 3.0, 2.0};
+    BallBearingLoads loads0, loads1;
+    e.calc_bearing(s, q, v, z.data(), OuterRingKinematics{}, loads0, zdot0.data());
+    ASSERT_GT(loads0.friction_loss_pocket, 0.0);
+    for (int j = 0; j < spec.n_balls; ++j) z[e.ball_offset(j)] += 2000.0 * M_PI;
+    z[e.cage_offset() + 3] += 2000.0 * M_PI;
+    e.calc_bearing(s, q, v, z.data(), OuterRingKinematics{}, loads1, zdot1.data());
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(loads1.shaft[i], loads0.shaft[i], 1e-6 * std::abs(loads0.shaft[i]) + 1e-9);
+    EXPECT_NEAR(loads1.friction_loss_pocket, loads0.friction_loss_pocket, 1e-6 * loads0.friction_loss_pocket);
+    for (int i = 0; i < e.n_states(); ++i)
+      EXPECT_NEAR(zdot1[i], zdot0[i], 1e-6 * std::abs(zdot0[i]) + 1e-9) << "state " << i << ", sign " << sign;
+  }
 }
 
 TEST(BallBearing, PlanarTractionIgnoresSlipAcrossTheRollingDirection) {
