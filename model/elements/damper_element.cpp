@@ -29,7 +29,9 @@ DamperElement::DamperElement(const LinearBearing& bearing, int x_dof, const Damp
 }
 
 std::unique_ptr<ElementWorkspace> DamperElement::make_workspace() const {
-  return std::make_unique<DamperWorkspace>(reynolds::FilmSolver(geometry_, viscosity_, options_));
+  auto w = std::make_unique<DamperWorkspace>(reynolds::FilmSolver(geometry_, viscosity_, options_));
+  w->solver.set_forces_only(true);  // the ring reads the film's fx, fy alone
+  return w;
 }
 
 void DamperElement::initial_states(double* z) const {

@@ -77,6 +77,7 @@ struct FilmSolver::Impl {
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
   std::vector<ByteFlag> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
+  bool forces_only = false;  // outputs(): the loads only (set_forces_only)
   // The band holds the factorisation of the last successful None or Gumbel solve, for the cavitated set in cr and
   // the film thickness of (ex, ey, sx, sy) = factored_at (solve_same_matrix).
   bool factored = false;
@@ -1026,6 +1027,15 @@ struct FilmSolver::Impl {
   }
 
   void outputs(const FilmState& s, FilmResult& r) {
+    if (forces_only)
+      outputs_of<false>(s, r);
+    else
+      outputs_of<true>(s, r);
+  }
+
+  // Full: also the torques' sums (Couette and Poiseuille shear), the end and hole flows.
+  template <bool Full>
+  void outputs_of(const FilmState& s, FilmResult& r) {
     const bool jfo = o.cavitation == Cavitation::MassConserving;
     // Expand the reduced solution to the full grid.
     int ncav = 0;
@@ -1054,8 +1064,10 @@ struct FilmSolver::Impl {
         const double pk = p[k], w = wz[j];
         rp += pk * w;
         rpz += pk * zn[j] * w;
-        rc += theta[k] / hN[k] * wc[j];
-        rz += hE[k] * (p[ie * nz + j] - pk) * w;
+        if constexpr (Full) {
+          rc += theta[k] / hN[k] * wc[j];
+          rz += hE[k] * (p[ie * nz + j] - pk) * w;
+        }
         pmax = std::max(pmax, pk);
       }
       if (seal_conductance > 0.0) {
@@ -1095,43 +1107,50 @@ struct FilmSolver::Impl {
       pois += rz;
     }
     // Couette end strips with h at the end planes.
-    const double c = g.clearance, zl = -0.5 * g.length, zu = 0.5 * g.length;
-    if (seal_conductance == 0.0) {
-      // The Poiseuille shear's axial sums get the forces' end term, so that the film's torque balance
-      // T_journal + T_bush = -(e x F)_z holds as closely as before: between two plain columns the integrand is
-      // h_e (p_east - p) (zero at the ends), its end slope h_e(end) (p'_east(end) - p'(end)).
-      for (int i = 0; i < n; ++i) {
-        const int ie = (i + 1) % n;
-        if (!plain_column[i] || !plain_column[ie]) continue;
-        const double hl = c - (s.ex + zl * s.sx) * cte[i] - (s.ey + zl * s.sy) * ste[i];
-        const double hu = c - (s.ex + zu * s.sx) * cte[i] - (s.ey + zu * s.sy) * ste[i];
-        pois -= hend * hend / 12.0 * (hu * (end_slope_hi[ie] - end_slope_hi[i]) - hl * (end_slope_lo[ie] - end_slope_lo[i]));
-      }
-    }
-    double ends = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const double hl = c - (s.ex + zl * s.sx) * ct[i] - (s.ey + zl * s.sy) * st[i];
-      const double hu = c - (s.ex + zu * s.sx) * ct[i] - (s.ey + zu * s.sy) * st[i];
-      ends += 0.5 * (theta[i * nz] / hl + theta[i * nz + nz - 1] / hu);
-    }
-    couette += ends * 2.0 * (zf[0] + 0.5 * g.length);  // the end strips
     r.fx = -R * dth * sc;
     r.fy = -R * dth * ss;
     r.my = -R * dth * zc;  // sum of z dFx
     r.mx = R * dth * zs;   // -sum of z dFy
     if (sym) r.mx = r.my = 0.0;
-    const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * dx;
-    const double tp = -R * 0.5 * pois;
-    r.torque_inner = tc + tp;
-    r.torque_outer = -tc + tp;
-    double qe = 0.0;
-    for (int i = 0; i < n; ++i)
-      qe += aF[i * nzf] * (p[i * nz] - pamb) + aF[i * nzf + nz] * (p[i * nz + nz - 1] - pamb);
-    r.flow_ends = qe;
-    r.hole_flows.resize(g.holes.size());
-    std::fill(r.hole_flows.begin(), r.hole_flows.end(), 0.0);
-    for (int k : dir_nodes)
-      if (kind[k] >= 0) r.hole_flows[kind[k]] += outflow_full(k / nz, k % nz, jfo);
+    if constexpr (!Full) {
+      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+      r.torque_inner = r.torque_outer = r.flow_ends = nan;
+      r.hole_flows.resize(g.holes.size());
+      std::fill(r.hole_flows.begin(), r.hole_flows.end(), nan);
+    } else {
+      const double c = g.clearance, zl = -0.5 * g.length, zu = 0.5 * g.length;
+      if (seal_conductance == 0.0) {
+        // The Poiseuille shear's axial sums get the forces' end term, so that the film's torque balance
+        // T_journal + T_bush = -(e x F)_z holds as closely as before: between two plain columns the integrand is
+        // h_e (p_east - p) (zero at the ends), its end slope h_e(end) (p'_east(end) - p'(end)).
+        for (int i = 0; i < n; ++i) {
+          const int ie = (i + 1) % n;
+          if (!plain_column[i] || !plain_column[ie]) continue;
+          const double hl = c - (s.ex + zl * s.sx) * cte[i] - (s.ey + zl * s.sy) * ste[i];
+          const double hu = c - (s.ex + zu * s.sx) * cte[i] - (s.ey + zu * s.sy) * ste[i];
+          pois -= hend * hend / 12.0 * (hu * (end_slope_hi[ie] - end_slope_hi[i]) - hl * (end_slope_lo[ie] - end_slope_lo[i]));
+        }
+      }
+      double ends = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const double hl = c - (s.ex + zl * s.sx) * ct[i] - (s.ey + zl * s.sy) * st[i];
+        const double hu = c - (s.ex + zu * s.sx) * ct[i] - (s.ey + zu * s.sy) * st[i];
+        ends += 0.5 * (theta[i * nz] / hl + theta[i * nz + nz - 1] / hu);
+      }
+      couette += ends * 2.0 * (zf[0] + 0.5 * g.length);  // the end strips
+      const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * dx;
+      const double tp = -R * 0.5 * pois;
+      r.torque_inner = tc + tp;
+      r.torque_outer = -tc + tp;
+      double qe = 0.0;
+      for (int i = 0; i < n; ++i)
+        qe += aF[i * nzf] * (p[i * nz] - pamb) + aF[i * nzf + nz] * (p[i * nz + nz - 1] - pamb);
+      r.flow_ends = qe;
+      r.hole_flows.resize(g.holes.size());
+      std::fill(r.hole_flows.begin(), r.hole_flows.end(), 0.0);
+      for (int k : dir_nodes)
+        if (kind[k] >= 0) r.hole_flows[kind[k]] += outflow_full(k / nz, k % nz, jfo);
+    }
     r.max_pressure = pmax;
     r.cavitated_fraction = static_cast<double>(ncav) / (n * nz);
     r.fallback_nodes = nfallback;
@@ -1311,6 +1330,7 @@ std::vector<double> FilmSolver::theta_nodes() const { return impl_->th; }
 std::vector<double> FilmSolver::z_nodes() const { return impl_->zn; }
 std::vector<double> FilmSolver::z_widths() const { return impl_->wz; }
 void FilmSolver::reset_warm_start() { impl_->warm = false; }
+void FilmSolver::set_forces_only(bool forces_only) { impl_->forces_only = forces_only; }
 bool FilmSolver::set_viscosity(double viscosity) {
   Impl& d = *impl_;
   if (!(viscosity > 0.0) || !std::isfinite(viscosity)) return false;

@@ -175,6 +175,11 @@ class FilmSolver {
   /// Forget the warm-start state (the next solve starts cold).
   void reset_warm_start();
 
+  /// For a caller that reads only the loads (a squeeze-film damper): true makes every solve fill fx, fy, mx, my,
+  /// max_pressure, cavitated_fraction and the counters as before, bit for bit, and skip the torques, flows and hole
+  /// flows, which it sets to NaN. The pressure field and the warm start are those of a full solve.
+  void set_forces_only(bool forces_only);
+
   /// Sets the film's viscosity (Pa s, > 0 and finite; false and nothing changed otherwise) for the following
   /// solves: a film whose temperature is a state of the run (FloatingRingElement's thermal films). A new value
   /// drops the factorisation solve_same_matrix() reuses; the same value changes nothing. Allocation-free.

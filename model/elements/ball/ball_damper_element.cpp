@@ -59,6 +59,7 @@ BallDamperElement::BallDamperElement(const std::string& name, const BallBearingS
 std::unique_ptr<ElementWorkspace> BallDamperElement::make_workspace() const {
   auto w = std::make_unique<BallDamperWorkspace>(reynolds::FilmSolver(geometry_, viscosity_, options_), n_states(),
                                                  n_core_);
+  w->solver.set_forces_only(true);  // the ring reads the film's fx, fy alone
   w->bearing = bearing_.make_workspace();
   w->fd_film.hole_flows.reserve(8);
   w->fd_column.hole_flows.reserve(8);

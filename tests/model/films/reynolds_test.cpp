@@ -787,4 +787,61 @@ TEST(Linearised, OneNewtonStepIsSecondOrderInTheThicknessChange) {
 }
 
 }  // namespace
+TEST(ForcesOnly, LoadsAreThoseOfAFullSolveAndTheRestIsNaN) {
+  // set_forces_only(true) (the squeeze-film dampers): the same forces, moments, peak pressure, cavitated share and
+  // counters bit for bit, torques and flows NaN; the warm start is a full solve's, so a sequence of states gives
+  // the same loads with and without it, by solve(), solve_same_matrix() and solve_linearised(). A tilted,
+  // spinning film with a hole (no mid-width symmetry) and a squeeze film of a damper (symmetric), both models of
+  // the active set that have a factorisation to reuse.
+  FilmGeometry tilted = plain(0.7, 48, 10, 0.005, 15e-6);
+  tilted.holes = {Hole{kPi / 2, 0.0, 0.002, 2e5}};
+  FilmGeometry damper = plain(0.3, 48, 8, 0.01025, 51e-6);
+  damper.holes = {Hole{kPi / 2, 0.0, 0.002, 4e5}};
+  for (const FilmGeometry* g : {&tilted, &damper}) {
+    FilmSolver full(*g, 0.0108, with(Cavitation::Gumbel)), lean(*g, 0.0108, with(Cavitation::Gumbel));
+    lean.set_forces_only(true);
+    const double c = g->clearance;
+    for (int step = 0; step < 6; ++step) {
+      FilmState s;
+      s.ex = c * (0.3 + 0.1 * step) * std::cos(0.4 * step);
+      s.ey = c * (0.3 + 0.1 * step) * std::sin(0.4 * step);
+      s.vx = -0.02 * step;
+      s.vy = 0.01;
+      if (g == &tilted) {
+        s.sy = 0.2 * c / g->length;
+        s.omega_inner = 10000.0;
+      }
+      FilmResult rf, rl;
+      const int kind = step % 3;  // solve, same matrix (new velocities), linearised (moved a little)
+      if (kind == 1) {
+        s.ex = c * (0.3 + 0.1 * (step - 1)) * std::cos(0.4 * (step - 1));
+        s.ey = c * (0.3 + 0.1 * (step - 1)) * std::sin(0.4 * (step - 1));
+        ASSERT_TRUE(full.solve_same_matrix(s, rf));
+        ASSERT_TRUE(lean.solve_same_matrix(s, rl));
+      } else if (kind == 2) {
+        s.ex = c * (0.3 + 0.1 * (step - 2)) * std::cos(0.4 * (step - 2)) + 1e-3 * c;
+        s.ey = c * (0.3 + 0.1 * (step - 2)) * std::sin(0.4 * (step - 2));
+        ASSERT_TRUE(full.solve_linearised(s, rf));
+        ASSERT_TRUE(lean.solve_linearised(s, rl));
+      } else {
+        rf = solve_ok(full, s);
+        rl = solve_ok(lean, s);
+      }
+      EXPECT_EQ(rl.fx, rf.fx) << "step " << step;
+      EXPECT_EQ(rl.fy, rf.fy) << "step " << step;
+      EXPECT_EQ(rl.mx, rf.mx) << "step " << step;
+      EXPECT_EQ(rl.my, rf.my) << "step " << step;
+      EXPECT_EQ(rl.max_pressure, rf.max_pressure);
+      EXPECT_EQ(rl.cavitated_fraction, rf.cavitated_fraction);
+      EXPECT_EQ(rl.iterations, rf.iterations);
+      EXPECT_EQ(rl.symmetric, rf.symmetric);
+      EXPECT_TRUE(std::isfinite(rf.torque_inner) && std::isfinite(rf.flow_ends));
+      EXPECT_TRUE(std::isnan(rl.torque_inner) && std::isnan(rl.torque_outer) && std::isnan(rl.flow_ends));
+      ASSERT_EQ(rl.hole_flows.size(), 1u);
+      EXPECT_TRUE(std::isnan(rl.hole_flows[0]));
+    }
+    EXPECT_EQ(lean.pressure(), full.pressure());
+  }
+}
+
 }  // namespace turbodyn::reynolds
