@@ -9,7 +9,7 @@
 #   REV_A, REV_B  any git revisions (commit, branch, tag, HEAD~2, ...) of this repository
 #   N             runs per case and revision (default 3)
 # Environment:
-#   CASES         cases to run, any of floating_ring ball ball_sfd (default all three)
+#   CASES         cases to run, any of floating_ring ball ball_sfd ball_top ball_sfd_top (default the first three)
 #   COMPARE_DIR   where the revisions are checked out and built (default /tmp/turbodyn-compare); a revision's
 #                 build is kept there and reused by the next call (delete the directory to force a rebuild)
 #   JOBS          build jobs (default 2)
@@ -67,7 +67,10 @@ args_for() {
     floating_ring) echo "examples/reference_floating_ring.toml --set speed.end=22500rpm --set speed.duration=0.6" ;;
     ball) echo "examples/reference_ball.toml --set speed.end=15000rpm --set speed.duration=0.4" ;;
     ball_sfd) echo "examples/reference_ball_sfd.toml --set speed.end=15000rpm --set speed.duration=0.4" ;;
-    *) echo "compare_revisions: unknown case '$1' (floating_ring, ball, ball_sfd)" >&2; return 1 ;;
+    # Top speed, where the full ball runs spend their time: 1,000 rpm of the ramp (26.7 ms) started mid-ramp.
+    ball_top) echo "examples/reference_ball.toml --set speed.start=140000rpm --set speed.end=141000rpm --set speed.duration=0.02667" ;;
+    ball_sfd_top) echo "examples/reference_ball_sfd.toml --set speed.start=140000rpm --set speed.end=141000rpm --set speed.duration=0.02667" ;;
+    *) echo "compare_revisions: unknown case '$1' (floating_ring, ball, ball_sfd, ball_top, ball_sfd_top)" >&2; return 1 ;;
   esac
 }
 
@@ -126,9 +129,9 @@ def dev(a, b, keys):
             worst, where = d, k
     return worst, where
 
-head = "%-14s %-3s %9s %13s %8s %9s %8s %9s %9s %11s %9s  %s"
-print(head % ("case", "rev", "wall [s]", "range", "B/A", "CPU [s]", "B/A", "steps", "rhs", "elem calls", "max dev",
-              "worst channel"))
+head = "%-14s %-3s %9s %13s %8s %9s %8s %9s %8s %9s %11s %9s  %s"
+print(head % ("case", "rev", "wall [s]", "range", "B/A", "CPU [s]", "B/A", "steps", "per step", "rhs", "elem calls",
+              "max dev", "worst channel"))
 for c in cases:
     A, B = load(c, "a"), load(c, "b")
     if not A or not B:
@@ -137,22 +140,25 @@ for c in cases:
     med = lambda runs, f: statistics.median(f(r) for r in runs)
     wall = [med(R, lambda r: r["stats"]["wall_time_s"]) for R in (A, B)]
     cpu = [med(R, lambda r: r["_cpu"]) for R in (A, B)]
+    steps = [med(R, lambda r: r["stats"]["steps"]) for R in (A, B)]
     for k, (label, R) in enumerate((("A", A), ("B", B))):
         st = R[-1]["stats"]
         same = len({r["stats"]["steps"] for r in R}) == 1
         complete = all(r["complete"] for r in R)
         walls = [r["stats"]["wall_time_s"] for r in R]
         rng = "%.2f-%.2f" % (min(walls), max(walls))
-        ratio_w = ratio_c = d4s = worst = ""
+        ratio_w = ratio_c = ratio_s = d4s = worst = ""
         if k == 1:
+            ratio_s = "%.3f" % ((cpu[1] / steps[1]) / (cpu[0] / steps[0]))
             ratio_w, ratio_c = "%.3f" % (wall[1] / wall[0]), "%.3f" % (cpu[1] / cpu[0])
             d4, _ = dev(A[-1], B[-1], key4)
             keys = [p for p in A[-1]["probes"] if p.startswith("disk.") or p.endswith(".fx") or p.endswith(".fy")]
             da, wa = dev(A[-1], B[-1], keys)
             d4s, worst = "%.3f %%" % (100 * d4), "%.3f %% (%s)" % (100 * da, wa)
         print(head % (c if k == 0 else "", label, "%.2f" % wall[k], rng, ratio_w, "%.2f" % cpu[k], ratio_c,
-                      "%d%s" % (st["steps"], "" if same else "*"), st["rhs_calls"], st["force_element_calls"],
+                      "%d%s" % (st["steps"], "" if same else "*"), ratio_s, st["rhs_calls"], st["force_element_calls"],
                       d4s, worst + ("" if complete else "  INCOMPLETE RUN")))
-print("wall: integration wall time (summary.json); CPU: user + sys of the process; medians of the runs; max dev: "
+print("wall: integration wall time (summary.json); CPU: user + sys of the process; medians of the runs; per step: "
+      "B/A of the median CPU per median step count (the ball windows' steps move with round-off); max dev: "
       "maxima of compressor x, y, fx, fy, B against A; * = the runs of one revision took different step counts")
 EOF
