@@ -446,8 +446,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
       const Vec3 cage_centre = to_orbital(cg[0], cg[1], cg[2], c, sn);
       PocketGeometry pg;
       double sd, cd;
-      pocket_offset(c, sn, cage_c * pocket_cos_[j] - cage_s * pocket_sin_[j],
-                    cage_s * pocket_cos_[j] + cage_c * pocket_sin_[j], sd, cd);
+      pocket_offset(c, sn, pocket_cos(j, cage_c, cage_s), pocket_sin(j, cage_c, cage_s), sd, cd);
       pocket_geometry(rho, zeta, sd, cd, Rp, cage_centre, pg);
       const double delta = pg.dist - cp;
       if (delta > 0.0) {
@@ -750,8 +749,7 @@ double BallBearingElement::core_potential_energy(const double* q, const double* 
       V += 0.4 * hertz_outer_.stiffness * geo.delta * geo.delta * std::sqrt(geo.delta);
     PocketGeometry pg;
     double sd, cd;
-    pocket_offset(c, sn, cage_c * pocket_cos_[j] - cage_s * pocket_sin_[j],
-                  cage_s * pocket_cos_[j] + cage_c * pocket_sin_[j], sd, cd);
+    pocket_offset(c, sn, pocket_cos(j, cage_c, cage_s), pocket_sin(j, cage_c, cage_s), sd, cd);
     pocket_geometry(b[1], b[2], sd, cd, Rp, to_orbital(cg[0], cg[1], cg[2], c, sn), pg);
     const double dp = pg.dist - spec_.pocket_clearance;
     if (dp > 0.0) V += 0.4 * k_pocket_ * dp * dp * std::sqrt(dp);

@@ -231,6 +231,13 @@ class BallBearingElement final : public ForceElement {
   double m_ball_ = 0.0, i_ball_ = 0.0, i_cage_ = 0.0;
   double pitch_radius_ = 0.0;
   std::vector<double> pocket_cos_, pocket_sin_;  // cos, sin of 2 pi j / Z: the pockets' angles in the cage
+  // cos and sin of pocket j's angle, cage angle + 2 pi j / Z, from those of the cage angle (cage_c, cage_s).
+  double pocket_cos(int j, double cage_c, double cage_s) const {
+    return cage_c * pocket_cos_[j] - cage_s * pocket_sin_[j];
+  }
+  double pocket_sin(int j, double cage_c, double cage_s) const {
+    return cage_s * pocket_cos_[j] + cage_c * pocket_sin_[j];
+  }
   // Groove-centre circles: radius offset from the pitch radius and axial position (ring frames), and the
   // unloaded distance (f - 1/2) D from the groove centre to the ball centre.
   double inner_dr_ = 0.0, inner_z_ = 0.0, inner_r_ = 0.0;
