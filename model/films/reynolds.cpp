@@ -1106,7 +1106,6 @@ struct FilmSolver::Impl {
       couette += rc;
       pois += rz;
     }
-    // Couette end strips with h at the end planes.
     r.fx = -R * dth * sc;
     r.fy = -R * dth * ss;
     r.my = -R * dth * zc;  // sum of z dFx
@@ -1131,6 +1130,7 @@ struct FilmSolver::Impl {
           pois -= hend * hend / 12.0 * (hu * (end_slope_hi[ie] - end_slope_hi[i]) - hl * (end_slope_lo[ie] - end_slope_lo[i]));
         }
       }
+      // Couette end strips with h at the end planes.
       double ends = 0.0;
       for (int i = 0; i < n; ++i) {
         const double hl = c - (s.ex + zl * s.sx) * ct[i] - (s.ey + zl * s.sy) * st[i];

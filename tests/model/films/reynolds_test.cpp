@@ -802,9 +802,12 @@ TEST(ForcesOnly, LoadsAreThoseOfAFullSolveAndTheRestIsNaN) {
     lean.set_forces_only(true);
     const double c = g->clearance;
     for (int step = 0; step < 6; ++step) {
+      // Every third step a new position and solve(); then the same position with new velocities (same matrix);
+      // then that position moved by 1e-3 c (linearised).
+      const int kind = step % 3, base = step - kind;
       FilmState s;
-      s.ex = c * (0.3 + 0.1 * step) * std::cos(0.4 * step);
-      s.ey = c * (0.3 + 0.1 * step) * std::sin(0.4 * step);
+      s.ex = c * (0.3 + 0.1 * base) * std::cos(0.4 * base) + (kind == 2 ? 1e-3 * c : 0.0);
+      s.ey = c * (0.3 + 0.1 * base) * std::sin(0.4 * base);
       s.vx = -0.02 * step;
       s.vy = 0.01;
       if (g == &tilted) {
@@ -812,15 +815,10 @@ TEST(ForcesOnly, LoadsAreThoseOfAFullSolveAndTheRestIsNaN) {
         s.omega_inner = 10000.0;
       }
       FilmResult rf, rl;
-      const int kind = step % 3;  // solve, same matrix (new velocities), linearised (moved a little)
       if (kind == 1) {
-        s.ex = c * (0.3 + 0.1 * (step - 1)) * std::cos(0.4 * (step - 1));
-        s.ey = c * (0.3 + 0.1 * (step - 1)) * std::sin(0.4 * (step - 1));
         ASSERT_TRUE(full.solve_same_matrix(s, rf));
         ASSERT_TRUE(lean.solve_same_matrix(s, rl));
       } else if (kind == 2) {
-        s.ex = c * (0.3 + 0.1 * (step - 2)) * std::cos(0.4 * (step - 2)) + 1e-3 * c;
-        s.ey = c * (0.3 + 0.1 * (step - 2)) * std::sin(0.4 * (step - 2));
         ASSERT_TRUE(full.solve_linearised(s, rf));
         ASSERT_TRUE(lean.solve_linearised(s, rl));
       } else {
