@@ -97,13 +97,16 @@ namespace {
 struct BallBearingWorkspace : ElementWorkspace {
   BallBearingWorkspace(int n, int n_balls)
       : zdot(n, 0.0), in(8 + n + 4, 0.0), out0(4 + n + 4, 0.0), out1(4 + n + 4, 0.0), share0(n_balls), share1(n_balls),
-        step(n_balls, 0.0), key(4, n) {}
+        step(n_balls, 0.0), key(4, n) {
+    contacts.parts.resize(3 * static_cast<std::size_t>(n_balls));
+  }
   std::vector<double> zdot;
   // add_jacobian scratch: inputs [q; v; z], outputs [f; zdot] (base and perturbed), the balls' shares, steps;
   // room for the 4 radial outer-ring states of a wrapping element (add_jacobian_of).
   std::vector<double> in, out0, out1;
   std::vector<BallShare> share0, share1;
   std::vector<double> step;
+  BallContactCache contacts;  // the base state's contacts
   // The loads of the last evaluation for the engine and its inputs (speed, q, v, z), so that the powers and the
   // probes at the same state (every right-hand side asks for both powers) do not evaluate the bearing again.
   EvaluationKey key;
@@ -312,9 +315,12 @@ double BallBearingElement::tolerance_scale(int i) const {
 
 void BallBearingElement::calc_bearing(const SpinState& st, const double* q, const double* v, const double* z,
                                      const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
-                                     BallShare* shares) const {
+                                     BallShare* shares, BallContactCache* cache, unsigned redo) const {
   loads = BallBearingLoads{};
   const int Z = spec_.n_balls;
+  const bool store = cache != nullptr && redo == kAllContacts;
+  if (cache != nullptr ? cache->parts.size() != static_cast<std::size_t>(3 * Z) : redo != kAllContacts)
+    throw std::logic_error("ball bearing '" + name() + "': partial evaluation without a contact cache of 3 Z parts");
   const double Rp = pitch_radius_, Rb = 0.5 * spec_.ball_diameter, m = m_ball_, I = i_ball_, g = gravity_;
   const double side = spec_.side;
   const double d_race = spec_.contact_damping, d_pocket = spec_.pocket_damping, cp = spec_.pocket_clearance;
@@ -345,161 +351,223 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   inner.dr = inner_dr_, inner.dz = inner_z_, inner.r0 = inner_r_;
   outer_race.dr = outer_dr_, outer_race.dz = outer_z_, outer_race.r0 = outer_r_;
 
+  // One ball's state as its contacts see it.
+  struct Ball {
+    double c, sn, R, rho, zeta, psid;
+    Vec3 Vb, wb;
+  };
+  // Housing-frame components of an orbital-basis vector of the ball at (c, sn).
+  const auto to_housing = [](const Vec3& a, double c, double sn, double* out) {
+    out[0] = a.x() * c - a.y() * sn;
+    out[1] = a.x() * sn + a.y() * c;
+    out[2] = a.z();
+  };
+
+  // The ball being evaluated: the sums of its contacts' force and moment (orbital basis) and its share of the sums
+  // over the balls.
+  Vec3 F_ball = Vec3::Zero(), M_ball = Vec3::Zero();
+  BallShare* share = nullptr;
+  // Contact k (0 inner race, 1 outer race, 2 pocket) of the ball adds its force and moment on the ball and, on the
+  // other body (housing frame, BallContactPart::body), to the sums; a contact being cached is also stored (dst).
+  const auto take = [&](int k, const Vec3& F, const Vec3& M, const double* body, BallContactPart* dst) {
+    F_ball += F;
+    M_ball += M;
+    if (k == 0) {
+      F_shaft += Vec3(body[0], body[1], body[2]);
+      M_shaft += Vec3(body[3], body[4], body[5]);
+      if (share) {
+        share->shaft[0] = body[0];
+        share->shaft[1] = body[1];
+        for (int i = 0; i < 3; ++i) share->shaft[2 + i] = body[3 + i];
+      }
+    } else if (k == 1) {
+      F_outer += Vec3(body[0], body[1], body[2]);
+      if (share)
+        for (int i = 0; i < 3; ++i) share->outer[i] = body[i];
+    } else {
+      F_cage += Vec3(body[0], body[1], body[2]);
+      T_cage += body[3];
+      if (share)
+        for (int i = 0; i < 4; ++i) share->cage[i] = body[i];
+    }
+    if (dst) {
+      for (int i = 0; i < 3; ++i) dst->ball[i] = F(i), dst->ball[3 + i] = M(i);
+      for (int i = 0; i < 6; ++i) dst->body[i] = body[i];
+    }
+  };
+
+  // Ball-race contact k (0 inner, 1 outer): Hertz + damping (Eq. 21, clipped so that it never pulls), friction
+  // (Eqs. 22-23) at the slip velocity of the contact centre, spin moment.
+  const auto race_contact = [&](int k, const Ball& bl, BallContactPart* dst) {
+    if (dst) *dst = BallContactPart{};
+    const Race& race = k == 0 ? inner : outer_race;
+    const HertzPointContact& hz = k == 0 ? hertz_inner_ : hertz_outer_;
+    RaceGeometry geo;
+    if (!race_geometry(race, bl.R, bl.rho, bl.zeta, geo)) return;
+    const Vec3& Vb = bl.Vb;
+    const Vec3& wb = bl.wb;
+    const double root_delta = std::sqrt(geo.delta);
+    const double QH = hz.stiffness * geo.delta * root_delta;
+    const double ddot = geo.u.dot(Vb - race.velocity) - geo.u_l.dot(race.tilt_rate.cross(geo.p));
+    const double Q = std::max(0.0, QH + d_race * ddot);
+    diss += (Q - QH) * ddot;
+    Vec3 Fr = Q * geo.u;                 // on the ring
+    Vec3 Mr = geo.p.cross(Q * geo.u_l);  // about the ring centre (generalised force of the small rotation)
+    Vec3 F = -Q * geo.u, M = Vec3::Zero();  // on the ball
+    if (k == 0) loads.shaft_power_normal += Fr.dot(race.velocity) + Mr.dot(race.tilt_rate);
+    double& friction_loss = k == 0 ? loads.friction_loss_inner : loads.friction_loss_outer;
+    if (friction && Q > 0.0) {
+      const Vec3 arm = Rb * geo.u;
+      const Vec3 lever = geo.p + arm;  // contact point from the ring centre
+      const Vec3 vrel = Vb + wb.cross(arm) - race.velocity - race.omega.cross(lever);
+      Vec3 vt = vrel - vrel.dot(geo.u) * geo.u;
+      if (planar) {
+        // The paper's planar contact: only the slip along the rolling direction, e_psi in the tangent plane.
+        const Vec3 roll = (Vec3(0.0, 1.0, 0.0) - geo.u.y() * geo.u).normalized();
+        vt = vt.dot(roll) * roll;
+      }
+      double per_slip = 0.0, u_entrain = 0.0;  // |F_t| / |v_t| in N s/m, entrainment speed in m/s
+      if (eyring) {
+        // Entrainment speed: the mean of the two surfaces' speeds relative to the contact point, which moves
+        // with the ball's orbit.
+        const Vec3 v_contact(0.0, bl.psid * (bl.R + arm.x()), 0.0);
+        Vec3 ue = 0.5 * ((Vb + wb.cross(arm) - v_contact) + (race.velocity + race.omega.cross(lever) - v_contact));
+        ue -= ue.dot(geo.u) * geo.u;
+        u_entrain = ue.norm();
+        per_slip = eyring_traction_per_slip(lubricant_, hz, Q, u_entrain, vt.norm());
+      } else {
+        per_slip = Q * mu_over_v(vt.norm());
+      }
+      const Vec3 Ft = -per_slip * vt;
+      F += Ft;
+      M += arm.cross(Ft);
+      Fr -= Ft;
+      Mr -= lever.cross(Ft);
+      diss -= Ft.dot(vt);
+      friction_loss -= Ft.dot(vt);
+      if (k == 0) loads.shaft_power_friction -= Ft.dot(race.velocity) + lever.cross(Ft).dot(race.tilt_rate);
+      if (spin) {
+        const double a = hz.radius_factor * load_cbrt(Q, QH, hz.cbrt_stiffness * root_delta);
+        const double ws = (wb - race.omega).dot(geo.u);
+        // Coulomb: (3 pi / 16) mu Q a; lubricated: the traction at the slip a |w_s| gives the same moment
+        // with mu = F / Q.
+        const double per_slip_spin = eyring ? eyring_traction_per_slip(lubricant_, hz, Q, u_entrain, std::abs(ws) * a)
+                                            : Q * mu_over_v(std::abs(ws) * a);
+        const double Ms = kSpinMoment * a * a * per_slip_spin * ws;
+        M -= Ms * geo.u;
+        Mr += Ms * geo.u;
+        diss += Ms * ws;
+        friction_loss += Ms * ws;
+        if (k == 0) loads.shaft_power_friction += Ms * geo.u.dot(race.tilt_rate);
+      }
+    }
+    qmax = std::max(qmax, Q);
+    if (k == 0) {
+      if (Q > 0.0) ai_r -= geo.u.x(), ai_z -= side * geo.u.z();
+    } else {
+      if (Q > 0.0) ao_r += geo.u.x(), ao_z += side * geo.u.z();
+    }
+    double body[6] = {0, 0, 0, 0, 0, 0};
+    to_housing(Fr, bl.c, bl.sn, body);
+    if (k == 0) to_housing(Mr, bl.c, bl.sn, body + 3);
+    take(k, F, M, body, dst);
+  };
+
+  // Ball-pocket contact (ball-guided cage, spherical pocket of clearance c_p).
+  const auto pocket_contact = [&](int j, const Ball& bl, BallContactPart* dst) {
+    if (dst) *dst = BallContactPart{};
+    const Vec3 cage_centre = to_orbital(cg[0], cg[1], cg[2], bl.c, bl.sn);
+    PocketGeometry pg;
+    double sd, cd;
+    pocket_offset(bl.c, bl.sn, pocket_cos(j, cage_c, cage_s), pocket_sin(j, cage_c, cage_s), sd, cd);
+    pocket_geometry(bl.rho, bl.zeta, sd, cd, Rp, cage_centre, pg);
+    const double delta = pg.dist - cp;
+    if (!(delta > 0.0)) return;
+    const Vec3& Vb = bl.Vb;
+    const Vec3 n = pg.delta_vec / pg.dist;
+    const Vec3 Vc = to_orbital(cg[4], cg[5], cg[6], bl.c, bl.sn);
+    const double wc = cg[7];
+    const Vec3 Vpocket = Vc + wc * Vec3(-pg.pocket.y(), pg.pocket.x(), 0.0);
+    const double QH = k_pocket_ * delta * std::sqrt(delta);
+    const double ddot = n.dot(Vb - Vpocket);
+    const double Q = std::max(0.0, QH + d_pocket * ddot);
+    diss += (Q - QH) * ddot;
+    Vec3 Fc = Q * n;  // on the cage
+    double Tc = Q * (pg.pocket.x() * n.y() - pg.pocket.y() * n.x());
+    Vec3 F = -Q * n, M = Vec3::Zero();  // on the ball
+    if (friction && Q > 0.0) {
+      const Vec3 arm = Rb * n;
+      const Vec3 lever = pg.pocket + pg.delta_vec + arm;  // contact point from the cage centre
+      const Vec3 vrel = Vb + bl.wb.cross(arm) - Vc - wc * Vec3(-lever.y(), lever.x(), 0.0);
+      const Vec3 vt = vrel - vrel.dot(n) * n;
+      const Vec3 Ft = (-Q * mu_over_v(vt.norm())) * vt;
+      F += Ft;
+      M += arm.cross(Ft);
+      Fc -= Ft;
+      Tc -= lever.x() * Ft.y() - lever.y() * Ft.x();
+      diss -= Ft.dot(vt);
+      loads.friction_loss_pocket -= Ft.dot(vt);
+    }
+    double body[6] = {0, 0, 0, Tc, 0, 0};
+    to_housing(Fc, bl.c, bl.sn, body);
+    take(2, F, M, body, dst);
+  };
+
   for (int j = 0; j < Z; ++j) {
     const double* b = z + ball_offset(j);
     double* bd = zdot + ball_offset(j);
-    const Vec3 F_shaft0 = F_shaft, M_shaft0 = M_shaft, F_outer0 = F_outer, F_cage0 = F_cage;
-    const double T_cage0 = T_cage;
-    const double psi = b[0], rho = b[1], zeta = b[2], psid = b[3];
-    const double c = std::cos(psi), sn = std::sin(psi);
-    const double R = Rp + rho;
-    const Vec3 Vb(b[4], R * psid, b[5]);
-    const Vec3 wb(b[6], b[7], b[8]);
+    Ball bl;
+    bl.psid = b[3];
+    bl.c = std::cos(b[0]);
+    bl.sn = std::sin(b[0]);
+    bl.rho = b[1];
+    bl.zeta = b[2];
+    bl.R = Rp + bl.rho;
+    bl.Vb = Vec3(b[4], bl.R * bl.psid, b[5]);
+    bl.wb = Vec3(b[6], b[7], b[8]);
+    const double c = bl.c, sn = bl.sn, psid = bl.psid, R = bl.R;
 
-    inner.centre = to_orbital(q[0], q[1], 0.0, c, sn);
-    inner.velocity = to_orbital(v[0], v[1], 0.0, c, sn);
-    inner.tilt = to_orbital(q[2], q[3], 0.0, c, sn);
-    inner.tilt_rate = to_orbital(v[2], v[3], 0.0, c, sn);
-    inner.omega = to_orbital(wi_h.x(), wi_h.y(), wi_h.z(), c, sn);
-    outer_race.centre = to_orbital(outer.x, outer.y, zo, c, sn);
-    outer_race.velocity = to_orbital(outer.vx, outer.vy, vzo, c, sn);
-
-    Vec3 F = Vec3(-m * g * sn, -m * g * c, 0.0);  // gravity along -y
-    Vec3 M = Vec3::Zero();
-
-    // Ball-race contacts: Hertz + damping (Eq. 21, clipped so that it never pulls), friction (Eqs. 22-23) at
-    // the slip velocity of the contact centre, spin moment.
-    for (int k = 0; k < 2; ++k) {
-      const Race& race = k == 0 ? inner : outer_race;
-      const HertzPointContact& hz = k == 0 ? hertz_inner_ : hertz_outer_;
-      RaceGeometry geo;
-      if (!race_geometry(race, R, rho, zeta, geo)) continue;
-      const double root_delta = std::sqrt(geo.delta);
-      const double QH = hz.stiffness * geo.delta * root_delta;
-      const double ddot = geo.u.dot(Vb - race.velocity) - geo.u_l.dot(race.tilt_rate.cross(geo.p));
-      const double Q = std::max(0.0, QH + d_race * ddot);
-      diss += (Q - QH) * ddot;
-      Vec3 Fr = Q * geo.u;               // on the ring
-      Vec3 Mr = geo.p.cross(Q * geo.u_l);  // about the ring centre (generalised force of the small rotation)
-      F -= Q * geo.u;
-      if (k == 0) loads.shaft_power_normal += Fr.dot(race.velocity) + Mr.dot(race.tilt_rate);
-      double& friction_loss = k == 0 ? loads.friction_loss_inner : loads.friction_loss_outer;
-      if (friction && Q > 0.0) {
-        const Vec3 arm = Rb * geo.u;
-        const Vec3 lever = geo.p + arm;  // contact point from the ring centre
-        const Vec3 vrel = Vb + wb.cross(arm) - race.velocity - race.omega.cross(lever);
-        Vec3 vt = vrel - vrel.dot(geo.u) * geo.u;
-        if (planar) {
-          // The paper's planar contact: only the slip along the rolling direction, e_psi in the tangent plane.
-          const Vec3 roll = (Vec3(0.0, 1.0, 0.0) - geo.u.y() * geo.u).normalized();
-          vt = vt.dot(roll) * roll;
-        }
-        double per_slip = 0.0, u_entrain = 0.0;  // |F_t| / |v_t| in N s/m, entrainment speed in m/s
-        if (eyring) {
-          // Entrainment speed: the mean of the two surfaces' speeds relative to the contact point, which moves
-          // with the ball's orbit.
-          const Vec3 v_contact(0.0, psid * (R + arm.x()), 0.0);
-          Vec3 ue = 0.5 * ((Vb + wb.cross(arm) - v_contact) + (race.velocity + race.omega.cross(lever) - v_contact));
-          ue -= ue.dot(geo.u) * geo.u;
-          u_entrain = ue.norm();
-          per_slip = eyring_traction_per_slip(lubricant_, hz, Q, u_entrain, vt.norm());
-        } else {
-          per_slip = Q * mu_over_v(vt.norm());
-        }
-        const Vec3 Ft = -per_slip * vt;
-        F += Ft;
-        M += arm.cross(Ft);
-        Fr -= Ft;
-        Mr -= lever.cross(Ft);
-        diss -= Ft.dot(vt);
-        friction_loss -= Ft.dot(vt);
-        if (k == 0) loads.shaft_power_friction -= Ft.dot(race.velocity) + lever.cross(Ft).dot(race.tilt_rate);
-        if (spin) {
-          const double a = hz.radius_factor * load_cbrt(Q, QH, hz.cbrt_stiffness * root_delta);
-          const double ws = (wb - race.omega).dot(geo.u);
-          // Coulomb: (3 pi / 16) mu Q a; lubricated: the traction at the slip a |w_s| gives the same moment
-          // with mu = F / Q.
-          const double per_slip_spin =
-              eyring ? eyring_traction_per_slip(lubricant_, hz, Q, u_entrain, std::abs(ws) * a)
-                     : Q * mu_over_v(std::abs(ws) * a);
-          const double Ms = kSpinMoment * a * a * per_slip_spin * ws;
-          M -= Ms * geo.u;
-          Mr += Ms * geo.u;
-          diss += Ms * ws;
-          friction_loss += Ms * ws;
-          if (k == 0) loads.shaft_power_friction += Ms * geo.u.dot(race.tilt_rate);
-        }
+    // Each contact anew (into the cache when it is being filled), or the cached one; gravity along -y.
+    F_ball = Vec3(-m * g * sn, -m * g * c, 0.0);
+    M_ball = Vec3::Zero();
+    share = shares ? &shares[j] : nullptr;
+    if (share) *share = BallShare{};
+    BallContactPart* kept = cache != nullptr ? &cache->parts[3 * static_cast<std::size_t>(j)] : nullptr;
+    for (int k = 0; k < 3; ++k) {
+      if (!(redo & (1u << k))) {
+        const BallContactPart& p = kept[k];
+        take(k, Vec3(p.ball[0], p.ball[1], p.ball[2]), Vec3(p.ball[3], p.ball[4], p.ball[5]), p.body, nullptr);
+        continue;
       }
-      qmax = std::max(qmax, Q);
+      BallContactPart* dst = store ? &kept[k] : nullptr;
       if (k == 0) {
-        F_shaft += Vec3(Fr.x() * c - Fr.y() * sn, Fr.x() * sn + Fr.y() * c, Fr.z());
-        M_shaft += Vec3(Mr.x() * c - Mr.y() * sn, Mr.x() * sn + Mr.y() * c, Mr.z());
-        if (Q > 0.0) ai_r -= geo.u.x(), ai_z -= side * geo.u.z();
-      } else {
-        F_outer += Vec3(Fr.x() * c - Fr.y() * sn, Fr.x() * sn + Fr.y() * c, Fr.z());
-        if (Q > 0.0) ao_r += geo.u.x(), ao_z += side * geo.u.z();
+        inner.centre = to_orbital(q[0], q[1], 0.0, c, sn);
+        inner.velocity = to_orbital(v[0], v[1], 0.0, c, sn);
+        inner.tilt = to_orbital(q[2], q[3], 0.0, c, sn);
+        inner.tilt_rate = to_orbital(v[2], v[3], 0.0, c, sn);
+        inner.omega = to_orbital(wi_h.x(), wi_h.y(), wi_h.z(), c, sn);
+      } else if (k == 1) {
+        outer_race.centre = to_orbital(outer.x, outer.y, zo, c, sn);
+        outer_race.velocity = to_orbital(outer.vx, outer.vy, vzo, c, sn);
       }
-    }
-
-    // Ball-pocket contact (ball-guided cage, spherical pocket of clearance c_p).
-    {
-      const Vec3 cage_centre = to_orbital(cg[0], cg[1], cg[2], c, sn);
-      PocketGeometry pg;
-      double sd, cd;
-      pocket_offset(c, sn, pocket_cos(j, cage_c, cage_s), pocket_sin(j, cage_c, cage_s), sd, cd);
-      pocket_geometry(rho, zeta, sd, cd, Rp, cage_centre, pg);
-      const double delta = pg.dist - cp;
-      if (delta > 0.0) {
-        const Vec3 n = pg.delta_vec / pg.dist;
-        const Vec3 Vc = to_orbital(cg[4], cg[5], cg[6], c, sn);
-        const double wc = cg[7];
-        const Vec3 Vpocket = Vc + wc * Vec3(-pg.pocket.y(), pg.pocket.x(), 0.0);
-        const double QH = k_pocket_ * delta * std::sqrt(delta);
-        const double ddot = n.dot(Vb - Vpocket);
-        const double Q = std::max(0.0, QH + d_pocket * ddot);
-        diss += (Q - QH) * ddot;
-        Vec3 Fc = Q * n;  // on the cage
-        double Tc = Q * (pg.pocket.x() * n.y() - pg.pocket.y() * n.x());
-        F -= Q * n;
-        if (friction && Q > 0.0) {
-          const Vec3 arm = Rb * n;
-          const Vec3 lever = pg.pocket + pg.delta_vec + arm;  // contact point from the cage centre
-          const Vec3 vrel = Vb + wb.cross(arm) - Vc - wc * Vec3(-lever.y(), lever.x(), 0.0);
-          const Vec3 vt = vrel - vrel.dot(n) * n;
-          const Vec3 Ft = (-Q * mu_over_v(vt.norm())) * vt;
-          F += Ft;
-          M += arm.cross(Ft);
-          Fc -= Ft;
-          Tc -= lever.x() * Ft.y() - lever.y() * Ft.x();
-          diss -= Ft.dot(vt);
-          loads.friction_loss_pocket -= Ft.dot(vt);
-        }
-        F_cage += Vec3(Fc.x() * c - Fc.y() * sn, Fc.x() * sn + Fc.y() * c, Fc.z());
-        T_cage += Tc;
-      }
+      if (k < 2)
+        race_contact(k, bl, dst);
+      else
+        pocket_contact(j, bl, dst);
     }
 
     // Newton in cylindrical coordinates, Euler for a sphere in the orbital frame.
+    const Vec3& F = F_ball;
+    const Vec3& M = M_ball;
     bd[0] = psid;
     bd[1] = b[4];
     bd[2] = b[5];
     bd[3] = (F.y() / m - 2.0 * b[4] * psid) / R;
     bd[4] = F.x() / m + R * psid * psid;
     bd[5] = F.z() / m;
-    bd[6] = M.x() / I + psid * wb.y();
-    bd[7] = M.y() / I - psid * wb.x();
+    bd[6] = M.x() / I + psid * bl.wb.y();
+    bd[7] = M.y() / I - psid * bl.wb.x();
     bd[8] = M.z() / I;
-
-    if (shares) {
-      BallShare& sh = shares[j];
-      sh.shaft[0] = F_shaft.x() - F_shaft0.x();
-      sh.shaft[1] = F_shaft.y() - F_shaft0.y();
-      sh.shaft[2] = M_shaft.x() - M_shaft0.x();
-      sh.shaft[3] = M_shaft.y() - M_shaft0.y();
-      sh.shaft[4] = M_shaft.z() - M_shaft0.z();
-      for (int i = 0; i < 3; ++i) sh.outer[i] = F_outer(i) - F_outer0(i), sh.cage[i] = F_cage(i) - F_cage0(i);
-      sh.cage[3] = T_cage - T_cage0;
-    }
   }
 
   // Cage: translation and spin (tilt neglected).
@@ -556,8 +624,8 @@ void BallBearingElement::add_jacobian(const SpinState& s, const double* q, const
   struct Own final : JacobianEvaluator {
     Own(const BallBearingElement& e, const SpinState& st) : e(e), st(st) {}
     void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
-                    BallShare* shares) const override {
-      e.Evaluate(st, q, v, z, f, zdot, shares);
+                    BallShare* shares, BallContactCache* cache, unsigned redo) const override {
+      e.Evaluate(st, q, v, z, f, zdot, shares, nullptr, cache, redo);
     }
     const BallBearingElement& e;
     const SpinState& st;
@@ -570,31 +638,34 @@ void BallBearingElement::add_jacobian_of(const ForceElement& owner, const Jacobi
                                        double* J) const {
   auto& w = static_cast<BallBearingWorkspace&>(ws);
   constexpr int d = 4;
-  const int rows = d + m, Z = spec_.n_balls, nb = kBallStates * Z;
+  const int rows = d + m, Z = spec_.n_balls;
   double* in = w.in.data();
   std::copy(q, q + d, in);
   std::copy(v, v + d, in + d);
   std::copy(z, z + m, in + 2 * d);
-  const auto evaluate = [&](std::vector<double>& out, BallShare* shares) {
+  const auto evaluate = [&](std::vector<double>& out, BallShare* shares, BallContactCache* cache, unsigned redo) {
     std::fill(out.begin(), out.begin() + rows, 0.0);
-    eval(in, in + d, in + 2 * d, out.data(), out.data() + d, shares);
+    eval(in, in + d, in + 2 * d, out.data(), out.data() + d, shares, cache, redo);
   };
   const auto column = [&](int j) { return J + static_cast<std::size_t>(j) * rows; };
-  evaluate(w.out0, w.share0.data());
+  evaluate(w.out0, w.share0.data(), &w.contacts, kAllContacts);
 
   // The shaft's displacements and velocities, then the cage, the outer ring and any states after the core (the
-  // inputs after the balls): one input at a time.
-  const auto one_at_a_time = [&](int j) {
+  // inputs after the balls): one input at a time, each evaluating only the contacts it moves (the shaft the inner
+  // races', the cage the pockets', the outer ring the outer races'), the others from the base state.
+  const auto one_at_a_time = [&](int j, unsigned redo) {
     const double saved = in[j];
     const double h = owner.fd_step(j, d, saved);
     in[j] = saved + h;
-    evaluate(w.out1, nullptr);
+    evaluate(w.out1, nullptr, &w.contacts, redo);
     in[j] = saved;
     double* col = column(j);
     for (int r = 0; r < rows; ++r) col[r] += (w.out1[r] - w.out0[r]) / h;
   };
-  for (int j = 0; j < 2 * d; ++j) one_at_a_time(j);
-  for (int j = 2 * d + nb; j < 2 * d + m; ++j) one_at_a_time(j);
+  for (int j = 0; j < 2 * d; ++j) one_at_a_time(j, kInnerContacts);
+  const int cage_in = 2 * d + cage_offset(), outer_in = 2 * d + outer_offset();
+  for (int j = cage_in; j < outer_in; ++j) one_at_a_time(j, kPocketContacts);
+  for (int j = outer_in; j < 2 * d + m; ++j) one_at_a_time(j, kOuterContacts);
 
   // State i of every ball at once: a ball's own rows depend on no other ball, and the rows of the sums (shaft
   // forces, cage, outer ring) are told apart by each ball's share.
@@ -607,7 +678,7 @@ void BallBearingElement::add_jacobian_of(const ForceElement& owner, const Jacobi
       w.step[b] = owner.fd_step(2 * d + k, d, z[k]);
       in[2 * d + k] = z[k] + w.step[b];
     }
-    evaluate(w.out1, w.share1.data());
+    evaluate(w.out1, w.share1.data(), nullptr, kAllContacts);
     for (int b = 0; b < Z; ++b) {
       const int k = ball_offset(b) + i;
       in[2 * d + k] = z[k];
@@ -630,10 +701,11 @@ void BallBearingElement::add_jacobian_of(const ForceElement& owner, const Jacobi
 }
 
 void BallBearingElement::Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f,
-                                  double* zdot, BallShare* shares, BallBearingLoads* loads_out) const {
+                                  double* zdot, BallShare* shares, BallBearingLoads* loads_out,
+                                  BallContactCache* cache, unsigned redo) const {
   BallBearingLoads local;
   BallBearingLoads& loads = loads_out ? *loads_out : local;
-  calc_bearing(s, q, v, z, outer_from_states(z), loads, zdot, shares);
+  calc_bearing(s, q, v, z, outer_from_states(z), loads, zdot, shares, cache, redo);
   for (int i = 0; i < 4; ++i) f[i] += loads.shaft[i];
   if (spec_.outer_ring_mode == OuterRingMode::Spring) {
     const double* o = z + n_core_;

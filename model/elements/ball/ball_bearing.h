@@ -79,6 +79,24 @@ struct BallShare {
   double cage[4] = {0, 0, 0, 0};       ///< x, y, z (N), torque about the axis (N m)
 };
 
+/// One contact's contribution to a ball's equations and to the sums over the balls (calc_bearing()).
+struct BallContactPart {
+  double ball[6] = {0, 0, 0, 0, 0, 0};  ///< force (N) and moment (N m) on the ball, orbital basis
+  /// On the other body, housing frame: inner race force x, y, z and moment x, y, z; outer race force x, y, z;
+  /// pocket force x, y, z on the cage and its torque about the axis.
+  double body[6] = {0, 0, 0, 0, 0, 0};
+};
+
+/// Which contacts calc_bearing() evaluates anew (a bit mask; the others come from a BallContactCache).
+enum BallContacts : unsigned { kInnerContacts = 1u, kOuterContacts = 2u, kPocketContacts = 4u, kAllContacts = 7u };
+
+/// The contacts of one full evaluation, 3 per ball (inner race, outer race, pocket). A finite-difference column
+/// that moves only the shaft, only the outer ring or only the cage changes only the inner-race, outer-race or
+/// pocket contacts; the others are those of the base state (BallBearingElement::add_jacobian_of).
+struct BallContactCache {
+  std::vector<BallContactPart> parts;
+};
+
 /// What one bearing evaluation gives besides the state derivatives.
 struct BallBearingLoads {
   double shaft[4] = {0, 0, 0, 0};       ///< generalised forces on the shaft: x, y (N), about x, y (N m)
@@ -156,10 +174,12 @@ class BallBearingElement final : public ForceElement {
                    double* J) const override;
   /// What add_jacobian_of differentiates: an element's outputs [f (4); zdot] at inputs (q, v, z), added to f and
   /// written to zdot, with each ball's share of the sums.
+  /// cache and redo are passed on to calc_bearing(): the base state fills the cache, the shaft's, cage's and outer
+  /// ring's columns redo only the contacts they move.
   struct JacobianEvaluator {
     virtual ~JacobianEvaluator() = default;
     virtual void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
-                            BallShare* shares) const = 0;
+                            BallShare* shares, BallContactCache* cache, unsigned redo) const = 0;
   };
   /// add_jacobian for an element `owner` that is this bearing or wraps it (a squeeze-film damper): m states, the
   /// core states first, then (m > n_core_states()) the outer ring's x, y, vx, vy, whose accelerations contain the
@@ -183,9 +203,15 @@ class BallBearingElement final : public ForceElement {
   /// core states z (n_core_states() values) and the outer ring's radial kinematics, writes the derivatives of
   /// the core states into zdot and the forces into loads (which it overwrites). Allocates nothing.
   /// shares: if not null, n_balls entries that receive each ball's share of the sums.
+  /// cache (3 n_balls parts) and redo: with redo = kAllContacts every contact is evaluated and stored in the
+  /// cache; otherwise only the contacts in redo are evaluated and the others taken from the cache, which must hold
+  /// a full evaluation at the same ball states (and the same shaft, outer ring or cage where those contacts are
+  /// taken). Such a partial evaluation gives zdot, shares and the loads' shaft, shaft_torque and outer_ring; the
+  /// other loads (powers, losses, angles) cover only the contacts it evaluated. Without a cache: all of them.
   void calc_bearing(const SpinState& s, const double* q, const double* v, const double* z,
                    const OuterRingKinematics& outer, BallBearingLoads& loads, double* zdot,
-                   BallShare* shares = nullptr) const;
+                   BallShare* shares = nullptr, BallContactCache* cache = nullptr,
+                   unsigned redo = kAllContacts) const;
   /// Hertz (races and pockets), preload-spring and gravity energy of the core bodies (J); the radial spring of
   /// Spring and the outer ring's radial gravity are not included.
   double core_potential_energy(const double* q, const double* z, const OuterRingKinematics& outer) const;
@@ -218,7 +244,8 @@ class BallBearingElement final : public ForceElement {
   /// do_calc_and_add_forces with the balls' shares of the sums (shares: n_balls entries, or null) and the loads
   /// (loads_out, or null).
   void Evaluate(const SpinState& s, const double* q, const double* v, const double* z, double* f, double* zdot,
-                BallShare* shares, BallBearingLoads* loads_out = nullptr) const;
+                BallShare* shares, BallBearingLoads* loads_out = nullptr, BallContactCache* cache = nullptr,
+                unsigned redo = kAllContacts) const;
   /// The loads at this state: those of the last engine evaluation if its inputs were the same, else evaluated.
   const BallBearingLoads& loads_at(const SpinState& s, const double* q, const double* v, const double* z,
                                   ElementWorkspace& ws) const;

@@ -73,11 +73,11 @@ void BallDamperElement::add_jacobian(const SpinState& s, const double* q, const 
   struct Wrapped final : BallBearingElement::JacobianEvaluator {
     Wrapped(const BallDamperElement& e, const SpinState& st, BallDamperWorkspace& w) : e(e), st(st), w(w) {}
     void operator()(const double* q, const double* v, const double* z, double* f, double* zdot,
-                    BallShare* shares) const override {
+                    BallShare* shares, BallContactCache* cache, unsigned redo) const override {
       const double* ring = z + e.n_core_;
       const OuterRingKinematics outer{ring[0], ring[1], ring[2], ring[3]};
       BallBearingLoads loads;
-      e.bearing_.calc_bearing(st, q, v, z, outer, loads, zdot, shares);
+      e.bearing_.calc_bearing(st, q, v, z, outer, loads, zdot, shares, cache, redo);
       const reynolds::FilmResult* film = &w.fd_film;
       if (!w.fd_valid) {
         // The base state (add_jacobian_of evaluates it first).

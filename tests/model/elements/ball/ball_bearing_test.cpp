@@ -300,6 +300,72 @@ TEST(BallBearing, PocketContactsRepeatWithTheOrbitAngle) {
   }
 }
 
+TEST(BallBearing, PartialEvaluationsRedoOnlyTheContactsTheyMoveAndEqualAFullOne) {
+  // The Jacobian's shaft, cage and outer-ring columns evaluate only the inner-race, pocket or outer-race contacts
+  // and take the others from the base state (calc_bearing with a BallContactCache). At a state where every kind of
+  // contact carries load (ball 2 in its pocket, the rings off centre and moving), each such partial evaluation
+  // after a change of its own inputs equals a full evaluation at the changed state to round-off; with the wrong
+  // contacts redone it does not (the change would not be seen).
+  BallBearingSpec spec = reference_bearing();
+  const BallBearingElement e("ref", spec, 0, 9.81);
+  const double W = 60000 * kRpm;
+  const SpinState s{0.0, W, 0.0, 0.0};
+  const int n = e.n_states();
+  std::vector<double> z(n), zdot_full(n), zdot_part(n), zdot_base(n);
+  e.initial_states(z.data());
+  e.steady_states(W, z.data());
+  z[e.ball_offset(2) + 0] += 1.2 * spec.pocket_clearance / (0.5 * spec.pitch_diameter);
+  double q[4] = {2e-6, -1e-6, 2e-5, -1e-5}, v[4] = {0.02, -0.01, 3.0, 2.0};
+  OuterRingKinematics outer{1e-6, -2e-6, 0.01, 0.02};
+  BallContactCache cache;
+  cache.parts.resize(3 * static_cast<std::size_t>(spec.n_balls));
+  BallBearingLoads base, full, part;
+  std::vector<BallShare> shares_full(spec.n_balls), shares_part(spec.n_balls);
+  e.calc_bearing(s, q, v, z.data(), outer, base, zdot_base.data(), nullptr, &cache, kAllContacts);
+  ASSERT_GT(base.friction_loss_pocket, 0.0);
+  ASSERT_GT(base.friction_loss_inner, 0.0);
+  ASSERT_GT(base.friction_loss_outer, 0.0);
+  const auto compare = [&](const char* what, unsigned redo, bool equal) {
+    e.calc_bearing(s, q, v, z.data(), outer, full, zdot_full.data(), shares_full.data());
+    e.calc_bearing(s, q, v, z.data(), outer, part, zdot_part.data(), shares_part.data(), &cache, redo);
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i)
+      worst = std::max(worst, std::abs(zdot_part[i] - zdot_full[i]) / (std::abs(zdot_full[i] - zdot_base[i]) + 1e-300) *
+                                  (std::abs(zdot_full[i] - zdot_base[i]) > 1e-9 * std::abs(zdot_full[i]) ? 1.0 : 0.0));
+    for (int i = 0; i < 4; ++i) worst = std::max(worst, std::abs(part.shaft[i] - full.shaft[i]) / std::abs(full.shaft[i]));
+    for (int i = 0; i < 3; ++i)
+      worst = std::max(worst, std::abs(part.outer_ring[i] - full.outer_ring[i]) / std::abs(full.outer_ring[i]));
+    if (!equal) {
+      EXPECT_GT(worst, 1e-3) << what << ": the wrong contacts redone must show";
+      return;
+    }
+    EXPECT_LT(worst, 1e-6) << what;  // of the change the inputs made, in every derivative that changed
+    for (int j = 0; j < spec.n_balls; ++j) {
+      for (int i = 0; i < 5; ++i)
+        EXPECT_NEAR(shares_part[j].shaft[i], shares_full[j].shaft[i], 1e-12 * std::abs(full.shaft[i % 4]) + 1e-15);
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(shares_part[j].outer[i], shares_full[j].outer[i], 1e-12 * std::abs(full.outer_ring[i]) + 1e-15);
+      for (int i = 0; i < 4; ++i) EXPECT_NEAR(shares_part[j].cage[i], shares_full[j].cage[i], 1e-12);
+    }
+  };
+  q[0] += 1e-7;  // the shaft
+  v[3] += 0.5;
+  compare("shaft", kInnerContacts, true);
+  compare("shaft, pockets redone", kPocketContacts, false);
+  q[0] -= 1e-7;
+  v[3] -= 0.5;
+  z[e.cage_offset() + 3] += 1e-6;  // the cage
+  z[e.cage_offset() + 4] += 1e-3;
+  compare("cage", kPocketContacts, true);
+  compare("cage, outer races redone", kOuterContacts, false);
+  z[e.cage_offset() + 3] -= 1e-6;
+  z[e.cage_offset() + 4] -= 1e-3;
+  z[e.outer_offset()] += 1e-8;  // the outer ring, axially and radially
+  outer.vx += 0.01;
+  compare("outer ring", kOuterContacts, true);
+  compare("outer ring, inner races redone", kInnerContacts, false);
+}
+
 TEST(BallBearing, PlanarTractionIgnoresSlipAcrossTheRollingDirection) {
   // race_traction = planar (the paper's planar contact) keeps only the slip along the rolling direction. An axial
   // velocity of every ball slips its race contacts across the rolling direction only: with planar traction the race
