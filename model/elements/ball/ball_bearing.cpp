@@ -533,28 +533,31 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     share = shares ? &shares[j] : nullptr;
     if (share) *share = BallShare{};
     BallContactPart* kept = cache != nullptr ? &cache->parts[3 * static_cast<std::size_t>(j)] : nullptr;
-    for (int k = 0; k < 3; ++k) {
+    const auto cached = [&](int k) {
+      const BallContactPart& p = kept[k];
+      take(k, Vec3(p.ball[0], p.ball[1], p.ball[2]), Vec3(p.ball[3], p.ball[4], p.ball[5]), p.body, nullptr);
+    };
+    for (int k = 0; k < 2; ++k) {
       if (!(redo & (1u << k))) {
-        const BallContactPart& p = kept[k];
-        take(k, Vec3(p.ball[0], p.ball[1], p.ball[2]), Vec3(p.ball[3], p.ball[4], p.ball[5]), p.body, nullptr);
+        cached(k);
         continue;
       }
-      BallContactPart* dst = store ? &kept[k] : nullptr;
       if (k == 0) {
         inner.centre = to_orbital(q[0], q[1], 0.0, c, sn);
         inner.velocity = to_orbital(v[0], v[1], 0.0, c, sn);
         inner.tilt = to_orbital(q[2], q[3], 0.0, c, sn);
         inner.tilt_rate = to_orbital(v[2], v[3], 0.0, c, sn);
         inner.omega = to_orbital(wi_h.x(), wi_h.y(), wi_h.z(), c, sn);
-      } else if (k == 1) {
+      } else {
         outer_race.centre = to_orbital(outer.x, outer.y, zo, c, sn);
         outer_race.velocity = to_orbital(outer.vx, outer.vy, vzo, c, sn);
       }
-      if (k < 2)
-        race_contact(k, bl, dst);
-      else
-        pocket_contact(j, bl, dst);
+      race_contact(k, bl, store ? &kept[k] : nullptr);
     }
+    if (redo & kPocketContacts)
+      pocket_contact(j, bl, store ? &kept[2] : nullptr);
+    else
+      cached(2);
 
     // Newton in cylindrical coordinates, Euler for a sphere in the orbital frame.
     const Vec3& F = F_ball;
