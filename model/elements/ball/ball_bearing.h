@@ -167,7 +167,8 @@ class BallBearingElement final : public ForceElement {
   /// Finite differences that use the balls' independence: the shaft, cage and outer-ring inputs one at a time,
   /// the balls' states one index at a time for all balls at once, each ball's rows and its share of the sums
   /// (BallShare) telling the balls apart: 2d + 19 (+4 with a spring-mounted outer ring) evaluations instead of
-  /// 2d + 9 Z + 10. Steps as the engine's (fd_relative_step(), state_scale()).
+  /// 2d + 9 Z + 10. The shaft's, the cage's and the outer ring's columns evaluate only the contacts they move
+  /// (inner races, pockets, outer races; BallContactCache). Steps as the engine's (fd_relative_step(), state_scale()).
   bool has_jacobian() const override { return true; }
   int jacobian_evaluations() const override { return 1 + 8 + (n_states() - kBallStates * spec_.n_balls) + kBallStates; }
   void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
