@@ -459,9 +459,9 @@ TEST(BallBearing, ScaledTolerancesOfTheBallAndCageVelocitiesFollowTheirContactFr
   for (int i = 0; i < e.n_states(); ++i) {
     const int k = i < cage ? i % BallBearingElement::kBallStates : -1;
     double expected = e.state_scale(i);
-    if (k == 4 || k == 5) expected = 0.03;
-    if (k >= 6) expected = 0.03 / (0.5 * s.ball_diameter);
-    if (i >= cage + 4 && i <= cage + 6) expected = 0.02;
+    if (k == 4 || k == 5) expected = 0.1;
+    if (k >= 6) expected = 0.1 / (0.5 * s.ball_diameter);
+    if (i >= cage + 4 && i <= cage + 6) expected = 0.05;
     EXPECT_DOUBLE_EQ(e.tolerance_scale(i), expected) << "state " << i;
   }
 }
