@@ -356,12 +356,6 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     double c, sn, R, rho, zeta, psid;
     Vec3 Vb, wb;
   };
-  // Housing-frame components of an orbital-basis vector of the ball at (c, sn).
-  const auto to_housing = [](const Vec3& a, double c, double sn, double* out) {
-    out[0] = a.x() * c - a.y() * sn;
-    out[1] = a.x() * sn + a.y() * c;
-    out[2] = a.z();
-  };
 
   // The ball being evaluated: the sums of its contacts' force and moment (orbital basis) and its share of the sums
   // over the balls.
@@ -468,8 +462,8 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
       if (Q > 0.0) ao_r += geo.u.x(), ao_z += side * geo.u.z();
     }
     double body[6] = {0, 0, 0, 0, 0, 0};
-    to_housing(Fr, bl.c, bl.sn, body);
-    if (k == 0) to_housing(Mr, bl.c, bl.sn, body + 3);
+    Vec3::Map(body) = to_housing(Fr, bl.c, bl.sn);
+    if (k == 0) Vec3::Map(body + 3) = to_housing(Mr, bl.c, bl.sn);
     take(k, F, M, body, dst);
   };
 
@@ -509,7 +503,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
       loads.friction_loss_pocket -= Ft.dot(vt);
     }
     double body[6] = {0, 0, 0, Tc, 0, 0};
-    to_housing(Fc, bl.c, bl.sn, body);
+    Vec3::Map(body) = to_housing(Fc, bl.c, bl.sn);
     take(2, F, M, body, dst);
   };
 
@@ -538,7 +532,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
       take(k, Vec3(p.ball[0], p.ball[1], p.ball[2]), Vec3(p.ball[3], p.ball[4], p.ball[5]), p.body, nullptr);
     };
     for (int k = 0; k < 2; ++k) {
-      if (!(redo & (1u << k))) {
+      if (!(redo & (k == 0 ? kInnerContacts : kOuterContacts))) {
         cached(k);
         continue;
       }

@@ -111,8 +111,8 @@ double BallBearingQuasiStatic::evaluate(double speed, const Vector5d& q, double 
     F_outer_z += Qo * g_o.u.z() - Ft.z();
     if (shaft_force) {
       const Vec3 Fr = Qi * g_i.u - Fti, Mr = g_i.p.cross(Qi * g_i.u_l - Fti);
-      F_shaft += Vec3(Fr.x() * c - Fr.y() * sn, Fr.x() * sn + Fr.y() * c, Fr.z());
-      M_shaft += Vec3(Mr.x() * c - Mr.y() * sn, Mr.x() * sn + Mr.y() * c, Mr.z());
+      F_shaft += to_housing(Fr, c, sn);
+      M_shaft += to_housing(Mr, c, sn);
     }
     if (balls) {
       QuasiStaticBall& b = (*balls)[j];

@@ -56,6 +56,11 @@ inline Eigen::Vector3d to_orbital(double x, double y, double z, double c, double
   return Eigen::Vector3d(x * c + y * s, -x * s + y * c, z);
 }
 
+/// The inverse of to_orbital: housing-frame components of a vector given in the orbital basis of that ball.
+inline Eigen::Vector3d to_housing(const Eigen::Vector3d& a, double c, double s) {
+  return Eigen::Vector3d(a.x() * c - a.y() * s, a.x() * s + a.y() * c, a.z());
+}
+
 /// Q^(1/3) of a contact load Q = Q_H + (damping) from Q_H^(1/3) = K^(1/3) delta^(1/2), which the Hertz law gives
 /// without a cube root: three Halley steps on y^3 = Q (relative error below 5e-16 for |Q/Q_H - 1| <= 0.1, checked
 /// against std::cbrt by `BallBearing.LoadCubeRootFromTheHertzApproachIsStdCbrt`), std::cbrt otherwise.
