@@ -71,13 +71,17 @@ struct FilmSolver::Impl {
   bool mask_symmetric = false;
 
   // Per call, full grid (i * nz + j; faces i * nzf + jf).
-  std::vector<double> hN, hE, hF, aE, aF, cE, sq, dval;
+  std::vector<double> hN, hE, aE, aF, cE, sq, dval;
+  std::vector<double> h_col, he_col;  // an untilted film's thickness per column at the nodes and east faces
   std::vector<double> end_slope_lo, end_slope_hi;  // per column, dp/dz at z = -L/2, +L/2 (outputs, open ends)
   std::vector<char> plain_column;                  // per column: no hole or groove node (fixed by the geometry)
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
   std::vector<ByteFlag> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
   bool forces_only = false;  // outputs(): the loads only (set_forces_only)
+  // The last outputs() were the loads alone: p, theta, cav, ff were not expanded, and the warm start is the
+  // reduced fields pr, thr, cr of that call (its layout m, sym).
+  bool reduced_warm = false;
   // The band holds the factorisation of the last successful None or Gumbel solve, for the cavitated set in cr and
   // the film thickness of (ex, ey, sx, sy) = factored_at (solve_same_matrix).
   bool factored = false;
@@ -107,7 +111,7 @@ struct FilmSolver::Impl {
   double U = 0, pcav = 0, pamb = 0;
   double pscale = 1, fscale = 1;
   double amax = 0;  // largest diagonal of the couplings (reduced_system)
-  // The thickness-dependent arrays (hN, hE, aE, hF, aF, the couplings, dirr, amax) hold the thickness of the
+  // The thickness-dependent arrays (hN, hE, aE, aF, the couplings, dirr, amax) hold the thickness of the
   // factorisation (factored_at): solve() and solve_same_matrix() set it, solve_linearised() (it fills them for
   // another thickness) and set_viscosity() (aE, aF depend on it) clear it.
   bool thickness_current = false;
@@ -238,11 +242,12 @@ struct FilmSolver::Impl {
 
     hN.assign(N, 0.0);
     hE.assign(N, 0.0);
+    h_col.assign(n, 0.0);
+    he_col.assign(n, 0.0);
     aE.assign(N, 0.0);
     cE.assign(N, 0.0);
     sq.assign(N, 0.0);
     dval.assign(N, 0.0);
-    hF.assign(n * nzf, 0.0);
     aF.assign(n * nzf, 0.0);
     p.assign(N, g.ambient_pressure);
     theta.assign(N, 1.0);
@@ -372,8 +377,17 @@ struct FilmSolver::Impl {
           sq[k] = -(vxz * ct[i] + vyz * st[i]) * area;
         }
       }
-      if (sym) mirror_axially(jn, cE, sq);
+      if (sym && !forces_only) mirror_axially(jn, cE, sq);
       return;
+    }
+    // Untilted (every damper, a journal that does not tilt): the thickness is the same in every axial row, so it
+    // is computed once per column (the same values: exz = ex + z * 0 = ex).
+    const bool untilted = s.sx == 0.0 && s.sy == 0.0;
+    if (untilted) {
+      for (int i = 0; i < n; ++i) {
+        h_col[i] = c - s.ex * ct[i] - s.ey * st[i];
+        he_col[i] = c - s.ex * cte[i] - s.ey * ste[i];
+      }
     }
     for (int j = 0; j < jn; ++j) {
       const double z = zn[j];
@@ -382,8 +396,8 @@ struct FilmSolver::Impl {
       const double vxz = s.vx + z * s.dsx, vyz = s.vy + z * s.dsy;
       for (int i = 0; i < n; ++i) {
         const int k = i * nz + j;
-        const double h = c - exz * ct[i] - eyz * st[i];
-        const double he = c - exz * cte[i] - eyz * ste[i];
+        const double h = untilted ? h_col[i] : c - exz * ct[i] - eyz * st[i];
+        const double he = untilted ? he_col[i] : c - exz * cte[i] - eyz * ste[i];
         hN[k] = h;
         hE[k] = he;
         aE[k] = kx * he * he * he;
@@ -398,23 +412,22 @@ struct FilmSolver::Impl {
       const bool end = jf == 0 || jf == nzf - 1;
       const double kz = dx / (12.0 * eta * dzf[jf]);
       for (int i = 0; i < n; ++i) {
-        const double h = c - exz * ct[i] - eyz * st[i];
-        hF[i * nzf + jf] = h;
+        const double h = untilted ? h_col[i] : c - exz * ct[i] - eyz * st[i];
         const double a = kz * h * h * h;
         // An end face with a seal: the land's last half cell and the seal's slot in series.
         aF[i * nzf + jf] = end && seal_conductance > 0.0 ? a * seal_conductance / (a + seal_conductance) : a;
       }
     }
+    // The mirrored half of the node arrays is read only by the full outputs (torques, flows); the loads alone
+    // read the reduced system, i.e. the rows j < m and the faces, which are all mirrored (a seal's far end face).
+    const bool node_mirror = sym && !forces_only;
     if (sym) {
-      mirror_axially(jn, hN, hE, aE, cE, sq);
-      for (int i = 0; i < n; ++i) {
-        for (int jf = jfn; jf < nzf; ++jf) {
-          hF[i * nzf + jf] = hF[i * nzf + nz - jf];
-          aF[i * nzf + jf] = aF[i * nzf + nz - jf];
-        }
-      }
+      if (node_mirror) mirror_axially(jn, hN, hE, aE, cE, sq);
+      for (int i = 0; i < n; ++i)
+        for (int jf = jfn; jf < nzf; ++jf) aF[i * nzf + jf] = aF[i * nzf + nz - jf];
     }
-    for (const auto& [k, f] : fit_east) aE[k] *= f;
+    for (const auto& [k, f] : fit_east)
+      if (!sym || node_mirror || k % nz < jn) aE[k] *= f;
     for (const auto& [kf, f] : fit_axial) aF[kf] *= f;
   }
 
@@ -504,7 +517,7 @@ struct FilmSolver::Impl {
     const int N1 = (n - 1) * m;
     band.reset(N1, m, na);
     for (int q = 0; q < n - 1; ++q) {
-      const int i = (i0 + q) % n, ie = (i + 1) % n;
+      const int i = i0 + q < n ? i0 + q : i0 + q - n, ie = i + 1 < n ? i + 1 : 0;
       for (int j = 0; j < m; ++j) {
         const int r = q * m + j, kr = i * m + j;
         double* col = band.column(r);
@@ -1026,6 +1039,20 @@ struct FilmSolver::Impl {
     return q + te * cE[k] - tw * cE[kw] + theta[k] * sq[k];
   }
 
+  // Expands the reduced solution (pr, thr, cr in the layout m, sym) to the full-grid fields p, theta, cav, ff.
+  void expand_fields() {
+    const bool jfo = o.cavitation == Cavitation::MassConserving;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j) {
+        const int kr = i * m + j, k = i * nz + j;
+        p[k] = pr[kr];
+        theta[k] = jfo ? thr[kr] : 1.0;
+        cav[k] = cr[kr];
+        ff[k] = jfo ? thr[kr] : (cr[kr] != kFull ? 0.0 : 1.0);
+      }
+    if (sym) mirror_axially(m, p, theta, cav, ff);
+  }
+
   void outputs(const FilmState& s, FilmResult& r) {
     if (forces_only)
       outputs_of<false>(s, r);
@@ -1037,22 +1064,30 @@ struct FilmSolver::Impl {
   template <bool Full>
   void outputs_of(const FilmState& s, FilmResult& r) {
     const bool jfo = o.cavitation == Cavitation::MassConserving;
-    // Expand the reduced solution to the full grid.
-    int ncav = 0;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < m; ++j) {
-        const int kr = i * m + j, k = i * nz + j;
-        p[k] = pr[kr];
-        theta[k] = jfo ? thr[kr] : 1.0;
-        cav[k] = cr[kr];
-        ff[k] = jfo ? thr[kr] : (cr[kr] != kFull ? 0.0 : 1.0);
+    int ncav = 0, nfallback = 0;
+    reduced_warm = !Full;
+    if constexpr (Full) {
+      expand_fields();
+      for (int k = 0; k < n * nz; ++k) {
+        ncav += cav[k] != kFull;
+        nfallback += cav[k] == kFallback;
       }
-    if (sym) mirror_axially(m, p, theta, cav, ff);
-    int nfallback = 0;
-    for (int k = 0; k < n * nz; ++k) {
-      ncav += cav[k] != kFull;
-      nfallback += cav[k] == kFallback;
+    } else {
+      // The loads alone read the reduced solution in place, row j of the full grid being row j (or its mirror
+      // image nz - 1 - j) of the reduced one: the same values summed in the same order as after the expansion.
+      for (int j = 0; j < m; ++j) {
+        const int copies = sym && 2 * j != nz - 1 ? 2 : 1;
+        for (int i = 0; i < n; ++i) {
+          ncav += copies * (cr[i * m + j] != kFull);
+          nfallback += copies * (cr[i * m + j] == kFallback);
+        }
+      }
     }
+    // Pressure at full-grid node (i, j): the expanded field, or the reduced solution's row.
+    const auto pressure_at = [&](int i, int j) {
+      if constexpr (Full) return p[i * nz + j];
+      return pr[i * m + (j < m ? j : nz - 1 - j)];
+    };
 
     const double R = g.radius;
     double sc = 0, ss = 0, zc = 0, zs = 0, couette = 0, pois = 0, pmax = pamb;
@@ -1061,7 +1096,7 @@ struct FilmSolver::Impl {
       double rp = 0, rz = 0, rc = 0, rpz = 0;
       for (int j = 0; j < nz; ++j) {
         const int k = i * nz + j;
-        const double pk = p[k], w = wz[j];
+        const double pk = pressure_at(i, j), w = wz[j];
         rp += pk * w;
         rpz += pk * zn[j] * w;
         if constexpr (Full) {
@@ -1075,7 +1110,7 @@ struct FilmSolver::Impl {
         // the end face a, in series, and the slot c_s); the end strips of width dz/2 between the first node's cell
         // and the land end, negligible at open ends, are integrated with p linear from p_end to the face.
         const double strip = zf[0] + 0.5 * g.length, zend = 0.5 * g.length - 0.5 * strip;
-        const double p0 = p[i * nz], p1 = p[i * nz + nz - 1];
+        const double p0 = pressure_at(i, 0), p1 = pressure_at(i, nz - 1);
         const double e0 = pamb + aF[i * nzf] / seal_conductance * (p0 - pamb);
         const double e1 = pamb + aF[i * nzf + nz] / seal_conductance * (p1 - pamb);
         const double s0 = (3.0 * e0 + p0) / 4.0 * strip, s1 = (3.0 * e1 + p1) / 4.0 * strip;  // strip integrals
@@ -1090,10 +1125,11 @@ struct FilmSolver::Impl {
         // forces worse); the moment's in every column (a hole at mid-width hardly weighs in it).
         // On a graded grid the rule is the trapezoidal one in the mapped coordinate xi, for F = f dz/dxi: its end
         // slope F' = f' (dz/dxi)^2 (f = 0 there) from the same differences of F, with hend = dxi dz/dxi(end).
-        const double* pc = &p[i * nz];
+        const double pc0 = pressure_at(i, 0), pc1 = pressure_at(i, 1);
+        const double pcl = pressure_at(i, nz - 1), pcm = pressure_at(i, nz - 2);
         const double r1 = wz[1] / wz[0];  // 1 on the uniform grid
-        const double slope_lo = (4.0 * (pc[0] - pamb) - r1 * (pc[1] - pamb)) * wz[0] / (2.0 * hend * hend);
-        const double slope_hi = -(4.0 * (pc[nz - 1] - pamb) - r1 * (pc[nz - 2] - pamb)) * wz[0] / (2.0 * hend * hend);
+        const double slope_lo = (4.0 * (pc0 - pamb) - r1 * (pc1 - pamb)) * wz[0] / (2.0 * hend * hend);
+        const double slope_hi = -(4.0 * (pcl - pamb) - r1 * (pcm - pamb)) * wz[0] / (2.0 * hend * hend);
         if (plain_column[i]) rp -= hend * hend / 12.0 * (slope_hi - slope_lo);  // f = p - p_amb
         rpz -= hend * hend / 12.0 * 0.5 * g.length * (slope_hi + slope_lo);  // f = (p - p_amb) z
         end_slope_lo[i] = slope_lo;
@@ -1268,19 +1304,26 @@ struct FilmSolver::Impl {
             "mass-conserving cavitation needs an oil supply: a hole or groove above the cavitation pressure, or "
             "ambient pressure above it (without one the steady film runs dry)");
     }
-    sym = symmetric_state(s);
+    const bool sym_new = symmetric_state(s);
+    // After a loads-only call the warm start is still in the reduced fields: kept in place if the layout is the
+    // same (the values the full-grid copy below would take), expanded first otherwise.
+    const bool in_place = warm && reduced_warm && sym_new == sym;
+    if (warm && reduced_warm && !in_place) expand_fields();
+    sym = sym_new;
     m = sym ? (nz + 1) / 2 : nz;
     w_last = (sym && nz % 2 == 1) ? 0.5 : 1.0;
     geometry_arrays(s);
-    reduced_system();
+    reduced_system();  // Dirichlet nodes take their values in pr
     // Warm start from the full-grid state of the last call.
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < m; ++j) {
-        const int kr = i * m + j, k = i * nz + j;
-        cr[kr] = warm ? cav[k] : ByteFlag(0);
-        thr[kr] = warm ? theta[k] : 1.0;
-        pr[kr] = dirr[kr] ? dval[k] : (warm ? p[k] : pamb);
-      }
+    if (!in_place) {
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+          const int kr = i * m + j, k = i * nz + j;
+          cr[kr] = warm ? cav[k] : ByteFlag(0);
+          thr[kr] = warm ? theta[k] : 1.0;
+          pr[kr] = dirr[kr] ? dval[k] : (warm ? p[k] : pamb);
+        }
+    }
     iterations = 0;
     solves = 0;
     bool ok = false;
@@ -1330,7 +1373,13 @@ std::vector<double> FilmSolver::theta_nodes() const { return impl_->th; }
 std::vector<double> FilmSolver::z_nodes() const { return impl_->zn; }
 std::vector<double> FilmSolver::z_widths() const { return impl_->wz; }
 void FilmSolver::reset_warm_start() { impl_->warm = false; }
-void FilmSolver::set_forces_only(bool forces_only) { impl_->forces_only = forces_only; }
+void FilmSolver::set_forces_only(bool forces_only) {
+  Impl& d = *impl_;
+  // The loads-only arrays lack the mirrored half of a symmetric solve's node arrays: a same-matrix solve after the
+  // switch must not take them for the factorisation's.
+  if (forces_only != d.forces_only) d.thickness_current = false;
+  d.forces_only = forces_only;
+}
 bool FilmSolver::set_viscosity(double viscosity) {
   Impl& d = *impl_;
   if (!(viscosity > 0.0) || !std::isfinite(viscosity)) return false;

@@ -838,7 +838,17 @@ TEST(ForcesOnly, LoadsAreThoseOfAFullSolveAndTheRestIsNaN) {
       ASSERT_EQ(rl.hole_flows.size(), 1u);
       EXPECT_TRUE(std::isnan(rl.hole_flows[0]));
     }
+    // The pressure field is not expanded under set_forces_only; switched off again, the next solve fills it as a
+    // full solve does (from the same warm start).
+    lean.set_forces_only(false);
+    FilmState s;
+    s.ex = 0.5 * c;
+    s.vy = 0.02;
+    const FilmResult rf = solve_ok(full, s), rl = solve_ok(lean, s);
+    EXPECT_EQ(rl.fx, rf.fx);
+    EXPECT_EQ(rl.torque_inner, rf.torque_inner);
     EXPECT_EQ(lean.pressure(), full.pressure());
+    EXPECT_EQ(lean.film_fraction(), full.film_fraction());
   }
 }
 
