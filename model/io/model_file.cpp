@@ -348,13 +348,16 @@ void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   if (s.traction_law == TractionLaw::Eyring && s.lubricant_viscosity == 0.0)
     s.lubricant_viscosity = oil.viscosity_at(oil.temperature);
   if (s.traction_law != TractionLaw::Eyring)
-    for (const char* key : {"lubricant_viscosity", "pressure_viscosity", "eyring_stress", "limiting_shear_coefficient"})
+    for (const char* key : {"lubricant_viscosity", "pressure_viscosity", "eyring_stress", "limiting_shear_coefficient",
+                            "lubricant_shear_modulus"})
       if (r.has(key)) r.fail(key, std::string(key) + " needs traction_law = \"eyring\"");
   s.pressure_viscosity =
       r.quantity_or("pressure_viscosity", dim::dimensionless / dim::pressure, s.pressure_viscosity, Bound::NonNegative);
   s.eyring_stress = r.quantity_or("eyring_stress", dim::pressure, s.eyring_stress, Bound::Positive);
   s.limiting_shear_coefficient =
       r.quantity_or("limiting_shear_coefficient", dim::dimensionless, s.limiting_shear_coefficient, Bound::Positive);
+  s.lubricant_shear_modulus =
+      r.quantity_or("lubricant_shear_modulus", dim::pressure, s.lubricant_shear_modulus, Bound::Positive);
   s.preload = r.quantity_or("preload", dim::force, s.preload, Bound::NonNegative);
   s.preload_stiffness = r.quantity_or("preload_stiffness", dim::stiffness, s.preload_stiffness, Bound::NonNegative);
   s.outer_ring_mass = r.quantity_or("outer_ring_mass", dim::mass, s.outer_ring_mass, Bound::Positive);

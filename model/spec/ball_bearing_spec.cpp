@@ -66,6 +66,7 @@ bool BallBearingSpec::IsValid(std::string* error) const {
       {"pressure_viscosity", pressure_viscosity, Rule::NonNegative},
       {"eyring_stress", eyring_stress, Rule::Positive},
       {"limiting_shear_coefficient", limiting_shear_coefficient, Rule::Positive},
+      {"lubricant_shear_modulus", lubricant_shear_modulus, Rule::Positive},
       {"preload", preload, Rule::NonNegative},
       {"preload_stiffness", preload_stiffness, Rule::NonNegative},
       {"outer_ring_mass", outer_ring_mass, Rule::Positive},

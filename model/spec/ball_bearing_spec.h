@@ -81,6 +81,7 @@ struct BallBearingSpec {
   double pressure_viscosity = 2.0e-8;        ///< alpha in 1/Pa, Barus pressure-viscosity coefficient
   double eyring_stress = 5.0e6;              ///< tau_0 in Pa
   double limiting_shear_coefficient = 0.08;  ///< gamma: limiting shear stress / pressure
+  double lubricant_shear_modulus = 1.0e9;    ///< G in Pa, the film's elastic shear modulus (Johnson & Roberts 1974)
 
   // Axial preload (spring-preloaded outer ring).
   double preload = 40.0;               ///< F_p in N (>= 0), spring force at the unloaded geometry

@@ -485,7 +485,9 @@ TEST(Identify, TachoAngleFromRestWithAPulseExactlyOnASample) {
     const double t = d.record.time[i];
     worst = std::max(worst, std::abs(std::remainder(d.record.angle[i] - angle(t), 2.0 * M_PI)));
     worst_speed = std::max(worst_speed, std::abs(d.record.speed_hz[i] - alpha * t));
-    if (i > 0) EXPECT_GE(d.record.angle[i], d.record.angle[i - 1]) << "sample " << i;
+    if (i > 0) {
+      EXPECT_GE(d.record.angle[i], d.record.angle[i - 1]) << "sample " << i;
+    }
   }
   EXPECT_LT(worst, 1e-3);        // rad
   EXPECT_LT(worst_speed, 1e-2);  // Hz, of 0 .. 64 Hz

@@ -31,7 +31,13 @@ double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointCont
   const double G = lub.pressure_viscosity * E, W = Q / (E * Rx * Rx);
   const double h = Rx * 2.69 * std::pow(U, 0.67) * std::pow(G, 0.53) * std::pow(W, -0.067) *
                    (1.0 - 0.61 * std::exp(-0.73 * hz.ellipticity));
-  const double eta = lub.viscosity * std::exp(std::min(lub.pressure_viscosity * p, 300.0));
+  double eta = lub.viscosity * std::exp(std::min(lub.pressure_viscosity * p, 300.0));
+  if (lub.shear_modulus < std::numeric_limits<double>::infinity()) {
+    // Maxwell film over the transit time along the rolling direction (the ellipse's shorter semi-axis).
+    const double transit = 2.0 * radius / std::sqrt(hz.ellipticity) / std::max(std::abs(u), kMinEntrainmentSpeed);
+    const double r = transit * lub.shear_modulus / eta;
+    eta *= r < 1e-3 ? r * (0.5 - r * (1.0 / 6.0 - r / 24.0)) : 1.0 - (1.0 - std::exp(-r)) / r;
+  }
   // tau / v = (eta / h) (asinh(x) / x) (tanh(y) / y), x = eta v / (tau_0 h), y = tau_E / tau_L: finite at v = 0.
   const double x = eta * std::abs(v) / (lub.eyring_stress * h);
   const double asinh_x = x < 1e-4 ? 1.0 - x * x / 6.0 : std::asinh(x) / x;
@@ -152,7 +158,7 @@ BallBearingElement::BallBearingElement(const std::string& name, const BallBearin
   double cx = 0.0, cy = 0.0;
   RaceCurvatures(D, dm, spec.inner_groove_ratio, a0, true, &cx, &cy);
   lubricant_ = EyringLubricant{spec.lubricant_viscosity, spec.pressure_viscosity, spec.eyring_stress,
-                               spec.limiting_shear_coefficient};
+                               spec.limiting_shear_coefficient, spec.lubricant_shear_modulus};
   hertz_inner_ = SolveHertzPointContact(cx, cy, e_br);
   RaceCurvatures(D, dm, spec.outer_groove_ratio, a0, false, &cx, &cy);
   hertz_outer_ = SolveHertzPointContact(cx, cy, e_br);

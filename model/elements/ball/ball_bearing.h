@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <limits>
 #include <vector>
 
 #include "model/elements/force_element.h"
@@ -42,6 +43,9 @@ struct EyringLubricant {
   double pressure_viscosity = 0.0;  ///< alpha in 1/Pa (> 0)
   double eyring_stress = 0.0;       ///< tau_0 in Pa
   double limiting_shear = 0.0;      ///< gamma: limiting shear stress / pressure
+  /// G in Pa: elastic shear modulus of the film (Maxwell element of the Johnson & Tevaarwerk model); infinite =
+  /// a purely viscous (Eyring) film.
+  double shear_modulus = std::numeric_limits<double>::infinity();
 };
 
 /// Entrainment speeds below this (m/s) are taken as this in the film thickness: a contact at rest keeps a film of
@@ -54,7 +58,14 @@ inline constexpr double kMinEntrainmentSpeed = 0.01;
 /// G = alpha E', W = Q / (E' R_x^2) (Hamrock & Dowson 1977, ASME J. Lubr. Technol. 99); viscosity at p by Barus,
 /// eta = eta_0 exp(alpha p); Eyring shear stress tau_E = tau_0 asinh(eta v / (tau_0 h)) (Johnson & Tevaarwerk
 /// 1977, Proc. R. Soc. A 356), smoothly capped at the limiting shear stress gamma p (Bair & Winer 1979, ASME
-/// J. Lubr. Technol. 101), tau = gamma p tanh(tau_E / (gamma p)); F = tau pi a b. Isothermal.
+/// J. Lubr. Technol. 101), tau = gamma p tanh(tau_E / (gamma p)); F = tau pi a b. Isothermal. The film's shear
+/// elasticity (the Maxwell term tau'/G of Johnson & Tevaarwerk's law) in its small-strain form: a film sheared at
+/// a constant rate from the contact inlet carries the mean stress eta_eff v / h over the transit time
+/// t = 2 b / u (b the semi-axis along the rolling direction), eta_eff = eta (1 - (1 - exp(-r)) / r), r = t G / eta,
+/// which is eta for a fluid that relaxes within the transit and G t / 2 for one that does not; eta_eff takes the
+/// place of eta in the Eyring stress. It bounds the law's slope at zero slip, which Barus' eta alone would make as
+/// steep as exp(alpha p) (a nearly discontinuous traction at high pressure).
+
 double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointContact& hz, double Q, double u, double v);
 
 /// curvature_x, curvature_y: principal curvature sums of the two bodies in the two principal planes (1/m, concave

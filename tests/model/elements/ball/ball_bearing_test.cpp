@@ -400,15 +400,22 @@ TEST(BallBearing, PlanarTractionIgnoresSlipAcrossTheRollingDirection) {
   EXPECT_GT(spatial1 - spatial0, 1e-3) << spatial0 << " -> " << spatial1;
 }
 
+// The reference bearing's inner race contact (ball 4.5 mm, pitch 17.5 mm, groove 0.52, 15 deg, steel), the
+// lubricated-traction tests' contact at 20 N and an entrainment speed of 20 m/s.
+constexpr double kTractionLoad = 20.0, kTractionEntrainment = 20.0;
+const double kSteelModulus = 2.0 / (2.0 * (1.0 - 0.3 * 0.3) / 208e9);  // E'
+HertzPointContact reference_inner_contact() {
+  double cx = 0.0, cy = 0.0;
+  RaceCurvatures(4.5e-3, 17.5e-3, 0.52, 15.0 * 3.14159265358979323846 / 180.0, true, &cx, &cy);
+  return SolveHertzPointContact(cx, cy, kSteelModulus);
+}
+
 TEST(BallBearing, LubricatedTractionHasItsViscousAndLimitingRanges) {
   // TractionLaw::Eyring at the reference bearing's inner contact, 20 N, entrainment 20 m/s, an engine oil of
   // 10 mPa s: against the closed forms of its two ends and the film thickness's speed exponent.
-  constexpr double kD = 4.5e-3, kDm = 17.5e-3, kQ = 20.0, kU = 20.0;
-  const double alpha0 = 15.0 * 3.14159265358979323846 / 180.0;
-  const double modulus = 2.0 / (2.0 * (1.0 - 0.3 * 0.3) / 208e9);
-  double cx = 0.0, cy = 0.0;
-  RaceCurvatures(kD, kDm, 0.52, alpha0, true, &cx, &cy);
-  const HertzPointContact hz = SolveHertzPointContact(cx, cy, modulus);
+  constexpr double kQ = kTractionLoad, kU = kTractionEntrainment;
+  const HertzPointContact hz = reference_inner_contact();
+  const double modulus = kSteelModulus, cx = hz.curvature_x;
   const EyringLubricant lub{0.01, 2e-8, 5e6, 0.08};
   // Viscous end: F / v = eta(p) A / h, the same at any small slip.
   const double radius = hz.radius_factor * std::cbrt(kQ), area = M_PI * radius * radius, p = kQ / area;
@@ -435,6 +442,55 @@ TEST(BallBearing, LubricatedTractionHasItsViscousAndLimitingRanges) {
   }
   std::printf("\n");
   EXPECT_EQ(eyring_traction_per_slip(lub, hz, 0.0, kU, 1.0), 0.0);
+}
+
+TEST(BallBearing, LubricatedTractionWithAnElasticFilmHasTheMaxwellLimits) {
+  // The film's shear modulus G (Johnson & Tevaarwerk's Maxwell term) at zero slip: a film that relaxes within the
+  // transit 2b/u is the viscous one (G -> infinity, or a low pressure), one that does not carries the elastic mean
+  // stress G (2b/u) v / (2 h), whatever its viscosity; in between the slope falls with G and the large-slip end is
+  // still the limiting shear stress.
+  constexpr double kQ = kTractionLoad, kU = kTractionEntrainment;
+  const HertzPointContact hz = reference_inner_contact();
+  ASSERT_GT(hz.ellipticity, 1.0);
+  const double radius = hz.radius_factor * std::cbrt(kQ), area = M_PI * radius * radius;
+  const double b = radius / std::sqrt(hz.ellipticity), transit = 2.0 * b / kU;  // along the rolling direction
+  const EyringLubricant viscous{0.01, 2e-8, 5e6, 0.08};
+  // Stiff film: the viscous law.
+  EyringLubricant lub = viscous;
+  lub.shear_modulus = 1e30;
+  EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 0.0) / eyring_traction_per_slip(viscous, hz, kQ, kU, 0.0),
+              1.0, 1e-9);
+  // Glassy film (alpha p = 70 at 20 N: eta = 2.5e28 Pa s): the elastic mean stress, independent of eta.
+  for (double G : {1e8, 1e9}) {
+    lub.shear_modulus = G;
+    for (double alpha : {7e-8, 1e-7}) {
+      lub.pressure_viscosity = alpha;
+      EyringLubricant plain = viscous;
+      plain.pressure_viscosity = alpha;
+      // The same film thickness for both (it depends on alpha through G = alpha E' only).
+      const double h_a = eyring_traction_per_slip(plain, hz, kQ, kU, 0.0) /
+                         (0.01 * std::exp(std::min(alpha * kQ / area, 300.0)));
+      const double elastic = 0.5 * G * transit * h_a;  // (G t / 2) A / h
+      EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 0.0) / elastic, 1.0, 1e-9) << G << " " << alpha;
+      EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 1e-9) / elastic, 1.0, 1e-6) << G << " " << alpha;
+    }
+  }
+  // The reference oil: a softer film, a smaller slope at zero slip, the same limit at large slip.
+  lub = viscous;
+  double last = eyring_traction_per_slip(viscous, hz, kQ, kU, 0.0);
+  for (double G : {1e10, 1e9, 1e8}) {
+    lub.shear_modulus = G;
+    const double slope = eyring_traction_per_slip(lub, hz, kQ, kU, 0.0);
+    EXPECT_LT(slope, last) << G;
+    last = slope;
+    EXPECT_NEAR(eyring_traction_per_slip(lub, hz, kQ, kU, 1e30) * 1e30 / kQ, lub.limiting_shear, 1e-5);
+  }
+  lub.shear_modulus = 1e9;
+  std::printf("[ eyring, G 1 GPa ] transit %.3g us, eta_eff/eta %.3g; mu at slip", transit * 1e6,
+              eyring_traction_per_slip(lub, hz, kQ, kU, 0.0) / eyring_traction_per_slip(viscous, hz, kQ, kU, 0.0));
+  for (double v : {1e-4, 1e-3, 1e-2, 0.1, 1.0})
+    std::printf(" %.0e m/s: %.4f;", v, eyring_traction_per_slip(lub, hz, kQ, kU, v) * v / kQ);
+  std::printf("\n");
 }
 
 TEST(BallBearing, ScaledTolerancesOfTheBallAndCageVelocitiesFollowTheirContactFrequencies) {
