@@ -89,14 +89,25 @@ TEST(ModelFile, LubricatedTractionTakesTheModelsOilUnlessGivenAndItsKeysNeedIt) 
   const MachineSpec s = load_model(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
                                        parse_override("bearings.turbine.traction_law=\"eyring\""),
                                        parse_override("bearings.turbine.lubricant_viscosity=5 mPa*s"),
-                                       parse_override("bearings.turbine.eyring_stress=3 MPa")});
+                                       parse_override("bearings.turbine.eyring_stress=3 MPa"),
+                                       parse_override("bearings.turbine.lubricant_shear_modulus=0.3 GPa")});
   EXPECT_EQ(s.bearings[0].ball.traction_law, TractionLaw::Eyring);
+  EXPECT_DOUBLE_EQ(s.bearings[0].ball.lubricant_shear_modulus, 1e9);
+  EXPECT_DOUBLE_EQ(s.bearings[1].ball.lubricant_shear_modulus, 3e8);
   EXPECT_DOUBLE_EQ(s.bearings[0].ball.lubricant_viscosity, s.oil.viscosity_at(s.oil.temperature));
   EXPECT_DOUBLE_EQ(s.bearings[1].ball.lubricant_viscosity, 5e-3);
   EXPECT_DOUBLE_EQ(s.bearings[1].ball.eyring_stress, 3e6);
   EXPECT_DOUBLE_EQ(s.bearings[1].ball.pressure_viscosity, 2e-8);
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.eyring_stress=3 MPa")}),
               HasSubstr("needs traction_law = \"eyring\""));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.lubricant_shear_modulus=1 GPa")}),
+              HasSubstr("needs traction_law = \"eyring\""));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
+                           parse_override("bearings.compressor.lubricant_shear_modulus=-1 GPa")}),
+              HasSubstr("lubricant_shear_modulus"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
+                           parse_override("bearings.compressor.lubricant_shear_modulus=1 m")}),
+              HasSubstr("lubricant_shear_modulus"));
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
                            parse_override("bearings.compressor.pressure_viscosity=1e-6")}),
               HasSubstr("pressure_viscosity"));
