@@ -48,7 +48,6 @@ inline void rotate(double c, double s, double& x, double& y) {
 // Gauge pressure of a solved film at mid-width, angle theta (film frame), linearly interpolated.
 double midwidth_pressure(const reynolds::FilmSolver& solver, double theta) {
   const reynolds::FilmGeometry& g = solver.geometry();
-  const std::vector<double>& p = solver.pressure();
   const int n = g.n_circ, nz = g.n_axial;
   double u = theta / (2.0 * M_PI);
   u = (u - std::floor(u)) * n;
@@ -57,7 +56,7 @@ double midwidth_pressure(const reynolds::FilmSolver& solver, double theta) {
   // Nodes at z_j = -L/2 + (j + 1) L / (nz + 1): mid-width is node (nz - 1) / 2 for odd nz, halfway between the
   // two middle nodes for even nz.
   const int ja = (nz - 1) / 2, jb = nz / 2;
-  auto at = [&](int i) { return 0.5 * (p[i * nz + ja] + p[i * nz + jb]); };
+  auto at = [&](int i) { return 0.5 * (solver.node_pressure(i, ja) + solver.node_pressure(i, jb)); };
   return (1.0 - w) * at(i0) + w * at(i1);
 }
 

@@ -79,9 +79,10 @@ struct FilmSolver::Impl {
   std::vector<ByteFlag> cav;     // node states of the last solve (kFull, kCav, kFallback): the warm start
   bool warm = false;
   bool forces_only = false;  // outputs(): the loads only (set_forces_only)
-  // The last outputs() were the loads alone: p, theta, cav, ff were not expanded, and the warm start is the
-  // reduced fields pr, thr, cr of that call (its layout m, sym).
-  bool reduced_warm = false;
+  // The full-grid fields p, theta, cav, ff do not hold the last solve's solution: outputs() read it from the
+  // reduced fields pr, thr, cr (layout m, sym), which the next solve's warm start and the accessors expand when
+  // they need it (ensure_fields).
+  bool fields_stale = false;
   // The band holds the factorisation of the last successful None or Gumbel solve, for the cavitated set in cr and
   // the film thickness of (ex, ey, sx, sy) = factored_at (solve_same_matrix).
   bool factored = false;
@@ -1029,14 +1030,29 @@ struct FilmSolver::Impl {
   // node, the flow that the hole or groove feeds into the film there.
   double outflow_full(int i, int j, bool jfo) const {
     const int k = i * nz + j, iw = (i + n - 1) % n, ie = (i + 1) % n;
-    const int kw = iw * nz + j, ke = ie * nz + j;
-    const double pk = p[k];
-    const double ps = j > 0 ? p[k - 1] : pamb, pn = j + 1 < nz ? p[k + 1] : pamb;
-    double q = aE[kw] * (pk - p[kw]) + aE[k] * (pk - p[ke]) + aF[i * nzf + j] * (pk - ps) +
+    const int kw = iw * nz + j;
+    const double pk = pressure_at(i, j);
+    const double ps = j > 0 ? pressure_at(i, j - 1) : pamb, pn = j + 1 < nz ? pressure_at(i, j + 1) : pamb;
+    double q = aE[kw] * (pk - pressure_at(iw, j)) + aE[k] * (pk - pressure_at(ie, j)) + aF[i * nzf + j] * (pk - ps) +
                aF[i * nzf + j + 1] * (pk - pn);
     if (!jfo) return q + cE[k] - cE[kw] + sq[k];
-    const double te = U >= 0.0 ? theta[k] : theta[ke], tw = U >= 0.0 ? theta[kw] : theta[k];
-    return q + te * cE[k] - tw * cE[kw] + theta[k] * sq[k];
+    const double tk = theta_at(i, j);
+    const double te = U >= 0.0 ? tk : theta_at(ie, j), tw = U >= 0.0 ? theta_at(iw, j) : tk;
+    return q + te * cE[k] - tw * cE[kw] + tk * sq[k];
+  }
+
+  // The last solve's pressure and film content at full-grid node (i, j), read from the reduced solution: row j, or
+  // its mirror image nz - 1 - j of a symmetric solve.
+  int reduced_node(int i, int j) const { return i * m + (j < m ? j : nz - 1 - j); }
+  double pressure_at(int i, int j) const { return pr[reduced_node(i, j)]; }
+  double theta_at(int i, int j) const {
+    return o.cavitation == Cavitation::MassConserving ? thr[reduced_node(i, j)] : 1.0;
+  }
+
+  void ensure_fields() {
+    if (!fields_stale) return;
+    expand_fields();
+    fields_stale = false;
   }
 
   // Expands the reduced solution (pr, thr, cr in the layout m, sym) to the full-grid fields p, theta, cav, ff.
@@ -1065,29 +1081,16 @@ struct FilmSolver::Impl {
   void outputs_of(const FilmState& s, FilmResult& r) {
     const bool jfo = o.cavitation == Cavitation::MassConserving;
     int ncav = 0, nfallback = 0;
-    reduced_warm = !Full;
-    if constexpr (Full) {
-      expand_fields();
-      for (int k = 0; k < n * nz; ++k) {
-        ncav += cav[k] != kFull;
-        nfallback += cav[k] == kFallback;
-      }
-    } else {
-      // The loads alone read the reduced solution in place, row j of the full grid being row j (or its mirror
-      // image nz - 1 - j) of the reduced one: the same values summed in the same order as after the expansion.
-      for (int j = 0; j < m; ++j) {
-        const int copies = sym && 2 * j != nz - 1 ? 2 : 1;
-        for (int i = 0; i < n; ++i) {
-          ncav += copies * (cr[i * m + j] != kFull);
-          nfallback += copies * (cr[i * m + j] == kFallback);
-        }
+    // The outputs read the reduced solution in place (pressure_at, theta_at): the same values, summed in the same
+    // order, as from the full-grid fields, which are expanded only when something asks for them.
+    fields_stale = true;
+    for (int j = 0; j < m; ++j) {
+      const int copies = sym && 2 * j != nz - 1 ? 2 : 1;
+      for (int i = 0; i < n; ++i) {
+        ncav += copies * (cr[i * m + j] != kFull);
+        nfallback += copies * (cr[i * m + j] == kFallback);
       }
     }
-    // Pressure at full-grid node (i, j): the expanded field, or the reduced solution's row.
-    const auto pressure_at = [&](int i, int j) {
-      if constexpr (Full) return p[i * nz + j];
-      return pr[i * m + (j < m ? j : nz - 1 - j)];
-    };
 
     const double R = g.radius;
     double sc = 0, ss = 0, zc = 0, zs = 0, couette = 0, pois = 0, pmax = pamb;
@@ -1100,8 +1103,8 @@ struct FilmSolver::Impl {
         rp += pk * w;
         rpz += pk * zn[j] * w;
         if constexpr (Full) {
-          rc += theta[k] / hN[k] * wc[j];
-          rz += hE[k] * (p[ie * nz + j] - pk) * w;
+          rc += theta_at(i, j) / hN[k] * wc[j];
+          rz += hE[k] * (pressure_at(ie, j) - pk) * w;
         }
         pmax = std::max(pmax, pk);
       }
@@ -1171,7 +1174,7 @@ struct FilmSolver::Impl {
       for (int i = 0; i < n; ++i) {
         const double hl = c - (s.ex + zl * s.sx) * ct[i] - (s.ey + zl * s.sy) * st[i];
         const double hu = c - (s.ex + zu * s.sx) * ct[i] - (s.ey + zu * s.sy) * st[i];
-        ends += 0.5 * (theta[i * nz] / hl + theta[i * nz + nz - 1] / hu);
+        ends += 0.5 * (theta_at(i, 0) / hl + theta_at(i, nz - 1) / hu);
       }
       couette += ends * 2.0 * (zf[0] + 0.5 * g.length);  // the end strips
       const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * dx;
@@ -1180,7 +1183,7 @@ struct FilmSolver::Impl {
       r.torque_outer = -tc + tp;
       double qe = 0.0;
       for (int i = 0; i < n; ++i)
-        qe += aF[i * nzf] * (p[i * nz] - pamb) + aF[i * nzf + nz] * (p[i * nz + nz - 1] - pamb);
+        qe += aF[i * nzf] * (pressure_at(i, 0) - pamb) + aF[i * nzf + nz] * (pressure_at(i, nz - 1) - pamb);
       r.flow_ends = qe;
       r.hole_flows.resize(g.holes.size());
       std::fill(r.hole_flows.begin(), r.hole_flows.end(), 0.0);
@@ -1305,10 +1308,10 @@ struct FilmSolver::Impl {
             "ambient pressure above it (without one the steady film runs dry)");
     }
     const bool sym_new = symmetric_state(s);
-    // After a loads-only call the warm start is still in the reduced fields: kept in place if the layout is the
+    // The warm start is the last solve's solution: still in the reduced fields (kept in place) if the layout is the
     // same (the values the full-grid copy below would take), expanded first otherwise.
-    const bool in_place = warm && reduced_warm && sym_new == sym;
-    if (warm && reduced_warm && !in_place) expand_fields();
+    const bool in_place = warm && fields_stale && sym_new == sym;
+    if (warm && !in_place) ensure_fields();
     sym = sym_new;
     m = sym ? (nz + 1) / 2 : nz;
     w_last = (sym && nz % 2 == 1) ? 0.5 : 1.0;
@@ -1367,8 +1370,18 @@ bool FilmSolver::solve(const FilmState& s, FilmResult& r) { return impl_->solve(
 bool FilmSolver::solve_same_matrix(const FilmState& s, FilmResult& r) { return impl_->solve_same_matrix(s, r); }
 bool FilmSolver::solve_linearised(const FilmState& s, FilmResult& r) { return impl_->solve_linearised(s, r); }
 const std::string& FilmSolver::last_error() const { return impl_->err; }
-const std::vector<double>& FilmSolver::pressure() const { return impl_->p; }
-const std::vector<double>& FilmSolver::film_fraction() const { return impl_->ff; }
+const std::vector<double>& FilmSolver::pressure() const {
+  impl_->ensure_fields();
+  return impl_->p;
+}
+const std::vector<double>& FilmSolver::film_fraction() const {
+  impl_->ensure_fields();
+  return impl_->ff;
+}
+double FilmSolver::node_pressure(int i, int j) const {
+  const Impl& d = *impl_;
+  return d.fields_stale ? d.pressure_at(i, j) : d.p[static_cast<std::size_t>(i) * d.nz + j];
+}
 std::vector<double> FilmSolver::theta_nodes() const { return impl_->th; }
 std::vector<double> FilmSolver::z_nodes() const { return impl_->zn; }
 std::vector<double> FilmSolver::z_widths() const { return impl_->wz; }

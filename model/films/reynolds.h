@@ -162,9 +162,13 @@ class FilmSolver {
   /// solve_same_matrix() except the thickness test; fails also if the film closes. Allocation-free.
   bool solve_linearised(const FilmState& s, FilmResult& r);
 
-  /// Pressure of the last solve (not filled under set_forces_only), Pa gauge, n_circ x n_axial, theta-major:
-  /// p[i * n_axial + j] at theta_nodes()[i], z_nodes()[j] (the ends, at z = -+L/2, are at ambient pressure).
+  /// Pressure of the last successful solve, Pa gauge, n_circ x n_axial, theta-major: p[i * n_axial + j] at
+  /// theta_nodes()[i], z_nodes()[j] (the ends, at z = -+L/2, are at ambient pressure). The solves keep their
+  /// solution on the grid they solve (half of it with mid-width symmetry); this and film_fraction() expand it to
+  /// the full grid on the first call after a solve (no allocation). After a failed solve: unspecified.
   const std::vector<double>& pressure() const;
+  /// One node of pressure() (i < n_circ, j < n_axial), without expanding the field.
+  double node_pressure(int i, int j) const;
   /// Film fraction of the last solve, same layout: the JFO theta for MassConserving; for the other models 1 in
   /// the full film and 0 where the Swift-Stieber constraint is active.
   const std::vector<double>& film_fraction() const;
@@ -177,8 +181,7 @@ class FilmSolver {
 
   /// For a caller that reads only the loads (a squeeze-film damper): true makes every solve fill fx, fy, mx, my,
   /// max_pressure, cavitated_fraction and the counters as before, bit for bit, and skip the torques, flows and hole
-  /// flows, which it sets to NaN. The warm start is that of a full solve; pressure() and film_fraction() are not
-  /// filled (they keep whatever an earlier solve without this setting left).
+  /// flows, which it sets to NaN. The warm start, pressure() and film_fraction() are those of a full solve.
   void set_forces_only(bool forces_only);
 
   /// Sets the film's viscosity (Pa s, > 0 and finite; false and nothing changed otherwise) for the following

@@ -788,11 +788,11 @@ TEST(Linearised, OneNewtonStepIsSecondOrderInTheThicknessChange) {
 
 }  // namespace
 TEST(ForcesOnly, LoadsAreThoseOfAFullSolveAndTheRestIsNaN) {
-  // set_forces_only(true) (the squeeze-film dampers): the same forces, moments, peak pressure, cavitated share and
-  // counters bit for bit, torques and flows NaN; the warm start is a full solve's, so a sequence of states gives
-  // the same loads with and without it, by solve(), solve_same_matrix() and solve_linearised(). A tilted,
-  // spinning film with a hole (no mid-width symmetry) and a squeeze film of a damper (symmetric), both models of
-  // the active set that have a factorisation to reuse.
+  // set_forces_only(true) (the squeeze-film dampers): the same forces, moments, peak pressure, cavitated share,
+  // counters and pressure field bit for bit, torques and flows NaN; the warm start is a full solve's, so a sequence
+  // of states gives the same loads with and without it, by solve(), solve_same_matrix() and solve_linearised(). A
+  // tilted, spinning film with a hole (no mid-width symmetry) and a squeeze film of a damper (symmetric), both
+  // models of the active set that have a factorisation to reuse.
   FilmGeometry tilted = plain(0.7, 48, 10, 0.005, 15e-6);
   tilted.holes = {Hole{kPi / 2, 0.0, 0.002, 2e5}};
   FilmGeometry damper = plain(0.3, 48, 8, 0.01025, 51e-6);
@@ -837,9 +837,17 @@ TEST(ForcesOnly, LoadsAreThoseOfAFullSolveAndTheRestIsNaN) {
       EXPECT_TRUE(std::isnan(rl.torque_inner) && std::isnan(rl.torque_outer) && std::isnan(rl.flow_ends));
       ASSERT_EQ(rl.hole_flows.size(), 1u);
       EXPECT_TRUE(std::isnan(rl.hole_flows[0]));
+      // The fields, expanded to the full grid when asked for (every other step here, so that the warm start is
+      // taken both from the expanded and from the solver's own fields).
+      if (step % 2 == 1) {
+        EXPECT_EQ(lean.pressure(), full.pressure()) << "step " << step;
+        EXPECT_EQ(lean.film_fraction(), full.film_fraction()) << "step " << step;
+        EXPECT_EQ(lean.node_pressure(5, 2), full.pressure()[5 * g->n_axial + 2]);
+      } else {
+        EXPECT_EQ(lean.node_pressure(7, g->n_axial - 1), full.node_pressure(7, g->n_axial - 1)) << "step " << step;
+      }
     }
-    // The pressure field is not expanded under set_forces_only; switched off again, the next solve fills it as a
-    // full solve does (from the same warm start).
+    // Switched off again, the next solve gives a full solve's outputs and fields (from the same warm start).
     lean.set_forces_only(false);
     FilmState s;
     s.ex = 0.5 * c;
