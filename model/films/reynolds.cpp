@@ -427,8 +427,9 @@ struct FilmSolver::Impl {
       for (int i = 0; i < n; ++i)
         for (int jf = jfn; jf < nzf; ++jf) aF[i * nzf + jf] = aF[i * nzf + nz - jf];
     }
+    const int rows_written = node_mirror ? nz : jn;  // jn = nz without symmetry
     for (const auto& [k, f] : fit_east)
-      if (!sym || node_mirror || k % nz < jn) aE[k] *= f;
+      if (k % nz < rows_written) aE[k] *= f;
     for (const auto& [kf, f] : fit_axial) aF[kf] *= f;
   }
 
@@ -1049,14 +1050,11 @@ struct FilmSolver::Impl {
     return o.cavitation == Cavitation::MassConserving ? thr[reduced_node(i, j)] : 1.0;
   }
 
+  // Expands the reduced solution (pr, thr, cr in the layout m, sym) to the full-grid fields p, theta, cav, ff,
+  // unless they already hold it.
   void ensure_fields() {
     if (!fields_stale) return;
-    expand_fields();
     fields_stale = false;
-  }
-
-  // Expands the reduced solution (pr, thr, cr in the layout m, sym) to the full-grid fields p, theta, cav, ff.
-  void expand_fields() {
     const bool jfo = o.cavitation == Cavitation::MassConserving;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < m; ++j) {
@@ -1308,9 +1306,10 @@ struct FilmSolver::Impl {
             "ambient pressure above it (without one the steady film runs dry)");
     }
     const bool sym_new = symmetric_state(s);
-    // The warm start is the last solve's solution: still in the reduced fields (kept in place) if the layout is the
-    // same (the values the full-grid copy below would take), expanded first otherwise.
-    const bool in_place = warm && fields_stale && sym_new == sym;
+    // The warm start is the last solve's solution, which the reduced fields still hold (an expansion to the full
+    // grid only copies them): kept in place if the layout is the same (the values the full-grid copy below would
+    // take), expanded first otherwise.
+    const bool in_place = warm && sym_new == sym;
     if (warm && !in_place) ensure_fields();
     sym = sym_new;
     m = sym ? (nz + 1) / 2 : nz;

@@ -12,8 +12,8 @@
 // docs/ball-bearing.md gives the equations, the sign conventions and the assumptions.
 #pragma once
 
-#include <string>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "model/elements/force_element.h"
@@ -65,7 +65,6 @@ inline constexpr double kMinEntrainmentSpeed = 0.01;
 /// which is eta for a fluid that relaxes within the transit and G t / 2 for one that does not; eta_eff takes the
 /// place of eta in the Eyring stress. It bounds the law's slope at zero slip, which Barus' eta alone would make as
 /// steep as exp(alpha p) (a nearly discontinuous traction at high pressure).
-
 double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointContact& hz, double Q, double u, double v);
 
 /// curvature_x, curvature_y: principal curvature sums of the two bodies in the two principal planes (1/m, concave
