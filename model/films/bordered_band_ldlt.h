@@ -45,6 +45,7 @@ class BorderedBandLdlt {
   /// A(n + a, n + b), a >= b.
   double& corner(int a, int b) { return corner_[a * na_ + b]; }
   void set_fixed(int r, bool f) { fixed_[r] = f ? 1 : 0; }
+  ByteFlag* fixed_flags() { return fixed_.data(); }  // set_fixed for a loop: the flags of the n band columns
   double* rhs() { return y_.data(); }          // n values, then m zeros of padding
   double* rhs_border() { return ya_.data(); }  // na values
 

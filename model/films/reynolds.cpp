@@ -438,60 +438,85 @@ struct FilmSolver::Impl {
   // rates_only: the couplings (Cw, Ce, Cs, Cn, Dg) and their largest diagonal are those of the last call, only the
   // sources are new (geometry_arrays(s, true)).
   void reduced_system(bool rates_only = false) {
-    double fmax = 0.0;
-    if (!rates_only) amax = 0.0;
+    // Local pointers (restrict: the arrays are distinct) and a local running maximum, so that the stores into the
+    // arrays do not make the compiler reload the vectors' data pointers and the maximum at every node.
+    double* __restrict cw_ = Cw.data();
+    double* __restrict ce_ = Ce.data();
+    double* __restrict cs_ = Cs.data();
+    double* __restrict cn_ = Cn.data();
+    double* __restrict dg_ = Dg.data();
+    double* __restrict fe_ = FE.data();
+    double* __restrict sq_ = SQ.data();
+    double* __restrict b0_ = b0.data();
+    ByteFlag* __restrict dirr_ = dirr.data();
+    const double* __restrict aE_ = aE.data();
+    const double* __restrict aF_ = aF.data();
+    const double* __restrict cE_ = cE.data();
+    const double* __restrict sqf_ = sq.data();
+    const int* __restrict kind_ = kind.data();
+    const int* __restrict iwest_ = iwest.data();
+    double fmax = 0.0, dmax = rates_only ? amax : 0.0;
     const int last = sym ? m - 1 : -1;
     for (int i = 0; i < n; ++i) {
-      const int iw = iwest[i];
-      const double* aEi = aE.data() + i * nz;
-      const double* aEw = aE.data() + iw * nz;
-      const double* aFi = aF.data() + i * nzf;
-      const double* cEi = cE.data() + i * nz;
-      const double* sqi = sq.data() + i * nz;
-      const int* kindi = kind.data() + i * nz;
-      for (int j = 0; j < m; ++j) {
-        const int kr = i * m + j;
-        const double w = j == last ? w_last : 1.0;
-        if (!rates_only) {
+      const int iw = iwest_[i];
+      const double* aEi = aE_ + i * nz;
+      const double* aEw = aE_ + iw * nz;
+      const double* aFi = aF_ + i * nzf;
+      const double* cEi = cE_ + i * nz;
+      const double* sqi = sqf_ + i * nz;
+      const int* kindi = kind_ + i * nz;
+      const int kr0 = i * m;
+      if (!rates_only)
+        for (int j = 0; j < m; ++j) {
+          const int kr = kr0 + j;
+          const double w = j == last ? w_last : 1.0;
           const double cw = w * aEw[j], ce = w * aEi[j], cs = aFi[j], cn = j == last ? 0.0 : aFi[j + 1];
-          Cw[kr] = cw;
-          Ce[kr] = ce;
-          Cs[kr] = cs;
-          Cn[kr] = cn;
-          Dg[kr] = cw + ce + cs + cn;
-          amax = std::max(amax, Dg[kr]);
-          dirr[kr] = kindi[j] != -1;
+          cw_[kr] = cw;
+          ce_[kr] = ce;
+          cs_[kr] = cs;
+          cn_[kr] = cn;
+          const double dg = cw + ce + cs + cn;
+          dg_[kr] = dg;
+          dmax = std::max(dmax, dg);
+          dirr_[kr] = kindi[j] != -1;
         }
-        FE[kr] = w * cEi[j];
-        SQ[kr] = w * sqi[j];
-        fmax = std::max(fmax, std::abs(FE[kr]) + std::abs(SQ[kr]));
+      for (int j = 0; j < m; ++j) {
+        const int kr = kr0 + j;
+        const double w = j == last ? w_last : 1.0;
+        const double fe = w * cEi[j], sqk = w * sqi[j];
+        fe_[kr] = fe;
+        sq_[kr] = sqk;
+        fmax = std::max(fmax, std::abs(fe) + std::abs(sqk));
       }
     }
+    amax = dmax;
     for (int k : dir_nodes) {
       const int i = k / nz, j = k % nz;
       if (j < m) pr[i * m + j] = dval[k];
     }
     double bmax = 0.0;
     for (int i = 0; i < n; ++i) {
-      const int iw = iwest[i];
+      const int iw = iwest_[i];
+      const int kr0 = i * m, kw0 = iw * m;
       for (int j = 0; j < m; ++j) {
-        const int kr = i * m + j;
-        b0[kr] = -(FE[kr] - FE[iw * m + j]) - SQ[kr];
-        bmax = std::max(bmax, std::abs(b0[kr]));
+        const int kr = kr0 + j;
+        const double b = -(fe_[kr] - fe_[kw0 + j]) - sq_[kr];
+        b0_[kr] = b;
+        bmax = std::max(bmax, std::abs(b));
       }
-      b0[i * m] += Cs[i * m] * pamb;
-      if (!sym) b0[i * m + m - 1] += Cn[i * m + m - 1] * pamb;
+      b0_[kr0] += cs_[kr0] * pamb;
+      if (!sym) b0_[kr0 + m - 1] += cn_[kr0 + m - 1] * pamb;
     }
     // Add the couplings to hole and groove nodes (fixed for the whole call) to the source of their neighbours.
     for (int k : dir_nodes) {
       const int i = k / nz, j = k % nz;
       if (j >= m) continue;
       const double v = dval[k];
-      const int kr = i * m + j, kw = iwest[i] * m + j, ke = ieast[i] * m + j;
-      b0[kw] += Ce[kw] * v;
-      b0[ke] += Cw[ke] * v;
-      if (j > 0) b0[kr - 1] += Cn[kr - 1] * v;
-      if (j + 1 < m) b0[kr + 1] += Cs[kr + 1] * v;
+      const int kr = i * m + j, kw = iwest_[i] * m + j, ke = ieast[i] * m + j;
+      b0_[kw] += ce_[kw] * v;
+      b0_[ke] += cw_[ke] * v;
+      if (j > 0) b0_[kr - 1] += cn_[kr - 1] * v;
+      if (j + 1 < m) b0_[kr + 1] += cs_[kr + 1] * v;
     }
     // Scales for the sign tests: pressure from the Dirichlet data (refined after the first solve), flux from the
     // sources and the couplings.
@@ -505,38 +530,47 @@ struct FilmSolver::Impl {
 
   // Factorises the system restricted to the free nodes (fr[kr] = 1); other nodes keep their value in pr.
   bool factor_free() {
+    const ByteFlag* __restrict fr_ = fr.data();
+    int* __restrict colcount_ = colcount.data();
     int best = 0;
     for (int i = 0; i < n; ++i) {
       int c = 0;
-      for (int j = 0; j < m; ++j) c += fr[i * m + j];
-      colcount[i] = c;
-      if (c < colcount[best]) best = i;
+      for (int j = 0; j < m; ++j) c += fr_[i * m + j];
+      colcount_[i] = c;
+      if (c < colcount_[best]) best = i;
     }
     last_col = best;
     i0 = (best + 1) % n;
     na = 0;
-    for (int j = 0; j < m; ++j) border_j[j] = fr[last_col * m + j] ? na++ : -1;
+    for (int j = 0; j < m; ++j) border_j[j] = fr_[last_col * m + j] ? na++ : -1;
     const int N1 = (n - 1) * m;
     band.reset(N1, m, na);
+    const double* __restrict dg_ = Dg.data();
+    const double* __restrict cn_ = Cn.data();
+    const double* __restrict ce_ = Ce.data();
+    const double* __restrict cw_ = Cw.data();
+    double* __restrict bcol = band.column(0);
+    ByteFlag* __restrict bfix = band.fixed_flags();
+    const int stride = m + 1;
     for (int q = 0; q < n - 1; ++q) {
       const int i = i0 + q < n ? i0 + q : i0 + q - n, ie = i + 1 < n ? i + 1 : 0;
       for (int j = 0; j < m; ++j) {
         const int r = q * m + j, kr = i * m + j;
-        double* col = band.column(r);
-        if (!fr[kr]) {
+        double* col = bcol + static_cast<std::ptrdiff_t>(r) * stride;
+        if (!fr_[kr]) {
           col[0] = 1.0;
-          band.set_fixed(r, true);
+          bfix[r] = 1;
           continue;
         }
-        band.set_fixed(r, false);
-        col[0] = Dg[kr];
-        if (j + 1 < m && fr[kr + 1]) col[1] = -Cn[kr];
+        bfix[r] = 0;
+        col[0] = dg_[kr];
+        if (j + 1 < m && fr_[kr + 1]) col[1] = -cn_[kr];
         if (q + 1 < n - 1) {
-          if (fr[ie * m + j]) col[m] = -Ce[kr];
+          if (fr_[ie * m + j]) col[m] = -ce_[kr];
         } else if (border_j[j] >= 0) {
-          band.border(r, border_j[j]) = -Ce[kr];
+          band.border(r, border_j[j]) = -ce_[kr];
         }
-        if (q == 0 && border_j[j] >= 0) band.border(r, border_j[j]) += -Cw[kr];
+        if (q == 0 && border_j[j] >= 0) band.border(r, border_j[j]) += -cw_[kr];
       }
     }
     for (int j = 0; j < m; ++j) {
