@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "model/films/byte_flag.h"
@@ -51,16 +52,16 @@ class BorderedBandLdlt {
 
   bool factor() {
     // Without a border the pair step needs none of the border's code (a separate instance keeps its registers).
-    if (na_ == 0) return with_sizes([this]<int M, bool>() { return factor_band<M, false, false>(); });
-    return with_sizes([this]<int M, bool Full>() { return factor_band<M, Full, true>(); }) && factor_corner();
+    if (na_ == 0) return with_sizes([this]<int M, int>() { return factor_band<M, 0, false>(); });
+    return with_sizes([this]<int M, int NA>() { return factor_band<M, NA, true>(); }) && factor_corner();
   }
   void solve() {
-    with_sizes([this]<int M, bool>() {
+    with_sizes([this]<int M, int NA>() {
       if constexpr (M > 0) {
         if (na_ > 0)
-          solve_band_windowed<M, true>();
+          solve_band_windowed<M, true, NA>();
         else
-          solve_band_windowed<M, false>();
+          solve_band_windowed<M, false, 0>();
       } else
         solve_band();
       return true;
@@ -68,12 +69,25 @@ class BorderedBandLdlt {
   }
 
  private:
-  // Calls f.operator()<M, Full>() with the half-bandwidth as a compile-time constant for the common sizes (M = 0:
-  // run-time size) and Full = (border size == M).
+  // Calls f.operator()<M, NA>() with the half-bandwidth as a compile-time constant for the common sizes (M = 0:
+  // run-time size) and the border's size NA as one where it is M or, for the examples' half-bandwidths, any size
+  // (NA = 0: run-time size). A border loop of compile-time length keeps its values in registers: the bordered
+  // factorisation of a 48 x 10 film with 1-3 border nodes is 1.5x faster for it (bench/README.md).
   template <class F>
   bool with_sizes(F&& f) const {
-    const bool full = na_ == m_;
-    auto pick = [&]<int M>() { return full ? f.template operator()<M, true>() : f.template operator()<M, false>(); };
+    auto pick = [&]<int M>() {
+      if (na_ == M) return f.template operator()<M, M>();
+      if constexpr (M == 4 || M == 5 || M == 8 || M == 10) {
+        // The examples' half-bandwidths (damper films of 8 axial nodes, floating-ring films of 10, half of them
+        // by symmetry): each border size 1 .. M - 1 at compile time too.
+        bool result = false;
+        const bool hit = [&]<int... K>(std::integer_sequence<int, K...>) {
+          return ((na_ == K + 1 && (result = f.template operator()<M, K + 1>(), true)) || ...);
+        }(std::make_integer_sequence<int, M - 1>{});
+        if (hit) return result;
+      }
+      return f.template operator()<M, 0>();
+    };
     switch (m_) {
       case 4: return pick.template operator()<4>();
       case 5: return pick.template operator()<5>();
@@ -86,14 +100,14 @@ class BorderedBandLdlt {
       case 16: return pick.template operator()<16>();
       case 20: return pick.template operator()<20>();
       case 24: return pick.template operator()<24>();
-      default: return f.template operator()<0, false>();
+      default: return f.template operator()<0, 0>();
     }
   }
 
   // Right-looking band L D L^T; M > 0 fixes the half-bandwidth at compile time (loops unroll and vectorise).
-  template <int M, bool FullBorder, bool Bordered>
+  template <int M, int NA, bool Bordered>
   bool factor_band() {
-    const int m = M > 0 ? M : m_, na = !Bordered ? 0 : FullBorder ? M : na_, n = n_;
+    const int m = M > 0 ? M : m_, na = !Bordered ? 0 : NA > 0 ? NA : na_, n = n_;
     for (int r = 0; r < n; ++r) {
       if (fixed_[r]) {
         inv_d_[r] = 1.0;
@@ -127,7 +141,7 @@ class BorderedBandLdlt {
           t[m - j + 1] -= cs[m] * b;
         }
         col[(m + 1) * (m + 1)] -= cs[m] * ls[m];  // diagonal of column r + m + 1
-        if (Bordered) pair_border<M, FullBorder>(w, inv, invs, lr, ls);
+        if (Bordered) pair_border<M, NA>(w, inv, invs, lr, ls);
         for (int j = 1; j <= m; ++j) {
           col[j] = lr[j];
           cs[j] = ls[j];
@@ -172,9 +186,9 @@ class BorderedBandLdlt {
   // The border part of eliminating columns r and s = r + 1 together (factor_band's pair step): the border rows
   // w_r (wr, factor_band's w), w_s and those of the rows below them, r + 2 .. r + m + 1, and the corner; lr, ls: the
   // two columns' L.
-  template <int M, bool FullBorder>
+  template <int M, int NA>
   [[gnu::always_inline]] void pair_border(double* wr, double inv, double invs, const double* lr, const double* ls) {
-    const int na = FullBorder ? M : na_;
+    const int na = NA > 0 ? NA : na_;
     double* ws = wr + na;
     for (int a = 0; a < na; ++a) ws[a] -= wr[a] * lr[1];
     for (int j = 2; j <= M; ++j) {
@@ -222,9 +236,9 @@ class BorderedBandLdlt {
   // of the sliding window y[r .. r + M] stay in registers, so each row costs one multiply-add on the chain instead
   // of a store and a reload. Rows of fixed nodes are a shift of the window (their columns and right-hand sides are
   // zero). The border's (na unknowns) sums run beside the chain.
-  template <int M, bool Border>
+  template <int M, bool Border, int NA>
   void solve_band_windowed() {
-    const int n = n_, na = Border ? na_ : 0;
+    const int n = n_, na = Border ? (NA > 0 ? NA : na_) : 0;
     double* y = y_.data();
     double* ya = ya_.data();
     const double* inv_d = inv_d_.data();
@@ -233,6 +247,12 @@ class BorderedBandLdlt {
     double a[M];  // forward: y[r .. r + M - 1] with the updates of the rows above r
 #pragma GCC unroll 16
     for (int t = 0; t < M; ++t) a[t] = y[t];
+    // A border of compile-time size accumulates in registers (acc) rather than in ya, whose stores and reloads
+    // from one row to the next would be a chain through memory beside the window's.
+    constexpr int NR = Border && NA > 0 ? NA : 1;
+    double acc[NR];
+#pragma GCC unroll 16
+    for (int k = 0; k < NR; ++k) acc[k] = NA > 0 ? ya[k] : 0.0;
     for (int r = 0; r < n; ++r) {
       const double yr = a[0];
       y[r] = yr * inv_d[r];
@@ -246,10 +266,18 @@ class BorderedBandLdlt {
 #pragma GCC unroll 16
       for (int t = 1; t < M; ++t) a[t - 1] = a[t] - col[t] * yr;
       a[M - 1] = y[r + M] - col[M] * yr;
-      if (Border) {
+      if constexpr (Border && NA > 0) {
+        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * NA;
+#pragma GCC unroll 16
+        for (int k = 0; k < NA; ++k) acc[k] -= w[k] * yr;
+      } else if constexpr (Border) {
         const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
         for (int k = 0; k < na; ++k) ya[k] -= w[k] * yr;
       }
+    }
+    if constexpr (Border && NA > 0) {
+#pragma GCC unroll 16
+      for (int k = 0; k < NA; ++k) ya[k] = acc[k];
     }
     if (Border) solve_corner();
     double b[M];  // backward: the solution y[r + 1 .. r + M]
@@ -271,8 +299,10 @@ class BorderedBandLdlt {
         if (t + 1 <= M) s1 += col[t + 1] * b[t];
       }
       if (Border) {
-        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na;
-        for (int k = 0; k < na; ++k) s0 += w[k] * ya[k];
+        // The run-time size (na_ = NA when that is set): a compile-time one lets the compiler vectorise the
+        // products and add them one by one, which is slower and rounds differently.
+        const double* w = border_.data() + static_cast<std::ptrdiff_t>(r) * na_;
+        for (int k = 0; k < na_; ++k) s0 += w[k] * ya[k];
       }
       const double yr = (y[r] - (s0 + s1)) - col[1] * b[0];
       y[r] = yr;
