@@ -73,6 +73,8 @@ struct FilmSolver::Impl {
   // Per call, full grid (i * nz + j; faces i * nzf + jf).
   std::vector<double> hN, hE, aE, aF, cE, sq, dval;
   std::vector<double> h_col, he_col;  // an untilted film's thickness per column at the nodes and east faces
+  std::vector<double> row_coef;       // geometry_arrays' per-row (per-face) coefficients, 7 arrays of nzf
+  std::vector<double> shear_terms;    // outputs_of: theta / h per node
   std::vector<double> end_slope_lo, end_slope_hi;  // per column, dp/dz at z = -L/2, +L/2 (outputs, open ends)
   std::vector<char> plain_column;                  // per column: no hole or groove node (fixed by the geometry)
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
@@ -245,6 +247,8 @@ struct FilmSolver::Impl {
     hE.assign(N, 0.0);
     h_col.assign(n, 0.0);
     he_col.assign(n, 0.0);
+    row_coef.assign(7 * static_cast<std::size_t>(nzf), 0.0);
+    shear_terms.assign(N, 0.0);
     aE.assign(N, 0.0);
     cE.assign(N, 0.0);
     sq.assign(N, 0.0);
@@ -390,33 +394,69 @@ struct FilmSolver::Impl {
         he_col[i] = c - s.ex * cte[i] - s.ey * ste[i];
       }
     }
+    // Per axial row (and face) the coefficients, then the nodes column by column: the node arrays are stored
+    // axial-fastest, so the inner loops run over contiguous memory (the same values as row by row).
+    double* __restrict rexz = row_coef.data();
+    double* __restrict reyz = rexz + nzf;
+    double* __restrict rkx = reyz + nzf;
+    double* __restrict rcou = rkx + nzf;
+    double* __restrict rarea = rcou + nzf;
+    double* __restrict rvxz = rarea + nzf;
+    double* __restrict rvyz = rvxz + nzf;
     for (int j = 0; j < jn; ++j) {
       const double z = zn[j];
-      const double kx = wz[j] / (12.0 * eta * dx), couette = 0.5 * U * wz[j], area = dx * wz[j];
-      const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
-      const double vxz = s.vx + z * s.dsx, vyz = s.vy + z * s.dsy;
+      rkx[j] = wz[j] / (12.0 * eta * dx);
+      rcou[j] = 0.5 * U * wz[j];
+      rarea[j] = dx * wz[j];
+      rexz[j] = s.ex + z * s.sx;
+      reyz[j] = s.ey + z * s.sy;
+      rvxz[j] = s.vx + z * s.dsx;
+      rvyz[j] = s.vy + z * s.dsy;
+    }
+    {
+      double* __restrict hN_ = hN.data();
+      double* __restrict hE_ = hE.data();
+      double* __restrict aE_ = aE.data();
+      double* __restrict cE_ = cE.data();
+      double* __restrict sq_ = sq.data();
       for (int i = 0; i < n; ++i) {
-        const int k = i * nz + j;
-        const double h = untilted ? h_col[i] : c - exz * ct[i] - eyz * st[i];
-        const double he = untilted ? he_col[i] : c - exz * cte[i] - eyz * ste[i];
-        hN[k] = h;
-        hE[k] = he;
-        aE[k] = kx * he * he * he;
-        cE[k] = couette * he;
-        sq[k] = -(vxz * ct[i] + vyz * st[i]) * area;
+        const double cti = ct[i], sti = st[i], ctei = cte[i], stei = ste[i];
+        const double hc = h_col[i], hec = he_col[i];
+        const int k0 = i * nz;
+        for (int j = 0; j < jn; ++j) {
+          const double h = untilted ? hc : c - rexz[j] * cti - reyz[j] * sti;
+          const double he = untilted ? hec : c - rexz[j] * ctei - reyz[j] * stei;
+          hN_[k0 + j] = h;
+          hE_[k0 + j] = he;
+          aE_[k0 + j] = rkx[j] * he * he * he;
+          cE_[k0 + j] = rcou[j] * he;
+          sq_[k0 + j] = -(rvxz[j] * cti + rvyz[j] * sti) * rarea[j];
+        }
       }
     }
     const int jfn = sym ? m + 1 : nzf;
+    // Faces: rexz, reyz now hold the faces' eccentricities, rkx their conductance factors.
     for (int jf = 0; jf < jfn; ++jf) {
       const double z = zf[jf];
-      const double exz = s.ex + z * s.sx, eyz = s.ey + z * s.sy;
-      const bool end = jf == 0 || jf == nzf - 1;
-      const double kz = dx / (12.0 * eta * dzf[jf]);
+      rexz[jf] = s.ex + z * s.sx;
+      reyz[jf] = s.ey + z * s.sy;
+      rkx[jf] = dx / (12.0 * eta * dzf[jf]);
+    }
+    {
+      double* __restrict aF_ = aF.data();
+      const double seal = seal_conductance;
       for (int i = 0; i < n; ++i) {
-        const double h = untilted ? h_col[i] : c - exz * ct[i] - eyz * st[i];
-        const double a = kz * h * h * h;
-        // An end face with a seal: the land's last half cell and the seal's slot in series.
-        aF[i * nzf + jf] = end && seal_conductance > 0.0 ? a * seal_conductance / (a + seal_conductance) : a;
+        const double cti = ct[i], sti = st[i], hc = h_col[i];
+        double* aFi = aF_ + i * nzf;
+        for (int jf = 0; jf < jfn; ++jf) {
+          const double h = untilted ? hc : c - rexz[jf] * cti - reyz[jf] * sti;
+          aFi[jf] = rkx[jf] * h * h * h;
+        }
+        if (seal > 0.0) {
+          // An end face with a seal: the land's last half cell and the seal's slot in series.
+          aFi[0] = aFi[0] * seal / (aFi[0] + seal);
+          if (jfn == nzf) aFi[nzf - 1] = aFi[nzf - 1] * seal / (aFi[nzf - 1] + seal);
+        }
       }
     }
     // The mirrored half of the node arrays is read only by the full outputs (torques, flows); the loads alone
@@ -1125,6 +1165,16 @@ struct FilmSolver::Impl {
     }
 
     const double R = g.radius;
+    if constexpr (Full) {
+      // The Couette shear's theta / h first, in a loop of its own that vectorises the divisions.
+      double* __restrict sh = shear_terms.data();
+      const double* __restrict hN_ = hN.data();
+      if (jfo)
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < nz; ++j) sh[i * nz + j] = theta_at(i, j) / hN_[i * nz + j];
+      else
+        for (int k = 0; k < n * nz; ++k) sh[k] = 1.0 / hN_[k];  // theta_at = 1
+    }
     double sc = 0, ss = 0, zc = 0, zs = 0, couette = 0, pois = 0, pmax = pamb;
     for (int i = 0; i < n; ++i) {
       const int ie = (i + 1) % n;
@@ -1135,7 +1185,7 @@ struct FilmSolver::Impl {
         rp += pk * w;
         rpz += pk * zn[j] * w;
         if constexpr (Full) {
-          rc += theta_at(i, j) / hN[k] * wc[j];
+          rc += shear_terms[k] * wc[j];
           rz += hE[k] * (pressure_at(ie, j) - pk) * w;
         }
         pmax = std::max(pmax, pk);
