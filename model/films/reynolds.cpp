@@ -74,7 +74,6 @@ struct FilmSolver::Impl {
   std::vector<double> hN, hE, aE, aF, cE, sq, dval;
   std::vector<double> h_col, he_col;  // an untilted film's thickness per column at the nodes and east faces
   std::vector<double> row_coef;       // geometry_arrays' per-row (per-face) coefficients, 7 arrays of nzf
-  std::vector<double> shear_terms;    // outputs_of: theta / h per node
   std::vector<double> end_slope_lo, end_slope_hi;  // per column, dp/dz at z = -L/2, +L/2 (outputs, open ends)
   std::vector<char> plain_column;                  // per column: no hole or groove node (fixed by the geometry)
   std::vector<double> p, theta, ff;  // pressure, film content used in fluxes, film fraction for output
@@ -248,7 +247,6 @@ struct FilmSolver::Impl {
     h_col.assign(n, 0.0);
     he_col.assign(n, 0.0);
     row_coef.assign(7 * static_cast<std::size_t>(nzf), 0.0);
-    shear_terms.assign(N, 0.0);
     aE.assign(N, 0.0);
     cE.assign(N, 0.0);
     sq.assign(N, 0.0);
@@ -640,28 +638,36 @@ struct FilmSolver::Impl {
   // (sources and couplings to fixed nodes). Writes the solution into pr.
   template <class Rhs>
   void solve_free(Rhs rhs) {
-    double* y = band.rhs();
-    double* ya = band.rhs_border();
-    for (int q = 0; q < n; ++q) {
-      const int i = q + i0 < n ? q + i0 : q + i0 - n;
-      const int kr0 = i * m;
-      if (q < n - 1) {
-        double* yq = y + q * m;
-        for (int j = 0; j < m; ++j) yq[j] = fr[kr0 + j] ? rhs(i, j, kr0 + j) : 0.0;
-      } else {
-        for (int j = 0; j < m; ++j)
-          if (border_j[j] >= 0) ya[border_j[j]] = rhs(i, j, kr0 + j);
+    const int nn = n, mm = m, i00 = i0;
+    const ByteFlag* fr_ = fr.data();
+    const int* bj = border_j.data();
+    {
+      double* __restrict y = band.rhs();
+      double* __restrict ya = band.rhs_border();
+      for (int q = 0; q < nn; ++q) {
+        const int i = q + i00 < nn ? q + i00 : q + i00 - nn;
+        const int kr0 = i * mm;
+        if (q < nn - 1) {
+          double* yq = y + q * mm;
+          for (int j = 0; j < mm; ++j) yq[j] = fr_[kr0 + j] ? rhs(i, j, kr0 + j) : 0.0;
+        } else {
+          for (int j = 0; j < mm; ++j)
+            if (bj[j] >= 0) ya[bj[j]] = rhs(i, j, kr0 + j);
+        }
       }
     }
     band.solve();
     ++solves;
-    for (int q = 0; q < n; ++q) {
-      const int i = q + i0 < n ? q + i0 : q + i0 - n;
-      const int kr0 = i * m;
-      for (int j = 0; j < m; ++j) {
+    const double* __restrict y = band.rhs();
+    const double* __restrict ya = band.rhs_border();
+    double* __restrict pr_ = pr.data();
+    for (int q = 0; q < nn; ++q) {
+      const int i = q + i00 < nn ? q + i00 : q + i00 - nn;
+      const int kr0 = i * mm;
+      for (int j = 0; j < mm; ++j) {
         const int kr = kr0 + j;
-        if (!fr[kr]) continue;
-        pr[kr] = q < n - 1 ? y[q * m + j] : ya[border_j[j]];
+        if (!fr_[kr]) continue;
+        pr_[kr] = q < nn - 1 ? y[q * mm + j] : ya[bj[j]];
       }
     }
   }
@@ -700,34 +706,63 @@ struct FilmSolver::Impl {
   // cavitated set.
   bool solve_gumbel() {
     const double tol = o.tolerance;
-    for (int kr = 0; kr < n * m; ++kr) {
-      if (dirr[kr]) cr[kr] = 0;
-      if (cr[kr]) pr[kr] = pcav;
+    const int nm = n * m;
+    // Local pointers: the flag stores would otherwise make the compiler reload every array's data pointer (restrict
+    // for the arrays nothing else writes during the call).
+    const ByteFlag* __restrict dirr_ = dirr.data();
+    ByteFlag* cr_ = cr.data();
+    ByteFlag* fr_ = fr.data();
+    double* pr_ = pr.data();
+    const double* __restrict b0_ = b0.data();
+    const double* __restrict cw_ = Cw.data();
+    const double* __restrict ce_ = Ce.data();
+    const double* __restrict cs_ = Cs.data();
+    const double* __restrict cn_ = Cn.data();
+    const double* __restrict fe_ = FE.data();
+    const double* __restrict sq_ = SQ.data();
+    const int* __restrict iwest_ = iwest.data();
+    const int* __restrict ieast_ = ieast.data();
+    for (int kr = 0; kr < nm; ++kr) {
+      if (dirr_[kr]) cr_[kr] = 0;
+      if (cr_[kr]) pr_[kr] = pcav;
     }
     for (int it = 0; it < o.max_iterations; ++it) {
-      for (int kr = 0; kr < n * m; ++kr) fr[kr] = !dirr[kr] && !cr[kr];
+      for (int kr = 0; kr < nm; ++kr) fr_[kr] = !dirr_[kr] && !cr_[kr];
       if (!factor_free()) return fail("factorisation failed (matrix not positive definite)");
-      solve_free([&](int i, int j, int kr) { return b0[kr] + cavitated_couplings(i, j, kr); });
+      if (pcav == 0.0)
+        solve_free([&](int, int, int kr) { return b0_[kr] + 0.0; });  // cavitated_couplings = 0
+      else
+        solve_free([&](int i, int j, int kr) { return b0_[kr] + cavitated_couplings(i, j, kr); });
       if (it == 0) update_pscale();
       int changed = 0;
       const double plim = pcav - tol * pscale, qlim = -tol * fscale;
-      for (int i = 0; i < n; ++i)
+      for (int i = 0; i < n; ++i) {
+        const int kw0 = iwest_[i] * m, ke0 = ieast_[i] * m, kr0 = i * m;
         for (int j = 0; j < m; ++j) {
-          const int kr = i * m + j;
-          if (dirr[kr]) continue;
-          if (!cr[kr]) {
-            if (pr[kr] < plim) {
-              cr[kr] = 1;
+          const int kr = kr0 + j;
+          if (dirr_[kr]) continue;
+          if (!cr_[kr]) {
+            if (pr_[kr] < plim) {
+              cr_[kr] = 1;
               ++changed;
             }
-          } else if (outflow(i, j, false) < qlim) {
-            cr[kr] = 0;
+            continue;
+          }
+          // outflow(i, j, false): the residual (A p - b) of the cavitated node, the same operations.
+          const int kw = kw0 + j, ke = ke0 + j;
+          const double pk = pr_[kr];
+          const double ps = j > 0 ? pr_[kr - 1] : pamb;
+          const double pn = j + 1 < m ? pr_[kr + 1] : pamb;
+          const double q = cw_[kr] * (pk - pr_[kw]) + ce_[kr] * (pk - pr_[ke]) + cs_[kr] * (pk - ps) + cn_[kr] * (pk - pn);
+          if (q + fe_[kr] - fe_[kw] + sq_[kr] < qlim) {
+            cr_[kr] = 0;
             ++changed;
           }
         }
+      }
       if (changed == 0) return true;
-      for (int kr = 0; kr < n * m; ++kr)
-        if (cr[kr]) pr[kr] = pcav;
+      for (int kr = 0; kr < nm; ++kr)
+        if (cr_[kr]) pr_[kr] = pcav;
     }
     return fail("Swift-Stieber active set did not settle in " + std::to_string(o.max_iterations) + " sweeps");
   }
@@ -1165,16 +1200,6 @@ struct FilmSolver::Impl {
     }
 
     const double R = g.radius;
-    if constexpr (Full) {
-      // The Couette shear's theta / h first, in a loop of its own that vectorises the divisions.
-      double* __restrict sh = shear_terms.data();
-      const double* __restrict hN_ = hN.data();
-      if (jfo)
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < nz; ++j) sh[i * nz + j] = theta_at(i, j) / hN_[i * nz + j];
-      else
-        for (int k = 0; k < n * nz; ++k) sh[k] = 1.0 / hN_[k];  // theta_at = 1
-    }
     double sc = 0, ss = 0, zc = 0, zs = 0, couette = 0, pois = 0, pmax = pamb;
     for (int i = 0; i < n; ++i) {
       const int ie = (i + 1) % n;
@@ -1185,7 +1210,7 @@ struct FilmSolver::Impl {
         rp += pk * w;
         rpz += pk * zn[j] * w;
         if constexpr (Full) {
-          rc += shear_terms[k] * wc[j];
+          rc += theta_at(i, j) / hN[k] * wc[j];
           rz += hE[k] * (pressure_at(ie, j) - pk) * w;
         }
         pmax = std::max(pmax, pk);
