@@ -156,6 +156,11 @@ class ForceElement {
   /// states of one block depend on that block, the states after all blocks (the border) and the rotor only. The
   /// engine then factors the element's Newton block by block (BlockArrowLU). Empty: one dense block.
   virtual std::vector<int> independent_state_blocks() const { return {}; }
+  /// Positions at the start of every independent state block whose rates are the block's next states, exactly and
+  /// whatever the other states (a ball's orbital angle, radial and axial position and their velocities): the
+  /// engine then factors each block's Newton matrix through its velocity rows alone (BlockArrowLU, "kinematic
+  /// blocks"). 0: none.
+  virtual int kinematic_states_per_block() const { return 0; }
 
   /// True if add_jacobian() is implemented; otherwise the engine differentiates numerically.
   virtual bool has_jacobian() const { return false; }

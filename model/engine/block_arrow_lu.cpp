@@ -100,12 +100,25 @@ decltype(auto) with_sizes(int s, int b, F&& f) {
   return f.template operator()<0, 0>();
 }
 
+// The same for a kinematic block: a ball's 9 states with its 3 positions, else everything at run time.
+constexpr int kFixedKinematic = 3;
+template <class F>
+decltype(auto) with_kinematic_sizes(int s, int b, int k, F&& f) {
+  if (s == kFixedBlock && k == kFixedKinematic && b == 10) return f.template operator()<kFixedBlock, 10, kFixedKinematic>();
+  if (s == kFixedBlock && k == kFixedKinematic && b == 14) return f.template operator()<kFixedBlock, 14, kFixedKinematic>();
+  return f.template operator()<0, 0, 0>();
+}
+
 }  // namespace
 
-BlockArrowLU::BlockArrowLU(int n, const std::vector<int>& blocks, int max_rhs) : n_(n) {
+BlockArrowLU::BlockArrowLU(int n, const std::vector<int>& blocks, int max_rhs, int kinematic)
+    : n_(n), kinematic_(kinematic) {
   int off = 0, largest = 0;
+  if (kinematic < 0) throw std::invalid_argument("BlockArrowLU: the kinematic positions must be >= 0");
   for (int s : blocks) {
     if (s <= 0) throw std::invalid_argument("BlockArrowLU: block sizes must be positive");
+    if (s < 2 * kinematic)
+      throw std::invalid_argument("BlockArrowLU: a block holds fewer states than its positions and their rates");
     offset_.push_back(off);
     size_.push_back(s);
     off += s;
@@ -117,11 +130,12 @@ BlockArrowLU::BlockArrowLU(int n, const std::vector<int>& blocks, int max_rhs) :
     inverse_.emplace_back(Eigen::MatrixXd::Zero(s, s));
     X_.emplace_back(Eigen::MatrixXd::Zero(s, border_));
     C_.emplace_back(Eigen::MatrixXd::Zero(border_, s));
+    P_.emplace_back(Eigen::MatrixXd::Zero(s - kinematic, kinematic));
   }
   S_.setZero(border_, border_);
   S_inverse_.setZero(border_, border_);
   const int widest = std::max(largest, border_);
-  scratch_.setZero(widest * (widest + 1));
+  scratch_.setZero(widest * (widest + 1) + largest * largest);  // a kinematic block's matrix and its inversion
   work_.setZero(largest, std::max(max_rhs, 1));
   border_work_.setZero(border_, std::max(max_rhs, 1));
 }
@@ -141,6 +155,80 @@ bool BlockArrowLU::factor_block(const double* G, int ld, double scale, double sh
   return regular;
 }
 
+template <int S, int B, int K>
+bool BlockArrowLU::factor_kinematic_block(const double* G, int ld, double scale, double shift, std::size_t i) {
+  constexpr int V = S > 0 ? S - K : 0;
+  const int b = border_, nb = n_ - b, o = offset_[i], s = size_[i], k = K > 0 ? K : kinematic_, v = s - k;
+  const double a = scale / shift, scale_a = scale * a;
+  const double* Gvq = G + o * ld + o + k;  // G_vq (v x k) and G_vv (v x v), leading dimension ld
+  const double* Gvv = G + (o + k) * ld + o + k;
+  double* R = scratch_.data();  // the velocity rows' matrix, then the inversion's scratch (v * v + v)
+  for (int c = 0; c < v; ++c)
+    for (int r = 0; r < v; ++r) R[c * v + r] = scale * Gvv[c * ld + r] + (r == c ? shift : 0.0);
+  double* P = P_[i].data();
+  for (int c = 0; c < k; ++c)
+    for (int r = 0; r < v; ++r) {
+      R[c * v + r] -= scale_a * Gvq[c * ld + r];
+      P[c * v + r] = a * Gvq[c * ld + r];
+    }
+  const bool regular = invert<V>(R, v, v, 1.0, 0.0, R + v * v, R + 2 * v * v, inverse_[i].data());
+  if (b == 0) return regular;
+  // X_i = D_i^-1 B_i: the border columns' kinematic rows are zero, so X_v = R^-1 B_v and X_q = -a X_v[0..k).
+  double* X = X_[i].data();
+  multiply<V, V, false>(scale, inverse_[i].data(), v, v, G + nb * ld + o + k, ld, b, X + k, s);
+  for (int c = 0; c < b; ++c)
+    for (int r = 0; r < k; ++r) X[c * s + r] = -a * X[c * s + k + r];
+  double* C = C_[i].data();
+  for (int c = 0; c < s; ++c)
+    for (int r = 0; r < b; ++r) C[c * b + r] = scale * G[(o + c) * ld + nb + r];
+  multiply<B, S, true>(-1.0, C, b, s, X, s, b, S_.data(), b);
+  return regular;
+}
+
+// y_v = R^-1 (r_v - P r_q), y_q = (r_q - scale y_v[0..k)) / shift; r_b -= C_i y_i. With the sizes fixed the
+// column's values stay in registers.
+template <int S, int B, int K>
+void BlockArrowLU::forward_kinematic_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i) {
+  const int b = border_, nb = n_ - b, cols = static_cast<int>(x.cols()), o = offset_[i], s = size_[i];
+  const int ld = static_cast<int>(x.outerStride());
+  const double* __restrict P = P_[i].data();
+  const double* __restrict inv = inverse_[i].data();
+  const double inv_shift = 1.0 / shift_, scale = scale_;
+  double* xd = x.data();
+  if constexpr (S > 0) {
+    constexpr int V = S - K;
+    for (int c = 0; c < cols; ++c) {
+      double* __restrict r = xd + c * ld + o;
+      double t[V], y[V];
+      for (int j = 0; j < V; ++j) t[j] = r[K + j], y[j] = 0.0;
+      for (int q = 0; q < K; ++q) {
+        const double f = r[q];
+        for (int j = 0; j < V; ++j) t[j] -= f * P[q * V + j];
+      }
+      for (int j = 0; j < V; ++j) {
+        const double f = t[j];
+        for (int row = 0; row < V; ++row) y[row] += f * inv[j * V + row];
+      }
+      for (int q = 0; q < K; ++q) r[q] = (r[q] - scale * y[q]) * inv_shift;
+      for (int j = 0; j < V; ++j) r[K + j] = y[j];
+    }
+  } else {
+    const int k = kinematic_, v = s - k;
+    double* __restrict t = work_.data();
+    for (int c = 0; c < cols; ++c) {
+      double* __restrict r = xd + c * ld + o;
+      for (int j = 0; j < v; ++j) t[j] = r[k + j];
+      for (int q = 0; q < k; ++q) {
+        const double f = r[q];
+        for (int j = 0; j < v; ++j) t[j] -= f * P[q * v + j];
+      }
+      multiply<0, 0, false>(1.0, inv, v, v, t, v, 1, r + k, v);
+      for (int q = 0; q < k; ++q) r[q] = (r[q] - scale * r[k + q]) * inv_shift;
+    }
+  }
+  if (b > 0) multiply<B, S, true>(-1.0, C_[i].data(), b, s, xd + o, ld, cols, xd + nb, ld);
+}
+
 bool BlockArrowLU::compute(const Eigen::MatrixXd& A) { return compute(A, 1.0, 0.0); }
 
 bool BlockArrowLU::compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double scale, double shift) {
@@ -150,9 +238,17 @@ bool BlockArrowLU::compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double sc
     S_ = scale * G.bottomRightCorner(b, b);
     S_.diagonal().array() += shift;
   }
+  kinematic_factors_ = kinematic_ > 0 && shift != 0.0;
+  scale_ = scale;
+  shift_ = shift;
   for (std::size_t i = 0; i < size_.size(); ++i)
-    regular = with_sizes(size_[i], b,
-                         [&]<int S, int B>() { return factor_block<S, B>(G.data(), ld, scale, shift, i); }) &&
+    regular = (kinematic_factors_
+                   ? with_kinematic_sizes(size_[i], b, kinematic_,
+                                          [&]<int S, int B, int K>() {
+                                            return factor_kinematic_block<S, B, K>(G.data(), ld, scale, shift, i);
+                                          })
+                   : with_sizes(size_[i], b,
+                                [&]<int S, int B>() { return factor_block<S, B>(G.data(), ld, scale, shift, i); })) &&
               regular;
   if (b > 0) {
     double* a = scratch_.data();
@@ -183,7 +279,10 @@ void BlockArrowLU::back_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i) {
 void BlockArrowLU::solve_in_place(Eigen::Ref<Eigen::MatrixXd> x) {
   const int b = border_, nb = n_ - b, k = static_cast<int>(x.cols());
   for (std::size_t i = 0; i < size_.size(); ++i)
-    with_sizes(size_[i], b, [&]<int S, int B>() { forward_block<S, B>(x, i); });
+    if (kinematic_factors_)
+      with_kinematic_sizes(size_[i], b, kinematic_, [&]<int S, int B, int K>() { forward_kinematic_block<S, B, K>(x, i); });
+    else
+      with_sizes(size_[i], b, [&]<int S, int B>() { forward_block<S, B>(x, i); });
   if (b == 0) return;
   const int ld = static_cast<int>(x.outerStride()), lw = static_cast<int>(border_work_.outerStride());
   double* xd = x.data();

@@ -121,7 +121,7 @@ RunupWorkspace::Element::Element(const ForceElement& e, int n) {
   fd_in.setZero(2 * d + m);
   fd_out0.setZero(d + m);
   fd_out1.setZero(d + m);
-  lu = BlockArrowLU(m, e.independent_state_blocks(), std::max(d, 1));
+  lu = BlockArrowLU(m, e.independent_state_blocks(), std::max(d, 1), e.kinematic_states_per_block());
   Y.setZero(m, d);
   T.setZero(m, d);
   JY.setZero(d, d);

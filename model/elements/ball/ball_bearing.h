@@ -174,6 +174,8 @@ class BallBearingElement final : public ForceElement {
   std::vector<int> independent_state_blocks() const override {
     return std::vector<int>(static_cast<std::size_t>(spec_.n_balls), kBallStates);
   }
+  /// A ball's orbital angle, radial and axial position have its orbital, radial and axial velocity as rates.
+  int kinematic_states_per_block() const override { return 3; }
   /// Finite differences that use the balls' independence: the shaft, cage and outer-ring inputs one at a time,
   /// the balls' states one index at a time for all balls at once, each ball's rows and its share of the sums
   /// (BallShare) telling the balls apart: 2d + 19 (+4 with a spring-mounted outer ring) evaluations instead of

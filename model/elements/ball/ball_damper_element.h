@@ -32,6 +32,7 @@ class BallDamperElement final : public ForceElement {
   bool steady_rotation_layout(SteadyRotationLayout* layout) const override;
   /// The bearing's balls (the damper ring's states join the border).
   std::vector<int> independent_state_blocks() const override { return bearing_.independent_state_blocks(); }
+  int kinematic_states_per_block() const override { return bearing_.kinematic_states_per_block(); }
   double fd_relative_step() const override { return 1e-6; }
   /// The bearing's finite differences (BallBearingElement::add_jacobian_of: the balls' states one index at a time
   /// for all balls at once), with the damper film solved again only for the ring's own 4 columns.

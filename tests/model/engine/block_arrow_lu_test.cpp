@@ -94,6 +94,53 @@ TEST(BlockArrowLU, ReportsASingularBallBlockAndASingularSchurComplement) {
   EXPECT_FALSE(lu.compute(A));
 }
 
+// Kinematic blocks: each block's first k rows of G are [0 I 0] (the positions' rates are the next k states) and zero
+// in the border columns. The factorisation through the velocity rows solves as a dense LU of shift I + scale G, and
+// does not read those rows (they are overwritten with noise here); for the compiled ball sizes and run-time ones.
+TEST(BlockArrowLU, FactorsKinematicBlocksThroughTheirVelocityRows) {
+  struct Case {
+    std::vector<int> blocks;
+    int border, k;
+  };
+  const std::vector<Case> cases = {{{9, 9, 9, 9, 9, 9, 9, 9}, 10, 3},
+                                   {{9, 9, 9, 9, 9, 9, 9, 9}, 14, 3},
+                                   {{9, 9, 9}, 0, 3},
+                                   {{4, 6, 5}, 3, 2},
+                                   {{2, 3}, 2, 1}};
+  unsigned seed = 21;
+  for (const Case& cs : cases) {
+    Eigen::MatrixXd G = block_arrow(cs.blocks, cs.border, seed++);
+    const int n = static_cast<int>(G.rows());
+    int o = 0;
+    for (int s : cs.blocks) {
+      for (int r = 0; r < cs.k; ++r) {
+        G.row(o + r).setZero();
+        G(o + r, o + cs.k + r) = 1.0;
+      }
+      o += s;
+    }
+    for (const double shift : {1.0, 0.8}) {
+      const double scale = -0.37;
+      const Eigen::MatrixXd A = shift * Eigen::MatrixXd::Identity(n, n) + scale * G;
+      Eigen::MatrixXd noisy = G;
+      o = 0;
+      for (int s : cs.blocks) {
+        noisy.block(o, 0, cs.k, n).setRandom();
+        o += s;
+      }
+      BlockArrowLU lu(n, cs.blocks, 4, cs.k);
+      ASSERT_TRUE(lu.compute(noisy, scale, shift));
+      const std::string label = std::to_string(cs.blocks.size()) + " blocks, border " + std::to_string(cs.border) +
+                                ", k " + std::to_string(cs.k) + ", shift " + std::to_string(shift);
+      expect_solves_like_dense_lu(lu, A, label);
+      // Without a shift the kinematic path does not apply: A itself is factored, every row read.
+      ASSERT_TRUE(lu.compute(A));
+      expect_solves_like_dense_lu(lu, A, label + ", plain");
+    }
+  }
+  EXPECT_THROW(BlockArrowLU(10, {4, 4}, 1, 3), std::invalid_argument);
+}
+
 TEST(BlockArrowLU, RefusesBlocksLargerThanTheMatrix) { EXPECT_THROW(BlockArrowLU(5, {3, 3}, 1), std::invalid_argument); }
 
 }  // namespace
