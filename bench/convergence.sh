@@ -39,6 +39,7 @@ cases_for() {
     ball)
       echo "default|"
       echo "rtol 1e-5, atol 1e-9|--set solver.rtol=1e-5 --set solver.atol=1e-9"
+      echo "rtol 1e-6, atol 1e-10|--set solver.rtol=1e-6 --set solver.atol=1e-10"
       echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"
       echo "mesh 5 mm|--set mesh.max_element_length=5mm"
       ;;
