@@ -104,8 +104,10 @@ decltype(auto) with_sizes(int s, int b, F&& f) {
 constexpr int kFixedKinematic = 3;
 template <class F>
 decltype(auto) with_kinematic_sizes(int s, int b, int k, F&& f) {
-  if (s == kFixedBlock && k == kFixedKinematic && b == 10) return f.template operator()<kFixedBlock, 10, kFixedKinematic>();
-  if (s == kFixedBlock && k == kFixedKinematic && b == 14) return f.template operator()<kFixedBlock, 14, kFixedKinematic>();
+  if (s == kFixedBlock && k == kFixedKinematic) {
+    if (b == 10) return f.template operator()<kFixedBlock, 10, kFixedKinematic>();
+    if (b == 14) return f.template operator()<kFixedBlock, 14, kFixedKinematic>();
+  }
   return f.template operator()<0, 0, 0>();
 }
 
@@ -280,7 +282,8 @@ void BlockArrowLU::solve_in_place(Eigen::Ref<Eigen::MatrixXd> x) {
   const int b = border_, nb = n_ - b, k = static_cast<int>(x.cols());
   for (std::size_t i = 0; i < size_.size(); ++i)
     if (kinematic_factors_)
-      with_kinematic_sizes(size_[i], b, kinematic_, [&]<int S, int B, int K>() { forward_kinematic_block<S, B, K>(x, i); });
+      with_kinematic_sizes(size_[i], b, kinematic_,
+                           [&]<int S, int B, int K>() { forward_kinematic_block<S, B, K>(x, i); });
     else
       with_sizes(size_[i], b, [&]<int S, int B>() { forward_block<S, B>(x, i); });
   if (b == 0) return;
