@@ -150,11 +150,17 @@ bool BlockArrowLU::factor_block(const double* G, int ld, double scale, double sh
   if (b == 0) return regular;
   // X_i = D_i^-1 B_i, C_i, S -= C_i X_i (B_i, C_i and S: the scaled entries of G, no shift off the diagonal).
   multiply<S, S, false>(scale, inverse_[i].data(), s, s, G + nb * ld + o, ld, b, X_[i].data(), s);
+  eliminate_onto_border<S, B>(G, ld, scale, i);
+  return regular;
+}
+
+template <int S, int B>
+void BlockArrowLU::eliminate_onto_border(const double* G, int ld, double scale, std::size_t i) {
+  const int b = border_, nb = n_ - b, o = offset_[i], s = size_[i];
   double* C = C_[i].data();
   for (int c = 0; c < s; ++c)
     for (int r = 0; r < b; ++r) C[c * b + r] = scale * G[(o + c) * ld + nb + r];
   multiply<B, S, true>(-1.0, C, b, s, X_[i].data(), s, b, S_.data(), b);
-  return regular;
 }
 
 template <int S, int B, int K>
@@ -180,10 +186,7 @@ bool BlockArrowLU::factor_kinematic_block(const double* G, int ld, double scale,
   multiply<V, V, false>(scale, inverse_[i].data(), v, v, G + nb * ld + o + k, ld, b, X + k, s);
   for (int c = 0; c < b; ++c)
     for (int r = 0; r < k; ++r) X[c * s + r] = -a * X[c * s + k + r];
-  double* C = C_[i].data();
-  for (int c = 0; c < s; ++c)
-    for (int r = 0; r < b; ++r) C[c * b + r] = scale * G[(o + c) * ld + nb + r];
-  multiply<B, S, true>(-1.0, C, b, s, X, s, b, S_.data(), b);
+  eliminate_onto_border<S, B>(G, ld, scale, i);
   return regular;
 }
 

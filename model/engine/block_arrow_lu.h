@@ -58,6 +58,9 @@ class BlockArrowLU {
   void forward_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i);
   template <int S, int B>
   void back_block(Eigen::Ref<Eigen::MatrixXd> x, std::size_t i);
+  // C_i from G and S -= C_i X_i, once X_i is known (both factorisations).
+  template <int S, int B>
+  void eliminate_onto_border(const double* G, int ld, double scale, std::size_t i);
   // The same for a kinematic block with K positions (0: known at run time).
   template <int S, int B, int K>
   bool factor_kinematic_block(const double* G, int ld, double scale, double shift, std::size_t i);
