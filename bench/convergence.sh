@@ -48,6 +48,7 @@ cases_for() {
       echo "damper grid 32 x 6|$(film damper. 32 6)"
       echo "damper grid 64 x 12|$(film damper. 64 12)"
       echo "rtol 1e-5, atol 1e-9|--set solver.rtol=1e-5 --set solver.atol=1e-9"
+      echo "rtol 1e-6, atol 1e-10|--set solver.rtol=1e-6 --set solver.atol=1e-10"
       echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"
       echo "mesh 5 mm|--set mesh.max_element_length=5mm"
       ;;

@@ -140,6 +140,16 @@ class ForceElement {
   /// resolves the part's own vibration, which its displacement tolerance already bounds.
   virtual double tolerance_scale(int i) const { return state_scale(i); }
 
+  /// Whether the absolute tolerances of the element's states depend on the state (absolute_tolerance_factors()).
+  /// Taken with scaled tolerances (solver.atol_scaling = "typical") only.
+  virtual bool has_state_dependent_tolerances() const { return false; }
+  /// Factors f[i] on the scaled absolute tolerances of the element's states at the state z: the integrator's error
+  /// weight of state i is then 1 / (rtol |z_i| + f_i atol_i). Evaluated once per step; allocates nothing.
+  virtual void absolute_tolerance_factors(const double* z, double* f) const {
+    (void)z;
+    for (int i = 0; i < n_states(); ++i) f[i] = 1.0;
+  }
+
   /// Relative step of the engine's forward differences; elements computed by iterative solvers need more than
   /// sqrt(eps) to stay above their solver tolerance.
   virtual double fd_relative_step() const { return 1.4901161193847656e-08; }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
@@ -38,7 +39,25 @@ struct Integration {
   int iteration = 0;
   double last_correction = 0.0;
   bool slow = false;
+  // State-dependent absolute tolerances (RunupModel::HasStateDependentTolerances): the error weights
+  // 1 / (rtol |y_i| + f_i atol_i), f from RunupModel::AbsoluteToleranceFactors (CVODE's own weights otherwise).
+  double rtol = 0.0;
+  std::vector<double> atol, atol_factors;
 };
+
+int error_weights(N_Vector y, N_Vector ewt, void* user) {
+  auto* in = static_cast<Integration*>(user);
+  const double* yy = N_VGetArrayPointer(y);
+  double* w = N_VGetArrayPointer(ewt);
+  in->model->AbsoluteToleranceFactors(yy, in->atol_factors.data());
+  const std::size_t n = in->atol.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double tol = in->rtol * std::abs(yy[i]) + in->atol_factors[i] * in->atol[i];
+    if (!(tol > 0.0)) return -1;
+    w[i] = 1.0 / tol;
+  }
+  return 0;
+}
 
 int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto* in = static_cast<Integration*>(user);
@@ -261,6 +280,12 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     CVodeInit(mem, rhs_callback, t0, y);
     configure(CVodeSetUserData, CVodeSetErrHandlerFn, CVodeSVtolerances, CVodeSetMaxNumSteps, CVodeSetMaxStep,
               CVodeSetStopTime);
+    if (options.solver.atol_scaling == AtolScaling::Typical && model.HasStateDependentTolerances()) {
+      in.rtol = options.solver.rtol;
+      in.atol.assign(N_VGetArrayPointer(atol), N_VGetArrayPointer(atol) + ny);
+      in.atol_factors.assign(ny, 1.0);
+      CVodeWFtolerances(mem, error_weights);
+    }
     CVodeSetMaxOrd(mem, options.solver.max_order);
     CVodeSetStabLimDet(mem, options.stability_limit_detection ? SUNTRUE : SUNFALSE);
     LS = SUNLinSolNewEmpty(ctx);

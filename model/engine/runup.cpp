@@ -438,6 +438,19 @@ Eigen::VectorXd RunupModel::AbsoluteTolerances(double atol, bool scaled) const {
   return a;
 }
 
+bool RunupModel::HasStateDependentTolerances() const {
+  for (const auto& e : elements_)
+    if (e->has_state_dependent_tolerances()) return true;
+  return false;
+}
+
+void RunupModel::AbsoluteToleranceFactors(const double* y, double* f) const {
+  std::fill(f, f + n_states(), 1.0);
+  for (std::size_t k = 0; k < elements_.size(); ++k)
+    if (elements_[k]->has_state_dependent_tolerances())
+      elements_[k]->absolute_tolerance_factors(y + state_offsets_[k], f + state_offsets_[k]);
+}
+
 Eigen::MatrixXd RunupModel::JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const {
   Jacobian(t, y, ws);
   const int n = n_coordinates_, m = n_element_states_;

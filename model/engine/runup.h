@@ -113,6 +113,11 @@ class RunupModel {
   /// energy accounts 1 J per um, i.e. each state is resolved to the same fraction of its typical size. Otherwise
   /// atol for every state.
   Eigen::VectorXd AbsoluteTolerances(double atol, bool scaled) const;
+  /// Whether an element's absolute tolerances depend on its state (ForceElement::has_state_dependent_tolerances);
+  /// then the integrator takes its error weights from AbsoluteToleranceFactors at every step.
+  bool HasStateDependentTolerances() const;
+  /// Factors on AbsoluteTolerances() at the state y: 1, and the elements' own for their states.
+  void AbsoluteToleranceFactors(const double* y, double* f) const;
   /// The Jacobian dF/dy (n_states x n_states) assembled from the blocks of Jacobian(); the rows of the two
   /// energy-accounting states are left zero. For tests and diagnostics.
   Eigen::MatrixXd JacobianMatrix(double t, const double* y, RunupWorkspace& ws) const;

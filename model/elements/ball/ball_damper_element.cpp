@@ -1,5 +1,6 @@
 #include "model/elements/ball/ball_damper_element.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -153,6 +154,22 @@ double BallDamperElement::state_scale(int i) const {
 
 double BallDamperElement::tolerance_scale(int i) const {
   return i < n_core_ ? bearing_.tolerance_scale(i) : state_scale(i);
+}
+
+double BallDamperElement::ring_velocity_tolerance_factor(double eps) {
+  // Short-bearing (Ocvirk) radial damping of a full film, c_rr ~ (1 + 2 e^2) / (1 - e^2)^2.5 (San Andres,
+  // Vance): docs/ball-bearing.md, "In run-ups".
+  const auto damping = [](double e) {
+    const double q = 1.0 - e * e;
+    return (1.0 + 2.0 * e * e) / (q * q * std::sqrt(q));
+  };
+  return std::min(damping(0.9) / damping(std::min(std::abs(eps), 0.999)), 100.0);
+}
+
+void BallDamperElement::absolute_tolerance_factors(const double* z, double* f) const {
+  for (int i = 0; i < n_core_ + 2; ++i) f[i] = 1.0;
+  const double* ring = z + n_core_;
+  f[n_core_ + 2] = f[n_core_ + 3] = ring_velocity_tolerance_factor(std::hypot(ring[0], ring[1]) / damper_.clearance);
 }
 
 const BallDamperElement::Evaluation& BallDamperElement::Evaluate(const SpinState& s, const double* q,

@@ -199,14 +199,28 @@ TEST(Jacobian, RespunJacobianSolvesAsAFreshOneWhereOnlyTheRotorDependsOnTheSpeed
   EXPECT_GT((old - fresh).cwiseAbs().maxCoeff(), 1e-4 * scale);
 }
 
-// Forwards an element but hides its analytic Jacobian, so the engine differentiates it numerically.
-class WithoutJacobian final : public ForceElement {
+// Forwards an element. With `jacobian` false it hides the element's analytic Jacobian, so the engine differentiates
+// it numerically; with a `factor` it declares absolute tolerances of its states that depend on the state:
+// factor(z_i) on each state's scaled tolerance.
+class Forwarding final : public ForceElement {
  public:
-  explicit WithoutJacobian(std::unique_ptr<ForceElement> inner)
-      : ForceElement(inner->name(), inner->dofs(), inner->n_states()), inner_(std::move(inner)) {}
+  explicit Forwarding(std::unique_ptr<ForceElement> inner, bool jacobian, double (*factor)(double) = nullptr)
+      : ForceElement(inner->name(), inner->dofs(), inner->n_states()),
+        inner_(std::move(inner)),
+        jacobian_(jacobian),
+        factor_(factor) {}
   void initial_states(double* z) const override { inner_->initial_states(z); }
   double state_scale(int i) const override { return inner_->state_scale(i); }
   double tolerance_scale(int i) const override { return inner_->tolerance_scale(i); }
+  bool has_jacobian() const override { return jacobian_ && inner_->has_jacobian(); }
+  void add_jacobian(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
+                   double* J) const override {
+    inner_->add_jacobian(s, q, v, z, ws, J);
+  }
+  bool has_state_dependent_tolerances() const override { return factor_ != nullptr; }
+  void absolute_tolerance_factors(const double* z, double* f) const override {
+    for (int i = 0; i < n_states(); ++i) f[i] = factor_(z[i]);
+  }
 
  protected:
   void do_calc_and_add_forces(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws,
@@ -216,7 +230,39 @@ class WithoutJacobian final : public ForceElement {
 
  private:
   std::unique_ptr<ForceElement> inner_;
+  bool jacobian_;
+  double (*factor_)(double);
 };
+
+// State-dependent tolerances (ForceElement::absolute_tolerance_factors) go into the integrator's error weights:
+// factors of 1 give CVODE's own weights bit for bit, factors that depend on the state change the run.
+TEST(Runup, StateDependentTolerancesEnterTheErrorWeights) {
+  MachineSpec spec = reference(compressor_pedestal());
+  spec.speed.end = 10000 * kRpm;
+  spec.speed.duration = 0.02;
+  spec.solver.atol_scaling = AtolScaling::Typical;
+  auto build = [&](double (*factor)(double)) {
+    Rotor rotor = build_rotor(spec);
+    std::vector<std::unique_ptr<ForceElement>> elements;
+    for (const LinearBearing& b : rotor.bearings) {
+      const Pedestal p = b.name == "compressor" ? Pedestal{0.5, 2e7, 300} : Pedestal{};
+      std::unique_ptr<ForceElement> e = std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), p, 9.81);
+      if (e->n_states() > 0) e = std::make_unique<Forwarding>(std::move(e), true, factor);
+      elements.push_back(std::move(e));
+    }
+    return std::make_unique<RunupModel>(spec, std::move(rotor), std::move(elements), 0.0);
+  };
+  const auto plain = build(nullptr);
+  const auto ones = build([](double) { return 1.0; });
+  // Tight where the pedestal has moved by more than 0.1 um: 1e-3 of the tolerance there.
+  const auto tight = build([](double z) { return std::abs(z) > 1e-7 ? 1e-3 : 1.0; });
+  const RunupOptions o = options_for(spec);
+  const RunupResult a = simulate_runup(*plain, o), b = simulate_runup(*ones, o), c = simulate_runup(*tight, o);
+  ASSERT_TRUE(a.complete && b.complete && c.complete) << a.message << b.message << c.message;
+  EXPECT_EQ(a.stats.steps, b.stats.steps);
+  EXPECT_EQ(a.columns, b.columns);
+  EXPECT_GT(c.stats.steps, a.stats.steps);
+}
 
 TEST(Jacobian, NumericalElementJacobianMatchesTheAnalyticOne) {
   MachineSpec spec = reference({{"bearings.turbine.pedestal_mass", "0.5"},
@@ -229,7 +275,7 @@ TEST(Jacobian, NumericalElementJacobianMatchesTheAnalyticOne) {
       const LinearBearing& b = rotor.bearings[i];
       const Pedestal p = b.name == "turbine" ? Pedestal{0.5, 2e7, 300} : Pedestal{};
       std::unique_ptr<ForceElement> e = std::make_unique<LinearBearingElement>(b, rotor.dof(b.node, kX), p, 9.81);
-      if (numeric) e = std::make_unique<WithoutJacobian>(std::move(e));
+      if (numeric) e = std::make_unique<Forwarding>(std::move(e), false);
       elements.push_back(std::move(e));
     }
     return std::make_unique<RunupModel>(spec, std::move(rotor), std::move(elements), 7500.0);
