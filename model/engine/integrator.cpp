@@ -262,6 +262,15 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
   in.weights = N_VClone(y);
   void* mem = nullptr;
   SUNLinearSolver LS = nullptr;
+  // Elements whose absolute tolerances depend on the state (scaled tolerances only): the integrator's error weights
+  // come from error_weights() at every step.
+  const bool state_dependent =
+      options.solver.atol_scaling == AtolScaling::Typical && model.HasStateDependentTolerances();
+  if (state_dependent) {
+    in.rtol = options.solver.rtol;
+    in.atol.assign(N_VGetArrayPointer(atol), N_VGetArrayPointer(atol) + ny);
+    in.atol_factors.assign(ny, 1.0);
+  }
   const Integrator integrator = resolve_integrator(model, options.solver.integrator);
   const bool bdf = integrator == Integrator::CvodeBdf;
   // The settings both integrators take, through their own functions (CVODE's and ERKStep's are alike).
@@ -280,12 +289,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     CVodeInit(mem, rhs_callback, t0, y);
     configure(CVodeSetUserData, CVodeSetErrHandlerFn, CVodeSVtolerances, CVodeSetMaxNumSteps, CVodeSetMaxStep,
               CVodeSetStopTime);
-    if (options.solver.atol_scaling == AtolScaling::Typical && model.HasStateDependentTolerances()) {
-      in.rtol = options.solver.rtol;
-      in.atol.assign(N_VGetArrayPointer(atol), N_VGetArrayPointer(atol) + ny);
-      in.atol_factors.assign(ny, 1.0);
-      CVodeWFtolerances(mem, error_weights);
-    }
+    if (state_dependent) CVodeWFtolerances(mem, error_weights);
     CVodeSetMaxOrd(mem, options.solver.max_order);
     CVodeSetStabLimDet(mem, options.stability_limit_detection ? SUNTRUE : SUNFALSE);
     LS = SUNLinSolNewEmpty(ctx);
@@ -299,6 +303,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
     mem = ERKStepCreate(rhs_callback, t0, y, ctx);
     configure(ERKStepSetUserData, ERKStepSetErrHandlerFn, ERKStepSVtolerances, ERKStepSetMaxNumSteps,
               ERKStepSetMaxStep, ERKStepSetStopTime);
+    if (state_dependent) ERKStepWFtolerances(mem, error_weights);
   } else {
     N_VDestroy(atol);
     N_VDestroy(in.weights);

@@ -157,13 +157,13 @@ double BallDamperElement::tolerance_scale(int i) const {
 }
 
 double BallDamperElement::ring_velocity_tolerance_factor(double eps) {
-  // Short-bearing (Ocvirk) radial damping of a full film, c_rr ~ (1 + 2 e^2) / (1 - e^2)^2.5 (San Andres,
-  // Vance): docs/ball-bearing.md, "In run-ups".
+  // Radial damping of the short full film, c_rr ~ (1 + 2 e^2) / (1 - e^2)^2.5 (docs/references.md section 3), taken
+  // at most at e = 0.98: docs/ball-bearing.md, "In run-ups".
   const auto damping = [](double e) {
     const double q = 1.0 - e * e;
     return (1.0 + 2.0 * e * e) / (q * q * std::sqrt(q));
   };
-  return std::min(damping(0.9) / damping(std::min(std::abs(eps), 0.999)), 100.0);
+  return std::min(damping(0.9) / damping(std::min(std::abs(eps), 0.98)), 100.0);
 }
 
 void BallDamperElement::absolute_tolerance_factors(const double* z, double* f) const {

@@ -91,18 +91,20 @@ TEST(BallRunup, BallBearingsInDampersRunAndBalanceTheirEnergy) {
 }
 
 // The damper ring's velocity tolerance follows the short squeeze film's radial damping, (1 + 2 e^2) / (1 - e^2)^2.5
-// (San Andres, Vance): 1 at e/c = 0.9, tighter towards the wall, looser towards the centre up to 100.
+// (docs/references.md section 3): 1 at e/c = 0.9, tighter towards the wall down to its value at 0.98, looser towards
+// the centre up to 100.
 TEST(BallRunup, DamperRingVelocityToleranceFollowsTheFilmDamping) {
   const auto damping = [](double e) { return (1.0 + 2.0 * e * e) / std::pow(1.0 - e * e, 2.5); };
   EXPECT_NEAR(BallDamperElement::ring_velocity_tolerance_factor(0.9), 1.0, 1e-12);
-  for (const double e : {0.5, 0.7, 0.95, 0.99})
+  for (const double e : {0.5, 0.7, 0.95, 0.98})
     EXPECT_NEAR(BallDamperElement::ring_velocity_tolerance_factor(e) * damping(e) / damping(0.9), 1.0, 1e-12) << e;
-  EXPECT_NEAR(BallDamperElement::ring_velocity_tolerance_factor(0.99), 3.14e-3, 0.01e-3);
+  EXPECT_NEAR(BallDamperElement::ring_velocity_tolerance_factor(0.98), 17.8e-3, 0.1e-3);
   EXPECT_EQ(BallDamperElement::ring_velocity_tolerance_factor(0.0), 100.0);
-  EXPECT_NEAR(BallDamperElement::ring_velocity_tolerance_factor(1.2) /
-                  BallDamperElement::ring_velocity_tolerance_factor(0.999),
-              1.0, 1e-12);
-  EXPECT_GT(BallDamperElement::ring_velocity_tolerance_factor(1.2), 0.0);
+  for (const double e : {0.99, 0.995, 1.2})  // no tighter than at 0.98
+    EXPECT_NEAR(BallDamperElement::ring_velocity_tolerance_factor(e) /
+                    BallDamperElement::ring_velocity_tolerance_factor(0.98),
+                1.0, 1e-12)
+        << e;
 
   // The element applies it to the ring's two velocities only.
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball_sfd.toml");
@@ -113,7 +115,7 @@ TEST(BallRunup, DamperRingVelocityToleranceFollowsTheFilmDamping) {
   e.initial_states(z.data());
   const int r = e.bearing().n_core_states();
   const double c = spec.bearings.at(0).damper.clearance;
-  for (const double eps : {0.3, 0.99}) {
+  for (const double eps : {0.3, 0.97}) {
     z[r] = 0.6 * eps * c, z[r + 1] = -0.8 * eps * c;
     e.absolute_tolerance_factors(z.data(), f.data());
     for (int i = 0; i < r + 2; ++i) ASSERT_EQ(f[i], 1.0) << i;
