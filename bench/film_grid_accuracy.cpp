@@ -2,7 +2,7 @@
 // against a fine grid, over states of the kind a run-up visits (issue 19: a cheaper film must first show its
 // accuracy). Not a timing benchmark; it prints tables.
 //
-//   build/bench/film_grid_accuracy [--grading B] [--reference NCIRC NAXIAL] [NCIRC NAXIAL ...]
+//   build/bench/film_grid_accuracy [--damper] [--grading B] [--reference NCIRC NAXIAL] [NCIRC NAXIAL ...]
 //   (default grids: 36 8  48 8  48 10  64 14  96 16; default reference 192 40)
 //
 // --grading B: the coarse grids' axial nodes drawn towards the ends (SolverOptions::axial_grading; the reference
@@ -15,6 +15,10 @@
 // States: eccentricity ratios 0.3, 0.6, 0.8, 0.9, 0.95 at 8 attitude angles; without tilt, or tilted so that the
 // eccentricity at one end is 1.5x (and at the other 0.5x) that at mid-width, in two directions; without squeeze, or
 // with a radial velocity of 0.05 c omega and a forward whirl at 0.45 omega; Gumbel and mass-conserving cavitation.
+// --damper: instead, the squeeze-film damper of examples/reference_ball_sfd.toml (Ø 20.5 × 6 mm, c = 51 µm, a Ø 2 mm
+// feed hole at the top at 4 bar, no spin, no tilt): eccentricity ratios 0.3, 0.6, 0.8, 0.9, 0.95, 0.98 at 8
+// attitude angles, each with no motion (the feed hole's pressure alone), a radial velocity of 0.05 c Omega outwards,
+// a forward whirl at Omega, and that whirl with 0.05 c Omega inwards; Omega = 2 pi 1000 Hz.
 // Reference: the same film on 192 x 40 nodes (or --reference). For each grid and film the table gives, over the states, the largest
 // and the rms deviation of the force vector |dF|, of the moment vector (tilted states) and of the journal's friction
 // torque, each relative to the largest value of the reference among the states of the same eccentricity ratio.
@@ -64,10 +68,44 @@ Film outer_film(int nc, int na) {
   return f;
 }
 
+Film damper_film(int nc, int na) {
+  Film f{"damper", {}, 0.0, 0.0};
+  f.g.radius = 0.01025;
+  f.g.length = 0.006;
+  f.g.clearance = 51e-6;
+  f.g.holes.push_back(Hole{0.5 * kPi, 0.0, 0.002, 4e5});
+  f.g.n_circ = nc;
+  f.g.n_axial = na;
+  return f;
+}
+
+constexpr double kDamperWhirl = 2.0 * kPi * 1000.0;
+const std::vector<double> kFilmEps = {0.3, 0.6, 0.8, 0.9, 0.95};
+const std::vector<double> kDamperEps = {0.3, 0.6, 0.8, 0.9, 0.95, 0.98};
+
+std::vector<FilmState> damper_states(const Film& f) {
+  std::vector<FilmState> out;
+  const double c = f.g.clearance;
+  for (double eps : kDamperEps)
+    for (int a = 0; a < 8; ++a)
+      for (int motion = 0; motion < 4; ++motion) {
+        const double phi = 2.0 * kPi * (a + 0.25) / 8.0, e = eps * c;
+        FilmState s;
+        s.ex = e * std::cos(phi);
+        s.ey = e * std::sin(phi);
+        const double vr = motion == 1 ? 0.05 * c * kDamperWhirl : motion == 3 ? -0.05 * c * kDamperWhirl : 0.0;
+        const double whirl = motion >= 2 ? kDamperWhirl : 0.0;
+        s.vx = vr * std::cos(phi) - whirl * s.ey;
+        s.vy = vr * std::sin(phi) + whirl * s.ex;
+        out.push_back(s);
+      }
+  return out;
+}
+
 std::vector<FilmState> states(const Film& f) {
   std::vector<FilmState> out;
   const double c = f.g.clearance, L = f.g.length;
-  for (double eps : {0.3, 0.6, 0.8, 0.9, 0.95})
+  for (double eps : kFilmEps)
     for (int a = 0; a < 8; ++a)
       for (int tilt = 0; tilt < 3; ++tilt)
         for (int squeeze = 0; squeeze < 2; ++squeeze) {
@@ -130,8 +168,12 @@ int main(int argc, char** argv) {
   std::vector<std::pair<int, int>> grids = {{36, 8}, {48, 8}, {48, 10}, {64, 14}, {96, 16}};
   double grading = 0.0;  // of the coarse grids (the reference is uniform)
   int first = 1, ref_nc = 192, ref_na = 40;
+  bool damper = false;
   for (;;) {
-    if (argc > first + 1 && std::string(argv[first]) == "--grading") {
+    if (argc > first && std::string(argv[first]) == "--damper") {
+      damper = true;
+      ++first;
+    } else if (argc > first + 1 && std::string(argv[first]) == "--grading") {
       grading = std::atof(argv[first + 1]);
       first += 2;
     } else if (argc > first + 2 && std::string(argv[first]) == "--reference") {
@@ -156,19 +198,27 @@ int main(int argc, char** argv) {
               ref_nc, ref_na);
   std::printf("%-6s %-16s %-8s %-19s %-19s %-19s\n", "film", "cavitation", "grid", "force", "moment (tilted)",
               "torque");
-  for (int which = 0; which < 2; ++which)
+  const auto film = [&](int which, int nc, int na) {
+    return which == 0 ? inner_film(nc, na) : which == 1 ? outer_film(nc, na) : damper_film(nc, na);
+  };
+  const std::vector<int> films = damper ? std::vector<int>{2} : std::vector<int>{0, 1};
+  for (int which : films)
     for (Cavitation cav : {Cavitation::Gumbel, Cavitation::MassConserving}) {
-      const Film fine = which == 0 ? inner_film(ref_nc, ref_na) : outer_film(ref_nc, ref_na);
-      const std::vector<FilmState> ss = states(fine);
+      // Without surface speeds nothing carries oil into a cavitated zone, so the mass-conserving damper film is
+      // the Gumbel one (the same numbers); only the Gumbel rows are printed for it.
+      if (which == 2 && cav == Cavitation::MassConserving) continue;
+      const Film fine = film(which, ref_nc, ref_na);
+      const std::vector<FilmState> ss = which == 2 ? damper_states(fine) : states(fine);
       const std::vector<FilmResult> ref = solve_all(fine, cav, ss);
       for (const auto& [nc, na] : grids) {
-        const Film f = which == 0 ? inner_film(nc, na) : outer_film(nc, na);
+        const Film f = film(which, nc, na);
         const std::vector<FilmResult> r = solve_all(f, cav, ss, grading);
         // Scales: the largest force, moment and torque of the reference at the state's eccentricity ratio (40
         // states each), so that states whose force nearly cancels (a whirl near half the mean speed) are measured
         // against the film's load at that eccentricity, not against their own small force.
-        const std::size_t per_eps = ss.size() / 5;
+        const std::size_t per_eps = ss.size() / (which == 2 ? kDamperEps.size() : kFilmEps.size());
         Stats force, moment, torque;
+        std::vector<double> force_by_eps(ss.size() / per_eps, 0.0);
         for (std::size_t k = 0; k < ss.size(); ++k) {
           double fs = 0, ms = 0, ts = 0;
           for (std::size_t q = k / per_eps * per_eps; q < (k / per_eps + 1) * per_eps; ++q) {
@@ -177,12 +227,19 @@ int main(int argc, char** argv) {
             ts = std::max(ts, std::abs(ref[q].torque_inner));
           }
           force.add(std::hypot(r[k].fx - ref[k].fx, r[k].fy - ref[k].fy) / fs);
+          force_by_eps[k / per_eps] = std::max(force_by_eps[k / per_eps], std::hypot(r[k].fx - ref[k].fx, r[k].fy - ref[k].fy) / fs);
           if (ss[k].sx != 0.0 || ss[k].sy != 0.0) moment.add(std::hypot(r[k].mx - ref[k].mx, r[k].my - ref[k].my) / ms);
-          torque.add(std::abs(r[k].torque_inner - ref[k].torque_inner) / ts);
+          if (ts > 0.0) torque.add(std::abs(r[k].torque_inner - ref[k].torque_inner) / ts);
         }
         std::printf("%-6s %-16s %3d x %-3d %7.2f %% %7.2f %%  %7.2f %% %7.2f %%  %7.2f %% %7.2f %%\n", fine.name,
                     cav == Cavitation::Gumbel ? "gumbel" : "mass-conserving", nc, na, 100 * force.max,
                     100 * force.rms(), 100 * moment.max, 100 * moment.rms(), 100 * torque.max, 100 * torque.rms());
+        if (which == 2) {  // the damper: the largest force deviation at each eccentricity ratio
+          std::printf("         largest force deviation by eccentricity ratio:");
+          for (std::size_t e = 0; e < force_by_eps.size(); ++e)
+            std::printf("  %.2f: %.2f %%", kDamperEps[e], 100 * force_by_eps[e]);
+          std::printf("\n");
+        }
       }
     }
 }

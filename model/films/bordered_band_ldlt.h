@@ -77,8 +77,8 @@ class BorderedBandLdlt {
   bool with_sizes(F&& f) const {
     auto pick = [&]<int M>() {
       if (na_ == M) return f.template operator()<M, M>();
-      if constexpr (M == 4 || M == 5 || M == 8 || M == 10) {
-        // The examples' half-bandwidths (damper films of 8 axial nodes, floating-ring films of 10, half of them
+      if constexpr (M == 2 || M == 3 || M == 4 || M == 5 || M == 8 || M == 10) {
+        // The examples' half-bandwidths (damper films of 4-8 axial nodes, floating-ring films of 10, half of them
         // by symmetry): each border size 1 .. M - 1 at compile time too.
         bool result = false;
         const bool hit = [&]<int... K>(std::integer_sequence<int, K...>) {
@@ -89,6 +89,8 @@ class BorderedBandLdlt {
       return f.template operator()<M, 0>();
     };
     switch (m_) {
+      case 2: return pick.template operator()<2>();
+      case 3: return pick.template operator()<3>();
       case 4: return pick.template operator()<4>();
       case 5: return pick.template operator()<5>();
       case 6: return pick.template operator()<6>();
