@@ -46,42 +46,46 @@ struct Film {
   double omega_inner, omega_outer;
 };
 
-Film inner_film(int nc, int na) {
-  Film f{"inner", {}, kOmega, 0.3 * kOmega};
-  f.g.radius = 0.005;
-  f.g.length = 0.007;
-  f.g.clearance = 15e-6;
-  for (int k = 0; k < 4; ++k) f.g.holes.push_back(Hole{0.5 * kPi * k, 0.0, 0.002, 2e5});
+// A film of radius R, width L and clearance c on an nc x na grid, with its holes and surface speeds.
+Film make_film(const char* name, double R, double L, double c, std::vector<Hole> holes, double w_inner, double w_outer,
+               int nc, int na) {
+  Film f{name, {}, w_inner, w_outer};
+  f.g.radius = R;
+  f.g.length = L;
+  f.g.clearance = c;
+  f.g.holes = std::move(holes);
   f.g.n_circ = nc;
   f.g.n_axial = na;
   return f;
+}
+
+Film inner_film(int nc, int na) {
+  std::vector<Hole> holes;
+  for (int k = 0; k < 4; ++k) holes.push_back(Hole{0.5 * kPi * k, 0.0, 0.002, 2e5});
+  return make_film("inner", 0.005, 0.007, 15e-6, holes, kOmega, 0.3 * kOmega, nc, na);
 }
 
 Film outer_film(int nc, int na) {
-  Film f{"outer", {}, 0.3 * kOmega, 0.0};
-  f.g.radius = 0.008;
-  f.g.length = 0.010;
-  f.g.clearance = 40e-6;
-  f.g.holes.push_back(Hole{0.5 * kPi, 0.0, 0.003, 4.5e5});
-  f.g.n_circ = nc;
-  f.g.n_axial = na;
-  return f;
+  return make_film("outer", 0.008, 0.010, 40e-6, {Hole{0.5 * kPi, 0.0, 0.003, 4.5e5}}, 0.3 * kOmega, 0.0, nc, na);
 }
 
 Film damper_film(int nc, int na) {
-  Film f{"damper", {}, 0.0, 0.0};
-  f.g.radius = 0.01025;
-  f.g.length = 0.006;
-  f.g.clearance = 51e-6;
-  f.g.holes.push_back(Hole{0.5 * kPi, 0.0, 0.002, 4e5});
-  f.g.n_circ = nc;
-  f.g.n_axial = na;
-  return f;
+  return make_film("damper", 0.01025, 0.006, 51e-6, {Hole{0.5 * kPi, 0.0, 0.002, 4e5}}, 0.0, 0.0, nc, na);
 }
 
 constexpr double kDamperWhirl = 2.0 * kPi * 1000.0;
 const std::vector<double> kFilmEps = {0.3, 0.6, 0.8, 0.9, 0.95};
 const std::vector<double> kDamperEps = {0.3, 0.6, 0.8, 0.9, 0.95, 0.98};
+
+// The journal at eccentricity e in direction phi, moving radially at vr and whirling at whirl about the centre.
+FilmState state_at(double e, double phi, double vr, double whirl) {
+  FilmState s;
+  s.ex = e * std::cos(phi);
+  s.ey = e * std::sin(phi);
+  s.vx = vr * std::cos(phi) - whirl * s.ey;
+  s.vy = vr * std::sin(phi) + whirl * s.ex;
+  return s;
+}
 
 std::vector<FilmState> damper_states(const Film& f) {
   std::vector<FilmState> out;
@@ -89,15 +93,9 @@ std::vector<FilmState> damper_states(const Film& f) {
   for (double eps : kDamperEps)
     for (int a = 0; a < 8; ++a)
       for (int motion = 0; motion < 4; ++motion) {
-        const double phi = 2.0 * kPi * (a + 0.25) / 8.0, e = eps * c;
-        FilmState s;
-        s.ex = e * std::cos(phi);
-        s.ey = e * std::sin(phi);
+        const double phi = 2.0 * kPi * (a + 0.25) / 8.0;
         const double vr = motion == 1 ? 0.05 * c * kDamperWhirl : motion == 3 ? -0.05 * c * kDamperWhirl : 0.0;
-        const double whirl = motion >= 2 ? kDamperWhirl : 0.0;
-        s.vx = vr * std::cos(phi) - whirl * s.ey;
-        s.vy = vr * std::sin(phi) + whirl * s.ex;
-        out.push_back(s);
+        out.push_back(state_at(eps * c, phi, vr, motion >= 2 ? kDamperWhirl : 0.0));
       }
   return out;
 }
@@ -110,9 +108,8 @@ std::vector<FilmState> states(const Film& f) {
       for (int tilt = 0; tilt < 3; ++tilt)
         for (int squeeze = 0; squeeze < 2; ++squeeze) {
           const double phi = 2.0 * kPi * (a + 0.25) / 8.0, e = eps * c;
-          FilmState s;
-          s.ex = e * std::cos(phi);
-          s.ey = e * std::sin(phi);
+          const double vr = squeeze ? 0.05 * c * f.omega_inner : 0.0, whirl = squeeze ? 0.45 * f.omega_inner : 0.0;
+          FilmState s = state_at(e, phi, vr, whirl);
           if (tilt > 0) {
             // End eccentricity 1.5x / 0.5x that at mid-width along the eccentricity (tilt 1), or a tilt across it
             // of the same size, limited so that the film stays open (|e_end| <= 0.97 c).
@@ -120,11 +117,6 @@ std::vector<FilmState> states(const Film& f) {
             const double dir = tilt == 1 ? phi : phi + 0.5 * kPi;
             s.sx = slope * std::cos(dir);
             s.sy = slope * std::sin(dir);
-          }
-          if (squeeze) {
-            const double vr = 0.05 * c * f.omega_inner, whirl = 0.45 * f.omega_inner;
-            s.vx = vr * std::cos(phi) - whirl * s.ey;
-            s.vy = vr * std::sin(phi) + whirl * s.ex;
           }
           s.omega_inner = f.omega_inner;
           s.omega_outer = f.omega_outer;

@@ -86,11 +86,11 @@ Eigen::VectorXd band_solve(const Grid& g, BorderedBandLdlt& s) {
 }
 
 TEST(BorderedBandLdlt, EqualsADenseSolveForEveryKernelBorderAndFixedPattern) {
-  // 4-24: compile-time kernels; 9 and 3: the run-time one. Half-bandwidths 4, 5, 8 and 10 also have a kernel for
-  // each border size: all of them.
-  for (int m : {3, 4, 5, 6, 7, 8, 9, 10, 12, 14, 16, 20, 24}) {
+  // 2-24: compile-time kernels; 9 and 11: the run-time one. Half-bandwidths 2, 3, 4, 5, 8 and 10 also have a kernel
+  // for each border size: all of them.
+  for (int m : {2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 14, 16, 20, 24}) {
     std::vector<int> borders{0, 1, m / 2, m};
-    if (m == 4 || m == 5 || m == 8 || m == 10)
+    if (m == 2 || m == 3 || m == 4 || m == 5 || m == 8 || m == 10)
       for (int b = 2; b < m; ++b)
         if (b != m / 2) borders.push_back(b);
     for (int border : borders)
