@@ -494,11 +494,27 @@ void RunupModel::InitialState(double t, bool static_equilibrium, double* y, Runu
   ws.energy = false;
   constexpr int kMaxIterations = 50;
   constexpr double kTolerance = 1e-12;  // relative change of [q; z]
+  constexpr const char* kHint = "set static_start = false to let the run settle from rest instead";
+  // An iterate an element cannot take (a film closed, say) ends the search with a message that says what was being
+  // done and what to change: a squeeze-film damper without a centring spring, for one, has no static stiffness and
+  // hence no static equilibrium.
+  const auto element_call = [&](int it, const auto& call) {
+    try {
+      call();
+    } catch (const ModelError&) {
+      ws.energy = energy;
+      throw;  // bad input is said as it is
+    } catch (const std::runtime_error& e) {
+      ws.energy = energy;
+      throw std::runtime_error(std::string("the static equilibrium under gravity was not found (Newton iteration ") +
+                               std::to_string(it + 1) + ": " + e.what() + "); " + kHint);
+    }
+  };
   for (int it = 0; it < kMaxIterations; ++it) {
-    Rhs(t, y, ydot.data(), ws);
+    element_call(it, [&] { Rhs(t, y, ydot.data(), ws); });
     r.head(n) = ws.f;  // the full generalised force at v = 0
     for (int i = 0; i < m; ++i) r(n + i) = ydot[2 * n + i];
-    Jacobian(t, y, ws);
+    element_call(it, [&] { Jacobian(t, y, ws); });
     J.topLeftCorner(n, n) = ws.Fq;
     J.topRightCorner(n, m) = ws.Fz;
     J.bottomLeftCorner(m, n) = ws.Gq;
@@ -515,8 +531,8 @@ void RunupModel::InitialState(double t, bool static_equilibrium, double* y, Runu
     }
   }
   ws.energy = energy;
-  throw std::runtime_error("the static equilibrium under gravity was not found (Newton's method did not converge "
-                           "in 50 iterations); set static_start = false to let the run settle from rest instead");
+  throw std::runtime_error(std::string("the static equilibrium under gravity was not found (Newton's method did not "
+                                       "converge in 50 iterations); ") + kHint);
 }
 
 std::unique_ptr<RunupModel> make_runup_model(const MachineSpec& spec) {

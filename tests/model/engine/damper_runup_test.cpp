@@ -55,5 +55,29 @@ TEST(Damper, RunUpThroughTheFirstCriticalsWithLowerForceAndClosedEnergyBalance) 
   EXPECT_LT(std::abs(error), 1e-3 * sfd.work_in);
 }
 
+TEST(Damper, StaticStartWithoutACentringSpringSaysWhatToChange) {
+  // A squeeze film has no static stiffness: without a centring spring the rings have no static equilibrium, and
+  // the Newton search drives them through the film. The run stops at t = 0 with a message that names the search,
+  // the film's own error and the setting to change, not the film's error alone.
+  std::vector<Override> o = {{"speed.end", "1000 rpm"}, {"speed.duration", "0.01"}};
+  for (const char* b : {"compressor", "turbine"})
+    o.push_back({std::string("bearings.") + b + ".damper.centring_stiffness", "0"});
+  const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_damper.toml", o);
+  ASSERT_TRUE(spec.solver.static_start);
+  const auto model = make_runup_model(spec);
+  const RunupResult r = simulate_runup(*model, runup_options(spec));
+  EXPECT_FALSE(r.complete);
+  EXPECT_NE(r.message.find("the static equilibrium under gravity was not found (Newton iteration"), std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("film closes"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("set static_start = false"), std::string::npos) << r.message;
+  // With static_start = false the same model starts centred and runs.
+  o.push_back({"solver.static_start", "false"});
+  const MachineSpec settle = load_model(testing::source_dir() + "/examples/reference_damper.toml", o);
+  const auto model2 = make_runup_model(settle);
+  const RunupResult r2 = simulate_runup(*model2, runup_options(settle));
+  EXPECT_TRUE(r2.complete) << r2.message;
+}
+
 }  // namespace
 }  // namespace turbodyn
