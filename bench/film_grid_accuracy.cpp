@@ -218,8 +218,9 @@ int main(int argc, char** argv) {
             ms = std::max(ms, std::hypot(ref[q].mx, ref[q].my));
             ts = std::max(ts, std::abs(ref[q].torque_inner));
           }
-          force.add(std::hypot(r[k].fx - ref[k].fx, r[k].fy - ref[k].fy) / fs);
-          force_by_eps[k / per_eps] = std::max(force_by_eps[k / per_eps], std::hypot(r[k].fx - ref[k].fx, r[k].fy - ref[k].fy) / fs);
+          const double df = std::hypot(r[k].fx - ref[k].fx, r[k].fy - ref[k].fy) / fs;
+          force.add(df);
+          force_by_eps[k / per_eps] = std::max(force_by_eps[k / per_eps], df);
           if (ss[k].sx != 0.0 || ss[k].sy != 0.0) moment.add(std::hypot(r[k].mx - ref[k].mx, r[k].my - ref[k].my) / ms);
           if (ts > 0.0) torque.add(std::abs(r[k].torque_inner - ref[k].torque_inner) / ts);
         }

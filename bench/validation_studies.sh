@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The long validation studies on the paper's variants, with the pictures their documents show:
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~2 min on 2 cores),
-#   damper optimisation of variant III to convergence (docs/optimization.md, ~6 min on 2 cores),
+#   damper optimisation of variant III to convergence (docs/optimization.md, ~9 min on 2 cores),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl (docs/studies.md, ~13 min on 2 cores, 2026-12-04),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on

@@ -11,29 +11,36 @@
 
 #include <gtest/gtest.h>
 
+#include "model/films/film_geometry.h"
 #include "model/films/reynolds.h"
+#include "model/io/model_file.h"
 #include "model/spec/constants.h"
+#include "tests/support/test_support.h"
 
 namespace turbodyn::reynolds {
 namespace {
 
-constexpr double kEta = 0.0108;  // Pa s, SAE 30 at 90 degC (the example's [oil])
+// The compressor damper's film as the element builds it from examples/reference_ball_sfd.toml (geometry, feed hole,
+// cavitation, the oil's viscosity at its temperature), on its own grid or on another.
+struct ExampleDamper {
+  FilmGeometry geometry;
+  SolverOptions options;
+  double viscosity = 0.0;
+};
 
-FilmGeometry example_damper(int n_circ, int n_axial) {
-  FilmGeometry g;
-  g.radius = 0.01025;
-  g.length = 0.006;
-  g.clearance = 51e-6;
-  g.holes.push_back(Hole{0.5 * kPi, 0.0, 0.002, 4e5});  // Ø 2 mm at the top, 4 bar
-  g.n_circ = n_circ;
-  g.n_axial = n_axial;
-  return g;
+ExampleDamper example_damper() {
+  const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball_sfd.toml");
+  const DamperSpec& d = spec.bearings.at(0).damper;
+  ExampleDamper e;
+  e.geometry = film_geometry(d, e.options);
+  e.viscosity = spec.oil.viscosity_at(d.oil_temperature > 0.0 ? d.oil_temperature : spec.oil.temperature);
+  return e;
 }
 
 // Four attitudes (off the grid lines) and four motions at eccentricity ratio eps: still, 0.05 c Omega outwards, a
 // forward whirl at Omega, the whirl with 0.05 c Omega inwards; Omega = 2 pi 1000 Hz.
-std::vector<FilmState> states(double eps) {
-  const double c = 51e-6, w = 2.0 * kPi * 1000.0;
+std::vector<FilmState> states(double c, double eps) {
+  const double w = 2.0 * kPi * 1000.0;
   std::vector<FilmState> out;
   for (int a = 0; a < 4; ++a)
     for (int motion = 0; motion < 4; ++motion) {
@@ -50,8 +57,11 @@ std::vector<FilmState> states(double eps) {
   return out;
 }
 
-std::vector<FilmResult> solve(int n_circ, int n_axial, const std::vector<FilmState>& ss) {
-  FilmSolver solver(example_damper(n_circ, n_axial), kEta, SolverOptions{});
+std::vector<FilmResult> solve(const ExampleDamper& damper, int n_circ, int n_axial, const std::vector<FilmState>& ss) {
+  FilmGeometry g = damper.geometry;
+  g.n_circ = n_circ;
+  g.n_axial = n_axial;
+  FilmSolver solver(g, damper.viscosity, damper.options);
   std::vector<FilmResult> out(ss.size());
   for (std::size_t k = 0; k < ss.size(); ++k) {
     solver.reset_warm_start();
@@ -71,10 +81,15 @@ double deviation(const std::vector<FilmResult>& r, const std::vector<FilmResult>
 }
 
 TEST(DamperFilmGrid, SixAxialNodesWithinOnePercentOfEightAndTheFineFilmWithinTheGridError) {
+  const ExampleDamper damper = example_damper();
+  ASSERT_EQ(damper.geometry.n_circ, 48);
+  ASSERT_EQ(damper.geometry.n_axial, 6);
+  ASSERT_EQ(damper.geometry.holes.size(), 1u);
   for (double eps : {0.3, 0.6, 0.9, 0.98}) {
     SCOPED_TRACE("eps = " + std::to_string(eps));
-    const std::vector<FilmState> ss = states(eps);
-    const std::vector<FilmResult> six = solve(48, 6, ss), eight = solve(48, 8, ss), fine = solve(96, 16, ss);
+    const std::vector<FilmState> ss = states(damper.geometry.clearance, eps);
+    const std::vector<FilmResult> six = solve(damper, 48, 6, ss), eight = solve(damper, 48, 8, ss),
+                                  fine = solve(damper, 96, 16, ss);
     const double d_eight = deviation(six, eight), d_fine = deviation(six, fine), d_eight_fine = deviation(eight, fine);
     std::printf("eps %.2f: 48 x 6 against 48 x 8 %.2f %%, against 96 x 16 %.2f %% (48 x 8 against 96 x 16 %.2f %%)\n",
                 eps, 100 * d_eight, 100 * d_fine, 100 * d_eight_fine);
