@@ -291,6 +291,7 @@ RunupResult simulate_runup(const RunupModel& model, const RunupOptions& options)
               CVodeSetStopTime);
     if (state_dependent) CVodeWFtolerances(mem, error_weights);
     CVodeSetMaxOrd(mem, options.solver.max_order);
+    CVodeSetNonlinConvCoef(mem, options.solver.newton_tolerance);
     CVodeSetStabLimDet(mem, options.stability_limit_detection ? SUNTRUE : SUNFALSE);
     LS = SUNLinSolNewEmpty(ctx);
     LS->content = &in;

@@ -623,6 +623,10 @@ MachineSpec read_machine(const toml::table& root, const Sources& src) {
     spec.solver.max_steps = r.integer_or("max_steps", spec.solver.max_steps, 1, limits::kMaxSteps);
     spec.solver.max_order = static_cast<int>(r.integer_or("max_order", spec.solver.max_order, 1, limits::kMaxBdfOrder));
     if (spec.solver.max_order > 5) r.fail("max_order", "BDF orders go from 1 to 5");
+    spec.solver.newton_tolerance =
+        r.quantity_or("newton_tolerance", dim::dimensionless, spec.solver.newton_tolerance, Bound::Positive);
+    if (spec.solver.newton_tolerance > 1.0)
+      r.fail("newton_tolerance", "a fraction of the local error test's bound, at most 1");
     if (const toml::node* n = r.get("reduction_cutoff"); n && n->is_string() && *n->value<std::string>() == "auto")
       spec.solver.reduction_cutoff = -1.0;
     else

@@ -17,7 +17,7 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
   j["options"] = {{"integrator", to_string(resolve_integrator(model, ro.solver.integrator))}, {"rtol", ro.solver.rtol},
                   {"atol", ro.solver.atol}, {"atol_scaling", to_string(ro.solver.atol_scaling)},
                   {"max_step_s", ro.solver.max_step}, {"max_steps", ro.solver.max_steps},
-                  {"max_order", ro.solver.max_order},
+                  {"max_order", ro.solver.max_order}, {"newton_tolerance", ro.solver.newton_tolerance},
                   {"sample_rate_hz", ro.sample_rate}, {"static_start", ro.solver.static_start},
                   {"t_start_s", ro.t_start}, {"t_end_s", t_end}, {"rotor_coordinates", model.n_dof()},
                   {"rotor_fe_dof", model.n_physical_dof()},

@@ -40,6 +40,8 @@ bool SolverSpec::IsValid(std::string* error) const {
   if (!(max_step >= 0.0)) return fail("max_step must not be negative");
   if (max_steps < 1) return fail("max_steps must be at least 1");
   if (max_order < 1 || max_order > 5) return fail("max_order: BDF orders go from 1 to 5");
+  if (!(newton_tolerance > 0.0 && newton_tolerance <= 1.0))
+    return fail("newton_tolerance must lie in (0, 1] (a fraction of the local error test's bound)");
   return true;
 }
 

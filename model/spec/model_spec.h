@@ -203,6 +203,9 @@ struct SolverSpec {
   double max_step = 0.0;                 ///< s; 0 = no limit
   long max_steps = 50'000'000;           ///< integrator steps before the run is declared failed
   int max_order = 5;                     ///< BDF: highest order (1..5)
+  /// BDF: the Newton iteration's convergence test (CVODE's nlscoef): an iterate is accepted when its estimated
+  /// error is below this fraction of the local error test's bound, in (0, 1]. CVODE's default is 0.1.
+  double newton_tolerance = 0.1;
   bool static_start = true;              ///< start from the static equilibrium under gravity
   /// Hz; Craig-Bampton reduction of the shaft keeping fixed-interface modes below this frequency;
   /// 0 = no reduction, < 0 = automatic (3 x the highest rotor speed frequency, at least 5 kHz).

@@ -417,6 +417,28 @@ TEST(Runup, TighterToleranceChangesMaximaByLessThanOnePercent) {
   }
 }
 
+TEST(Runup, NewtonToleranceReachesTheIntegratorAndLeavesTheMaxima) {
+  // CVODE's Newton test (nlscoef): a tighter one takes more right-hand sides per step; the answer stays within
+  // the error test's own tolerance.
+  MachineSpec spec = reference(compressor_pedestal());
+  spec.speed.end = 30000 * kRpm;
+  spec.speed.duration = 0.4;
+  const auto model = make_runup_model(spec);
+  RunupOptions o = options_for(spec);
+  o.solver.newton_tolerance = 1e-3;
+  const RunupResult tight = simulate_runup(*model, o);
+  o.solver.newton_tolerance = 0.5;
+  const RunupResult loose = simulate_runup(*model, o);
+  ASSERT_TRUE(tight.complete && loose.complete) << tight.message << loose.message;
+  const double per_step_tight = double(tight.stats.rhs_calls) / double(tight.stats.steps);
+  const double per_step_loose = double(loose.stats.rhs_calls) / double(loose.stats.steps);
+  EXPECT_GT(per_step_tight, 1.1 * per_step_loose);
+  for (const char* name : {"disk.compressor.x", "disk.turbine.y", "bearing.compressor.fx"}) {
+    const double ratio = max_abs(loose.columns[channel(loose, name)]) / max_abs(tight.columns[channel(tight, name)]);
+    EXPECT_NEAR(ratio, 1.0, 0.01) << name;
+  }
+}
+
 TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
   // atol_scaling = "typical": displacements get atol, velocities atol x (1 mm/s / 1 um), element states atol x their
   // tolerance scale / 1 um (the pedestals' typical magnitudes); "uniform" gives atol for every state.

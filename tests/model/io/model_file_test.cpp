@@ -292,6 +292,19 @@ TEST(ModelFileLimits, IntegersAreReadAs64BitAndRangeChecked) {
               AllOf(HasSubstr("solver.max_order"), HasSubstr("from 1 to 5")));
 }
 
+TEST(ModelFile, NewtonToleranceIsAFractionOfTheErrorTestsBound) {
+  EXPECT_DOUBLE_EQ(load_model(example("reference_linear.toml")).solver.newton_tolerance, 0.1);  // CVODE's default
+  EXPECT_DOUBLE_EQ(
+      load_model(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=0.3")}).solver.newton_tolerance,
+      0.3);
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=0")}),
+              AllOf(HasSubstr("solver.newton_tolerance"), HasSubstr("positive")));
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=1.5")}),
+              AllOf(HasSubstr("solver.newton_tolerance"), HasSubstr("at most 1")));
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=0.3 s")}),
+              HasSubstr("solver.newton_tolerance"));
+}
+
 TEST(ModelFileLimits, ImplausibleMagnitudesAreRefusedWithTheKey) {
   // Each of these once ran: an endless loop in the eigen-solver's balancing, or "shaft length inf mm".
   const std::string f = example("friswell_5_9_1.toml");
