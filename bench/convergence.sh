@@ -48,6 +48,7 @@ cases_for() {
       echo "damper grid 32 x 6|$(film damper. 32 6)"
       echo "damper grid 48 x 8|$(film damper. 48 8)"
       echo "damper grid 64 x 12|$(film damper. 64 12)"
+      echo "newton_tolerance 0.1|--set solver.newton_tolerance=0.1"
       echo "rtol 1e-5, atol 1e-9|--set solver.rtol=1e-5 --set solver.atol=1e-9"
       echo "rtol 1e-6, atol 1e-10|--set solver.rtol=1e-6 --set solver.atol=1e-10"
       echo "rtol 1e-7, atol 1e-11|--set solver.rtol=1e-7 --set solver.atol=1e-11"

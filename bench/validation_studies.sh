@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # The long validation studies on the paper's variants, with the pictures their documents show:
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~2 min on 2 cores),
-#   damper optimisation of variant III to convergence (docs/optimization.md, ~9 min on 2 cores),
+#   damper optimisation of variant III to convergence (docs/optimization.md, ~6 min on 2 cores; after a change of
+#   its model file remove out/validation_studies/optimize_ball_sfd first, or the cache is refused),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl (docs/studies.md, ~13 min on 2 cores, 2026-12-04),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
 #   2 cores since a run-up takes 1.7-2.9 min; 34 min on 2026-12-04, 2 h before),
-#   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~2 min).
+#   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~1.5 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~12 min on 2 cores).
 # Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [floating_ring] [ball] [ball_sfd]
