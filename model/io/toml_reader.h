@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <toml++/toml.h>
@@ -81,6 +83,13 @@ inline std::string describe_node(const toml::node& n) {
     case toml::node_type::table: os << "a table"; break;
     case toml::node_type::array: os << "an array"; break;
     case toml::node_type::boolean: os << (*n.value<bool>() ? "true" : "false"); break;
+    case toml::node_type::floating_point: {
+      // The shortest text that reads back as the same double: "-0.3", not toml++'s "-0.29999999999999999".
+      char text[32];
+      const auto end = std::to_chars(text, text + sizeof text, *n.value<double>()).ptr;
+      os << std::string_view(text, static_cast<std::size_t>(end - text));
+      break;
+    }
     default: n.visit([&](auto&& v) { os << v; }); break;
   }
   return os.str();

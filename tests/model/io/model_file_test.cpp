@@ -297,8 +297,8 @@ TEST(ModelFile, NewtonToleranceIsAFractionOfTheErrorTestsBound) {
   EXPECT_DOUBLE_EQ(
       load_model(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=0.3")}).solver.newton_tolerance,
       0.3);
-  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=0")}),
-              AllOf(HasSubstr("solver.newton_tolerance"), HasSubstr("positive")));
+  EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=-0.3")}),
+              AllOf(HasSubstr("solver.newton_tolerance"), HasSubstr("must be positive, got -0.3")));  // not -0.2999...
   EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=1.5")}),
               AllOf(HasSubstr("solver.newton_tolerance"), HasSubstr("at most 1")));
   EXPECT_THAT(error_of(example("reference_linear.toml"), {parse_override("solver.newton_tolerance=0.3 s")}),
