@@ -24,7 +24,7 @@ DamperElement::DamperElement(const LinearBearing& bearing, int x_dof, const Damp
       damper_(damper),
       gravity_(gravity) {
   geometry_ = film_geometry(damper, options_);
-  viscosity_ = oil.viscosity_at(damper.oil_temperature > 0.0 ? damper.oil_temperature : oil.temperature);
+  viscosity_ = oil.viscosity_at(oil.temperature_or(damper.oil_temperature));
   reynolds::FilmSolver check(geometry_, viscosity_, options_);  // inconsistent geometry fails now, not mid-run
 }
 

@@ -89,8 +89,8 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
                             0.0});
   options_.cavitation = spec.cavitation;
   options_.axial_grading = spec.axial_grading;
-  eta_inner_ = oil.viscosity_at(spec.inner_oil_temperature > 0 ? spec.inner_oil_temperature : oil.temperature);
-  eta_outer_ = oil.viscosity_at(spec.outer_oil_temperature > 0 ? spec.outer_oil_temperature : oil.temperature);
+  eta_inner_ = oil.viscosity_at(oil.temperature_or(spec.inner_oil_temperature));
+  eta_outer_ = oil.viscosity_at(oil.temperature_or(spec.outer_oil_temperature));
   if (thermal_) {
     const RingThermalSpec& t = spec.thermal;
     if (oil.viscosity > 0.0)
@@ -263,8 +263,8 @@ thermal::FilmHeatInputs FloatingRingElement::film_heat(const SpinState& s, const
     h.inner_temperature = z[kInnerTemperature];
     h.outer_temperature = z[kOuterTemperature];
   } else {
-    h.inner_temperature = spec_.inner_oil_temperature > 0 ? spec_.inner_oil_temperature : oil_.temperature;
-    h.outer_temperature = spec_.outer_oil_temperature > 0 ? spec_.outer_oil_temperature : oil_.temperature;
+    h.inner_temperature = oil_.temperature_or(spec_.inner_oil_temperature);
+    h.outer_temperature = oil_.temperature_or(spec_.outer_oil_temperature);
   }
   return h;
 }

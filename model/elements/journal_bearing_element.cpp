@@ -25,7 +25,7 @@ JournalBearingElement::JournalBearingElement(const std::string& name, const Jour
                                              const OilSpec& oil, int node_dof)
     : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3}, 0) {
   geometry_ = film_geometry(spec, options_);
-  viscosity_ = oil.viscosity_at(spec.oil_temperature > 0.0 ? spec.oil_temperature : oil.temperature);
+  viscosity_ = oil.viscosity_at(oil.temperature_or(spec.oil_temperature));
   reynolds::FilmSolver check(geometry_, viscosity_, options_);  // throws for inconsistent geometry now, not mid-run
 }
 

@@ -76,6 +76,8 @@ struct OilSpec {
   double max_temperature = 473.15;  ///< K, highest temperature the viscosity law is used at (thermal films)
   /// Dynamic viscosity at temperature T (K), Pa s.
   double viscosity_at(double T) const;
+  /// The temperature of a film that may set its own (K): `own` where it does (> 0), else the oil's.
+  double temperature_or(double own) const { return own > 0.0 ? own : temperature; }
 };
 
 /// Plain hydrodynamic journal bearing: a journal (the shaft) in a fixed bush, Reynolds equation solved at every

@@ -53,7 +53,7 @@ BallDamperElement::BallDamperElement(const std::string& name, const BallBearingS
       ring_mass_(bearing.outer_ring_mass),
       n_core_(bearing_.n_core_states()) {
   geometry_ = film_geometry(damper, options_);
-  viscosity_ = oil.viscosity_at(damper.oil_temperature > 0.0 ? damper.oil_temperature : oil.temperature);
+  viscosity_ = oil.viscosity_at(oil.temperature_or(damper.oil_temperature));
   reynolds::FilmSolver check(geometry_, viscosity_, options_);  // inconsistent geometry fails now, not mid-run
 }
 

@@ -33,7 +33,7 @@ ExampleDamper example_damper() {
   const DamperSpec& d = spec.bearings.at(0).damper;
   ExampleDamper e;
   e.geometry = film_geometry(d, e.options);
-  e.viscosity = spec.oil.viscosity_at(d.oil_temperature > 0.0 ? d.oil_temperature : spec.oil.temperature);
+  e.viscosity = spec.oil.viscosity_at(spec.oil.temperature_or(d.oil_temperature));
   return e;
 }
 
