@@ -1,12 +1,15 @@
 // Cost of the film's linear algebra alone (model/films/bordered_band_ldlt.h): one factorisation and one solve of the
-// system of a floating ring's film on the grid of the reference examples, 48 columns of 10 axial nodes, the
-// wrap-around column as the border. The arguments are the border's size (na: how many of that column's nodes are
-// free; 0 when the film has a fully cavitated column, where the cut goes) and the share of fixed (cavitated or hole)
-// nodes in per cent, laid out as a cavitated zone of whole columns' interiors, as the films produce them.
+// system of a film on the grids of the reference examples, 48 columns of m axial nodes (m = 10: a floating ring's
+// film; m = 3: the half of the ball damper's 48 x 6 film that its mid-plane symmetry leaves), the wrap-around column
+// as the border. The arguments are m, the border's size (na: how many of that column's nodes are free; 0 when the
+// film has a fully cavitated column, where the cut goes; half-bandwidths 2 to 5 are then eliminated from both ends)
+// and the share of fixed (cavitated or hole) nodes in per cent, laid out as a cavitated zone of whole columns'
+// interiors, as the films produce them.
 //
 //   build/bench/band_ldlt_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -16,19 +19,20 @@ namespace {
 
 using turbodyn::reynolds::BorderedBandLdlt;
 
-constexpr int kColumns = 48, kM = 10;
+constexpr int kColumns = 48;
 
 // Fills the band (columns 0 .. kColumns - 2) and the border (column kColumns - 1) with a diagonally dominant
 // five-point system; fixed nodes are identity rows.
-void assemble(BorderedBandLdlt& s, int na, int fixed_percent, unsigned seed) {
+void assemble(BorderedBandLdlt& s, int kM, int na, int fixed_percent, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.2, 1.0);
   const int nb = (kColumns - 1) * kM;
   // A cavitated zone of whole columns' interiors (the edge rows next to the ambient stay free) holding the share.
-  const int per_column = kM - 2, zone = fixed_percent * nb / 100 / per_column;
+  // (The half film of m = 3 rows has its mid-plane row, not an edge row, at j = 2: it cavitates too.)
+  const int per_column = kM > 3 ? kM - 2 : kM - 1, zone = fixed_percent * nb / 100 / per_column;
   auto fixed = [&](int r) {
     const int q = r / kM, j = r % kM;
-    return q >= kColumns / 3 && q < kColumns / 3 + zone && j > 0 && j < kM - 1;
+    return q >= kColumns / 3 && q < kColumns / 3 + zone && j > 0 && (j < kM - 1 || kM <= 3);
   };
   s.reset(nb, kM, na);
   for (int r = 0; r < nb; ++r) {
@@ -57,22 +61,24 @@ void assemble(BorderedBandLdlt& s, int na, int fixed_percent, unsigned seed) {
 }
 
 void Factor(benchmark::State& st) {
-  const int na = static_cast<int>(st.range(0)), fixed_percent = static_cast<int>(st.range(1));
+  const int kM = static_cast<int>(st.range(0)), na = static_cast<int>(st.range(1)),
+            fixed_percent = static_cast<int>(st.range(2));
   BorderedBandLdlt s;
   s.reserve(kColumns * kM, kM);
   for (auto _ : st) {
     st.PauseTiming();
-    assemble(s, na, fixed_percent, 7);
+    assemble(s, kM, na, fixed_percent, 7);
     st.ResumeTiming();
     if (!s.factor()) st.SkipWithError("not positive definite");
   }
 }
 
 void Solve(benchmark::State& st) {
-  const int na = static_cast<int>(st.range(0)), fixed_percent = static_cast<int>(st.range(1));
+  const int kM = static_cast<int>(st.range(0)), na = static_cast<int>(st.range(1)),
+            fixed_percent = static_cast<int>(st.range(2));
   BorderedBandLdlt s;
   s.reserve(kColumns * kM, kM);
-  assemble(s, na, fixed_percent, 7);
+  assemble(s, kM, na, fixed_percent, 7);
   if (!s.factor()) st.SkipWithError("not positive definite");
   const int nb = (kColumns - 1) * kM;
   for (auto _ : st) {
@@ -84,9 +90,12 @@ void Solve(benchmark::State& st) {
 }
 
 void Args(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"na", "fixed%"});
+  b->ArgNames({"m", "na", "fixed%"});
   for (int na : {0, 1, 3, 6, 10})
-    for (int f : {0, 37}) b->Args({na, f});
+    for (int f : {0, 37}) b->Args({10, na, f});
+  for (int na : {0, 1, 3})
+    for (int f : {0, 37}) b->Args({3, na, f});
+  for (int f : {0, 37}) b->Args({5, 0, f});
 }
 
 BENCHMARK(Factor)->Apply(Args)->Unit(benchmark::kMicrosecond);

@@ -51,12 +51,25 @@ class BorderedBandLdlt {
   double* rhs_border() { return ya_.data(); }  // na values
 
   bool factor() {
+    split_ = -1;
     // Without a border the pair step needs none of the border's code (a separate instance keeps its registers).
-    if (na_ == 0) return with_sizes([this]<int M, int>() { return factor_band<M, 0, false>(); });
+    if (na_ == 0)
+      return with_sizes([this]<int M, int>() {
+        if constexpr (kTwisted<M>) {
+          if (n_ >= kTwistedMinRows * M) return factor_twisted<M>();
+        }
+        return factor_band<M, 0, false>();
+      });
     return with_sizes([this]<int M, int NA>() { return factor_band<M, NA, true>(); }) && factor_corner();
   }
   void solve() {
     with_sizes([this]<int M, int NA>() {
+      if constexpr (kTwisted<M>) {
+        if (split_ >= 0) {
+          solve_twisted<M>();
+          return true;
+        }
+      }
       if constexpr (M > 0) {
         if (na_ > 0)
           solve_band_windowed<M, true, NA>();
@@ -183,6 +196,194 @@ class BorderedBandLdlt {
       for (int j = 1; j <= m; ++j) col[j] *= inv;
     }
     return true;
+  }
+
+  // Two-ended ("twisted") elimination of a band without border, for the small half-bandwidths where one row's
+  // elimination is a short chain of dependent operations (a division, then a few multiply-adds feeding the next
+  // row's pivot): its time is the chain's latency, not its arithmetic. The rows split into a top part 0 .. k - 1,
+  // eliminated downwards as in factor_band, a bottom part n - 1 .. k + M eliminated upwards (U D U^T of that part),
+  // and the M separator rows k .. k + M - 1 between them, eliminated last. The top and bottom chains do not depend
+  // on each other (they share only their updates of the separator block, subtractions in a fixed order) and run
+  // interleaved in one loop, so the processor overlaps their latencies. This is the factorisation of the matrix
+  // with its rows ordered top, bottom reversed, separator (a one-level nested dissection; cf. the "BABE" or
+  // twisted factorisations of tridiagonal systems, e.g. Meurant, G.: A review on the inverse of symmetric
+  // tridiagonal and block tridiagonal matrices, SIAM J. Matrix Anal. Appl. 13(3) (1992) 707-728). Storage: the
+  // top's and the separator's L as in factor_band (column r holds L(r + t, r)), the bottom's U in the same slots
+  // (column r - t, entry t holds U(r - t, r) for bottom row r), so A's band storage is overwritten in place.
+  // Fixed rows keep their identity rows and zero columns; in the substitutions they need no test of their own.
+  template <int M>
+  bool factor_twisted() {
+    constexpr int S = M + 1;  // column stride
+    const int n = n_, k = (n - M) / 2, nbot = n - k - M;
+    const ByteFlag* fixed = fixed_.data();
+    double* inv_d = inv_d_.data();
+    double* base = band_.data();
+    const int steps = std::max(k, nbot);
+    for (int i = 0; i < steps; ++i) {
+      if (i < k) {
+        const int r = i;
+        if (fixed[r]) {
+          inv_d[r] = 1.0;
+        } else {
+          double* col = base + static_cast<std::ptrdiff_t>(r) * S;
+          const double d = col[0];
+          if (!(d > 0.0)) return false;
+          const double inv = 1.0 / d;
+          inv_d[r] = inv;
+          double l[M + 1];
+#pragma GCC unroll 16
+          for (int j = 1; j <= M; ++j) l[j] = col[j] * inv;
+#pragma GCC unroll 16
+          for (int j = 1; j <= M; ++j) {
+            double* t = col + j * S;  // column r + j
+#pragma GCC unroll 16
+            for (int q = 0; q <= M - j; ++q) t[q] -= col[j + q] * l[j];
+          }
+#pragma GCC unroll 16
+          for (int j = 1; j <= M; ++j) col[j] = l[j];
+        }
+      }
+      if (i < nbot) {
+        const int r = n - 1 - i;
+        if (fixed[r]) {
+          inv_d[r] = 1.0;
+        } else {
+          const double d = base[static_cast<std::ptrdiff_t>(r) * S];
+          if (!(d > 0.0)) return false;
+          const double inv = 1.0 / d;
+          inv_d[r] = inv;
+          double c[M + 1], u[M + 1];  // A(r - t, r) and its U
+#pragma GCC unroll 16
+          for (int t = 1; t <= M; ++t) {
+            c[t] = base[static_cast<std::ptrdiff_t>(r - t) * S + t];
+            u[t] = c[t] * inv;
+          }
+          // A(r - i, r - j) -= A(r - i, r) U(r - j, r), 1 <= i <= j <= M: column r - j, entry j - i.
+#pragma GCC unroll 16
+          for (int j = 1; j <= M; ++j) {
+            double* t = base + static_cast<std::ptrdiff_t>(r - j) * S;
+#pragma GCC unroll 16
+            for (int q = 1; q <= j; ++q) t[j - q] -= c[q] * u[j];
+          }
+#pragma GCC unroll 16
+          for (int t = 1; t <= M; ++t) base[static_cast<std::ptrdiff_t>(r - t) * S + t] = u[t];
+        }
+      }
+    }
+    // The separator block, dense within the band storage (column c, entries up to row k + M - 1).
+    for (int c = k; c < k + M; ++c) {
+      if (fixed[c]) {
+        inv_d[c] = 1.0;
+        continue;
+      }
+      double* col = base + static_cast<std::ptrdiff_t>(c) * S;
+      const double d = col[0];
+      if (!(d > 0.0)) return false;
+      const double inv = 1.0 / d;
+      inv_d[c] = inv;
+      const int qmax = k + M - 1 - c;
+      for (int j = 1; j <= qmax; ++j) {
+        const double l = col[j] * inv;
+        double* t = col + j * S;
+        for (int q = 0; q <= qmax - j; ++q) t[q] -= col[j + q] * l;
+      }
+      for (int j = 1; j <= qmax; ++j) col[j] *= inv;
+    }
+    split_ = k;
+    return true;
+  }
+
+  // Substitutions of the twisted factorisation: the top's and the bottom's forward chains interleaved (each keeping
+  // its window of M values in registers, as solve_band_windowed does), the separator, then both backward chains.
+  template <int M>
+  void solve_twisted() {
+    constexpr int S = M + 1;
+    const int n = n_, k = split_, nbot = n - k - M;
+    double* y = y_.data();
+    const double* inv_d = inv_d_.data();
+    const double* base = band_.data();
+    const int steps = std::max(k, nbot);
+    // Forward. Top window a[t] = y[r + t] for its row r; bottom window w[t] = y[r - t] for its row r. The bottom's
+    // loads of separator rows start from zero: its window ends holding only its updates of the separator, which
+    // are added to the top's below.
+    double a[M], w[M];
+#pragma GCC unroll 16
+    for (int t = 0; t < M; ++t) {
+      a[t] = y[t];
+      w[t] = y[n - 1 - t];
+    }
+    for (int i = 0; i < steps; ++i) {
+      if (i < k) {
+        const int r = i;
+        const double* col = base + static_cast<std::ptrdiff_t>(r) * S;
+        const double yr = a[0];
+        y[r] = yr * inv_d[r];
+#pragma GCC unroll 16
+        for (int t = 1; t < M; ++t) a[t - 1] = a[t] - col[t] * yr;
+        a[M - 1] = y[r + M] - col[M] * yr;
+      }
+      if (i < nbot) {
+        const int r = n - 1 - i;
+        const double yr = w[0];
+        y[r] = yr * inv_d[r];
+#pragma GCC unroll 16
+        for (int t = 1; t < M; ++t) w[t - 1] = w[t] - base[static_cast<std::ptrdiff_t>(r - t) * S + t] * yr;
+        const double next = r - M >= k + M ? y[r - M] : 0.0;
+        w[M - 1] = next - base[static_cast<std::ptrdiff_t>(r - M) * S + M] * yr;
+      }
+    }
+#pragma GCC unroll 16
+    for (int t = 0; t < M; ++t) y[k + t] = a[t] + w[M - 1 - t];
+    // The separator: forward, diagonal, backward.
+    for (int c = k; c < k + M; ++c) {
+      const double* col = base + static_cast<std::ptrdiff_t>(c) * S;
+      const double yc = y[c];
+      for (int q = 1; c + q < k + M; ++q) y[c + q] -= col[q] * yc;
+      y[c] = yc * inv_d[c];
+    }
+    for (int c = k + M - 1; c >= k; --c) {
+      const double* col = base + static_cast<std::ptrdiff_t>(c) * S;
+      double s = y[c];
+      for (int q = 1; c + q < k + M; ++q) s -= col[q] * y[c + q];
+      y[c] = s;
+    }
+    // Backward. Top window a[t] = y[r + 1 + t]; bottom window w[t] = y[r - 1 - t].
+#pragma GCC unroll 16
+    for (int t = 0; t < M; ++t) {
+      a[t] = y[k + t];
+      w[t] = y[k + M - 1 - t];
+    }
+    for (int i = 0; i < steps; ++i) {
+      if (i < k) {
+        const int r = k - 1 - i;
+        const double* col = base + static_cast<std::ptrdiff_t>(r) * S;
+        double s0 = 0.0, s1 = 0.0;
+#pragma GCC unroll 16
+        for (int t = 2; t <= M; t += 2) {
+          s0 += col[t] * a[t - 1];
+          if (t + 1 <= M) s1 += col[t + 1] * a[t];
+        }
+        const double yr = (y[r] - (s0 + s1)) - col[1] * a[0];
+        y[r] = yr;
+#pragma GCC unroll 16
+        for (int t = M - 1; t > 0; --t) a[t] = a[t - 1];
+        a[0] = yr;
+      }
+      if (i < nbot) {
+        const int r = k + M + i;
+        double s0 = 0.0, s1 = 0.0;
+#pragma GCC unroll 16
+        for (int t = 2; t <= M; t += 2) {
+          s0 += base[static_cast<std::ptrdiff_t>(r - t) * S + t] * w[t - 1];
+          if (t + 1 <= M) s1 += base[static_cast<std::ptrdiff_t>(r - t - 1) * S + t + 1] * w[t];
+        }
+        const double yr = (y[r] - (s0 + s1)) - base[static_cast<std::ptrdiff_t>(r - 1) * S + 1] * w[0];
+        y[r] = yr;
+#pragma GCC unroll 16
+        for (int t = M - 1; t > 0; --t) w[t] = w[t - 1];
+        w[0] = yr;
+      }
+    }
   }
 
   // The border part of eliminating columns r and s = r + 1 together (factor_band's pair step): the border rows
@@ -376,7 +577,14 @@ class BorderedBandLdlt {
     }
   }
 
+  // Half-bandwidths factorised two-ended when there is no border (factor_twisted), for bands of at least
+  // kTwistedMinRows * M rows (each chain then has a few rows per separator row).
+  template <int M>
+  static constexpr bool kTwisted = M >= 2 && M <= 5;
+  static constexpr int kTwistedMinRows = 8;
+
   int n_ = 0, m_ = 0, na_ = 0;
+  int split_ = -1;  // the separator's first row k after a twisted factorisation, else -1
   std::vector<double> band_, border_, corner_, corner_d_, inv_d_, y_, ya_;
   std::vector<ByteFlag> fixed_;
 };

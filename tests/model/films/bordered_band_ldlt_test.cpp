@@ -114,6 +114,23 @@ TEST(BorderedBandLdlt, EqualsADenseSolveForEveryKernelBorderAndFixedPattern) {
   }
 }
 
+TEST(BorderedBandLdlt, TwoEndedAndOneEndedEliminationsGiveTheDenseSolution) {
+  // Without a border, half-bandwidths 2 to 5 eliminate from both ends at once when the band has at least 8 M rows
+  // (factor_twisted): bands of 5-9 columns (4-8 band columns) take the one-ended path, longer ones the two-ended, with both parities of
+  // the row count (the separator's place), fixed rows scattered and in runs (some in the separator).
+  for (int m : {2, 3, 4, 5})
+    for (int nc : {5, 9, 10, 11, 17, 18, 48})
+      for (bool runs : {false, true}) {
+        SCOPED_TRACE("m = " + std::to_string(m) + ", " + std::to_string(nc) + " columns" + (runs ? ", runs" : ""));
+        const Grid g = make_grid(nc, m, 0, 31u * nc + m + (runs ? 3u : 0u), runs);
+        const Eigen::VectorXd x_dense = g.A.ldlt().solve(g.b);
+        BorderedBandLdlt s;
+        const Eigen::VectorXd x = band_solve(g, s);
+        EXPECT_LT((x - x_dense).cwiseAbs().maxCoeff(), 1e-13 * (1.0 + x_dense.cwiseAbs().maxCoeff()));
+        EXPECT_GT(x.cwiseAbs().maxCoeff(), 1e-3);
+      }
+}
+
 TEST(BorderedBandLdlt, ReportsAMatrixThatIsNotPositiveDefinite) {
   Grid g = make_grid(9, 5, 2, 3u, false);
   int k = 12;
@@ -129,6 +146,20 @@ TEST(BorderedBandLdlt, ReportsAMatrixThatIsNotPositiveDefinite) {
   }
   for (int a = 0; a < g.na; ++a) s.corner(a, a) = 1.0;
   EXPECT_FALSE(s.factor());
+  // The same in each part of the two-ended elimination (top, separator, bottom; no border, half-bandwidth 3).
+  const Grid h = make_grid(17, 3, 0, 5u, false);
+  const int nh = 16 * 3, split = (nh - 3) / 2;
+  for (int bad : {4, split + 1, nh - 5}) {
+    SCOPED_TRACE("negative pivot in row " + std::to_string(bad));
+    BorderedBandLdlt t;
+    t.reserve(nh, 3);
+    t.reset(nh, 3, 0);
+    for (int r = 0; r < nh; ++r) {
+      t.set_fixed(r, false);
+      t.column(r)[0] = r == bad ? -1.0 : h.A(r, r) + 1.0;
+    }
+    EXPECT_FALSE(t.factor());
+  }
 }
 
 }  // namespace
