@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The long validation studies on the paper's variants, with the pictures their documents show:
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~2 min on 2 cores),
-#   damper optimisation of variant III to convergence (docs/optimization.md, ~6 min on 2 cores; after a change of
+#   damper optimisation of variant III to convergence (docs/optimization.md, ~4-6 min on 2 cores; after a change of
 #   its model file remove out/validation_studies/optimize_ball_sfd first, or the cache is refused),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl (docs/studies.md, ~13 min on 2 cores, 2026-12-04),

@@ -205,9 +205,9 @@ class BorderedBandLdlt {
   // and the M separator rows k .. k + M - 1 between them, eliminated last. The top and bottom chains do not depend
   // on each other (they share only their updates of the separator block, subtractions in a fixed order) and run
   // interleaved in one loop, so the processor overlaps their latencies. This is the factorisation of the matrix
-  // with its rows ordered top, bottom reversed, separator (a one-level nested dissection; cf. the "BABE" or
-  // twisted factorisations of tridiagonal systems, e.g. Meurant, G.: A review on the inverse of symmetric
-  // tridiagonal and block tridiagonal matrices, SIAM J. Matrix Anal. Appl. 13(3) (1992) 707-728). Storage: the
+  // with its rows ordered top, bottom reversed, separator (a one-level nested dissection; the band analogue of the
+  // twisted factorisations of tridiagonal matrices, e.g. Parlett, B. N., Dhillon, I. S.: Fernando's solution to
+  // Wilkinson's problem: an application of double factorization, Linear Algebra Appl. 267 (1997) 247-279). Storage: the
   // top's and the separator's L as in factor_band (column r holds L(r + t, r)), the bottom's U in the same slots
   // (column r - t, entry t holds U(r - t, r) for bottom row r), so A's band storage is overwritten in place.
   // Fixed rows keep their identity rows and zero columns; in the substitutions they need no test of their own.
