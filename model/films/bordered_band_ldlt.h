@@ -51,12 +51,11 @@ class BorderedBandLdlt {
   double* rhs_border() { return ya_.data(); }  // na values
 
   bool factor() {
-    split_ = -1;
     // Without a border the pair step needs none of the border's code (a separate instance keeps its registers).
     if (na_ == 0)
       return with_sizes([this]<int M, int>() {
         if constexpr (kTwisted<M>) {
-          if (n_ >= kTwistedMinRows * M) return factor_twisted<M>();
+          if (two_ended<M>()) return factor_twisted<M>();
         }
         return factor_band<M, 0, false>();
       });
@@ -65,7 +64,7 @@ class BorderedBandLdlt {
   void solve() {
     with_sizes([this]<int M, int NA>() {
       if constexpr (kTwisted<M>) {
-        if (split_ >= 0) {
+        if (two_ended<M>()) {
           solve_twisted<M>();
           return true;
         }
@@ -214,7 +213,7 @@ class BorderedBandLdlt {
   template <int M>
   bool factor_twisted() {
     constexpr int S = M + 1;  // column stride
-    const int n = n_, k = (n - M) / 2, nbot = n - k - M;
+    const int n = n_, k = separator_row<M>(), nbot = n - k - M;
     const ByteFlag* fixed = fixed_.data();
     double* inv_d = inv_d_.data();
     double* base = band_.data();
@@ -289,7 +288,6 @@ class BorderedBandLdlt {
       }
       for (int j = 1; j <= qmax; ++j) col[j] *= inv;
     }
-    split_ = k;
     return true;
   }
 
@@ -298,7 +296,7 @@ class BorderedBandLdlt {
   template <int M>
   void solve_twisted() {
     constexpr int S = M + 1;
-    const int n = n_, k = split_, nbot = n - k - M;
+    const int n = n_, k = separator_row<M>(), nbot = n - k - M;
     double* y = y_.data();
     const double* inv_d = inv_d_.data();
     const double* base = band_.data();
@@ -582,9 +580,18 @@ class BorderedBandLdlt {
   template <int M>
   static constexpr bool kTwisted = M >= 2 && M <= 5;
   static constexpr int kTwistedMinRows = 8;
+  // Whether the current system is factorised and solved two-ended, and the first of its M separator rows: both
+  // follow from the system's sizes, so factor() and solve() take the same path by construction.
+  template <int M>
+  bool two_ended() const {
+    return kTwisted<M> && na_ == 0 && n_ >= kTwistedMinRows * M;
+  }
+  template <int M>
+  int separator_row() const {
+    return (n_ - M) / 2;
+  }
 
   int n_ = 0, m_ = 0, na_ = 0;
-  int split_ = -1;  // the separator's first row k after a twisted factorisation, else -1
   std::vector<double> band_, border_, corner_, corner_d_, inv_d_, y_, ya_;
   std::vector<ByteFlag> fixed_;
 };
