@@ -94,7 +94,11 @@ int run_stability_command(const StabilityCommandOptions& options) {
       "linearised by central differences of the run-up model's right-hand side (every contact, friction and "
       "damping law as in a run), shaft in its physical DOFs, written in the frame turning with the cages: constant "
       "coefficients, eigenvalues = Floquet exponents of the steady state",
-      "frequency: housing frame, > 0 forward whirl; growth rate > 0: the steady state is unstable"};
+      "frequency: housing frame, > 0 forward whirl; growth rate > 0: the steady state is unstable",
+      "ball_set_share: fraction of the mode (states scaled by their typical sizes) in the balls' orbital angles and "
+      "rates; ball_set_lobes: circumferential order of the balls' orbital-angle motion in the bearing where it is "
+      "largest (0: the ball set turning as a whole, 1: a one-lobed density wave, the balls closing up on one side; "
+      "-1: no ball bearing)"};
   nlohmann::json jp = nlohmann::json::array();
   for (const StabilityPoint& p : points) {
     nlohmann::json modes = nlohmann::json::array();
@@ -106,6 +110,8 @@ int run_stability_command(const StabilityCommandOptions& options) {
                        {"forward_share", m.forward_share},
                        {"rotor_share", m.rotor_share},
                        {"element_shares", m.element_shares},
+                       {"ball_set_share", m.ball_set_share},
+                       {"ball_set_lobes", m.ball_set_lobes},
                        {"grows", m.grows()}});
     jp.push_back({{"speed_rad_s", p.speed},
                   {"speed_rpm", p.speed * kRadPerSToRpm},
@@ -121,13 +127,14 @@ int run_stability_command(const StabilityCommandOptions& options) {
     OutputFile file(options.output_dir / "stability.csv");
     std::ostream& csv = file.stream();
     csv << "speed_rpm,cage_speed_rad_s,frequency_hz,frame_frequency_hz,growth_rate_per_s,damping_ratio,"
-           "forward_share,rotor_share";
+           "forward_share,rotor_share,ball_set_share,ball_set_lobes";
     for (const std::string& e : points.front().elements) csv << ",share_" << e;
     csv << '\n' << std::setprecision(10);
     for (const StabilityPoint& p : points)
       for (const StabilityMode& m : p.modes) {
         csv << p.speed * kRadPerSToRpm << ',' << p.frame_speed << ',' << m.frequency << ',' << m.frame_frequency << ','
-            << m.growth_rate << ',' << m.damping_ratio << ',' << m.forward_share << ',' << m.rotor_share;
+            << m.growth_rate << ',' << m.damping_ratio << ',' << m.forward_share << ',' << m.rotor_share << ','
+            << m.ball_set_share << ',' << m.ball_set_lobes;
         for (double s : m.element_shares) csv << ',' << s;
         csv << '\n';
       }
@@ -136,7 +143,8 @@ int run_stability_command(const StabilityCommandOptions& options) {
 
   std::cout << spec.name << ": linearised about the steady turning state (no gravity, no unbalance); modes with at "
             << "least " << options.min_rotor_share << " of their motion in the rotor, least damped first\n";
-  std::cout << "     speed [rpm]   cage [rad/s]   frequency [Hz]   growth [1/s]   damping ratio   rotor share\n";
+  std::cout << "     speed [rpm]   cage [rad/s]   frequency [Hz]   growth [1/s]   damping ratio   rotor share"
+               "   ball set   lobes\n";
   constexpr std::size_t kShown = 4;
   for (const StabilityPoint& p : points) {
     std::size_t shown = 0;
@@ -146,7 +154,12 @@ int run_stability_command(const StabilityCommandOptions& options) {
                 << std::setprecision(1) << p.frame_speed << std::setw(17) << std::setprecision(1) << m.frequency
                 << std::setw(15) << std::setprecision(2) << m.growth_rate << std::scientific << std::setw(16)
                 << std::setprecision(3) << m.damping_ratio << std::fixed << std::setw(14) << std::setprecision(3)
-                << m.rotor_share << (m.grows() ? "   UNSTABLE" : "") << "\n";
+                << m.rotor_share << std::setw(11) << m.ball_set_share << std::setw(8);
+      if (m.ball_set_lobes >= 0)
+        std::cout << m.ball_set_lobes;
+      else
+        std::cout << "-";
+      std::cout << (m.grows() ? "   UNSTABLE" : "") << "\n";
       if (++shown == kShown) break;
     }
   }

@@ -211,13 +211,17 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
     Row row = {HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
                HtmlPage::number(F, j, at + "/cage_speed_rad_s", 1.0, "rad/s")};
     if (first == modes.size()) {
-      row.insert(row.end(), {"–", "–", "–", "–"});
+      row.insert(row.end(), {"–", "–", "–", "–", "–", "–"});
     } else {
       const std::string m0 = json_pointer(at + "/modes", first);
       row.insert(row.end(), {HtmlPage::number(F, j, m0 + "/frequency_hz", 1.0, "Hz"),
                              HtmlPage::number(F, j, m0 + "/growth_rate_per_s", 1.0, "1/s"),
                              HtmlPage::number(F, j, m0 + "/damping_ratio", 1.0, "", 3),
-                             HtmlPage::number(F, j, m0 + "/rotor_share", 1.0, "", 3)});
+                             HtmlPage::number(F, j, m0 + "/rotor_share", 1.0, "", 3),
+                             HtmlPage::number(F, j, m0 + "/ball_set_share", 1.0, "", 3),
+                             modes[first].value("ball_set_lobes", -1) >= 0
+                                 ? std::to_string(modes[first].value("ball_set_lobes", -1))
+                                 : std::string("–")});
     }
     row.insert(row.end(), {std::to_string(growing), std::to_string(growing_elements)});
     rows.push_back(row);
@@ -233,10 +237,13 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
                "elements only\"): the elements' steady state (e.g. a ball set's spacing) does not persist there, "
                "though the rotor hardly takes part.");
   page.table("least_damped", {"rotor speed", "cage speed", "frequency", "growth rate", "damping ratio",
-                              "rotor share", "growing, with rotor", "growing, elements only"}, rows);
+                              "rotor share", "ball-set share", "ball-set lobes", "growing, with rotor",
+                              "growing, elements only"}, rows);
   page.paragraph("Modes with at least " + share + " of their motion in the rotor's degrees of freedom (states "
                  "scaled by their typical sizes; --min-rotor-share) count as rotor modes, as in the pictures and "
-                 "the terminal listing. Frequency in the housing frame, positive for forward whirl. Every mode is "
+                 "the terminal listing. Frequency in the housing frame, positive for forward whirl. The ball-set share is "
+                 "the part of the mode in the balls' orbital angles and rates, the lobes the circumferential order "
+                 "of that motion (1: a one-lobed density wave, the balls closing up on one side). Every mode is "
                  "in stability.json and stability.csv.");
   pictures_and_files(page, in);
   page.write(dir);

@@ -345,6 +345,39 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     for (std::size_t e = 0; e < model->elements().size(); ++e)
       mode.element_shares.push_back(
           v.segment(model->state_offset(static_cast<int>(e)), model->elements()[e]->n_states()).squaredNorm() / total);
+    double largest = 0.0;
+    for (std::size_t e = 0; e < layouts.size(); ++e) {
+      const int offset = model->state_offset(static_cast<int>(e));
+      const std::vector<std::pair<int, int>>& angles = layouts[e].turning_angles;
+      std::vector<std::complex<double>> psi;  // the balls' angles in this mode
+      std::vector<double> phi;                // their steady places
+      double share = 0.0;
+      for (std::size_t b = 0; b < angles.size(); ++b) {
+        if (static_cast<int>(b) == layouts[e].phase_angle) continue;  // the cage
+        const int a = offset + angles[b].first, r = offset + angles[b].second;
+        share += std::norm(v(a)) + std::norm(v(r));
+        psi.push_back(v(a));
+        phi.push_back(y[static_cast<std::size_t>(a)]);
+      }
+      mode.ball_set_share += share / total;
+      if (psi.empty() || share <= largest) continue;
+      largest = share;
+      const int Z = static_cast<int>(psi.size());
+      std::vector<double> power(static_cast<std::size_t>(Z));
+      for (int m = 0; m < Z; ++m) {
+        std::complex<double> sum = 0.0;
+        for (int j = 0; j < Z; ++j)
+          sum += psi[static_cast<std::size_t>(j)] * std::polar(1.0, -m * phi[static_cast<std::size_t>(j)]);
+        power[static_cast<std::size_t>(m)] = std::norm(sum);
+      }
+      double best = -1.0;
+      for (int m = 0; 2 * m <= Z; ++m) {
+        const double p = power[static_cast<std::size_t>(m)] +
+                         (m > 0 && 2 * m < Z ? power[static_cast<std::size_t>(Z - m)] : 0.0);
+        if (p > best) best = p, mode.ball_set_lobes = m;
+      }
+    }
+    if (mode.ball_set_share < kStabilityBallSetMinShare) mode.ball_set_lobes = -1;
     // Above frequency_max only clearly growing modes are kept: the round-off of the central differences grows
     // with |lambda| (a nearly rigid shaft's bending modes at MHz come out with damping ratios of -1e-5 to -6e-5).
     const bool above = magnitude / (2.0 * kPi) > f_max;

@@ -37,6 +37,9 @@ inline constexpr double kStabilityNoiseDamping = 1e-5;
 /// neutral mode at 0 Hz in the housing frame (a damper ring's free place) has a damping ratio of -1 from round-off.
 inline constexpr double kStabilityNeutralRate = 1e-2;
 
+/// A mode's ball-set order (StabilityMode::ball_set_lobes) is given from this ball-set share on.
+inline constexpr double kStabilityBallSetMinShare = 1e-2;
+
 struct StabilityMode {
   double frequency = 0.0;           ///< Hz in the housing frame, > 0 forward whirl, < 0 backward
   double frame_frequency = 0.0;     ///< Hz in the turning frame, Im(lambda~) / 2 pi (>= 0)
@@ -47,6 +50,15 @@ struct StabilityMode {
   /// in the rotor coordinates and in each element's states; they sum to 1.
   double rotor_share = 0.0;
   std::vector<double> element_shares;
+  /// Fraction of the mode's state vector (scaled as above) in the balls' orbital angles and orbital rates, all
+  /// elements together: how much of the mode is a change of the ball sets' spacing or of their turning as a whole.
+  double ball_set_share = 0.0;
+  /// Circumferential order n of the balls' orbital-angle motion in the element where that motion is largest: the
+  /// largest |sum_j psi_j exp(-i m phi_j)|^2 + (its m -> Z - m alias) over m = 0 .. Z/2, psi_j the mode's angle of
+  /// ball j and phi_j its steady place. 0: the ball set turning as a whole (against the races); 1: a one-lobed
+  /// density wave (the balls closing up on one side, the set's mass centre off the axis); -1: no ball-set states,
+  /// or ball_set_share below kStabilityBallSetMinShare (the order of round-off is no order).
+  int ball_set_lobes = -1;
   /// The mode grows beyond round-off: the steady state is unstable.
   bool grows() const { return damping_ratio < -kStabilityNoiseDamping && growth_rate > kStabilityNeutralRate; }
 };

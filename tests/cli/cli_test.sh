@@ -260,6 +260,9 @@ EOF2
       [ -s "$out/$f" ] || fail "no $f: $(cat "$out/log")"
     done
     grep -q "^ *95000 .*UNSTABLE" "$out/log" || fail "no growing mode at 95,000 rpm: $(cat "$out/log")"
+    # ... and names it: the ball set's one-lobed density wave (ball-set share, lobes 1), in the listing and the CSV.
+    grep -q "^ *95000 .* 0\.9[0-9]* *1   UNSTABLE" "$out/log" || fail "growing mode not a one-lobed ball-set wave: $(cat "$out/log")"
+    head -1 "$out/stability.csv" | grep -q ",ball_set_share,ball_set_lobes" || fail "csv header: $(head -1 "$out/stability.csv")"
     ! grep -q "^ *30000 .*UNSTABLE" "$out/log" || fail "a growing rotor mode at 30,000 rpm: $(cat "$out/log")"
     # The report tells the growing rotor modes (95,000 rpm) from a ball set's own mode (30,000 rpm, rotor share
     # 3e-4): one speed each.
