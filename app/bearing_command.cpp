@@ -1,11 +1,13 @@
 #include "app/bearing_command.h"
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -297,6 +299,52 @@ std::vector<double> parse_load(const std::string& text) {
   return out;
 }
 
+std::vector<double> parse_travel_list(const std::string& text) {
+  constexpr std::size_t kMaxTravels = 10000;
+  const std::string what = "--radial-travel '" + text + "': ";
+  const auto lengths = [&](const std::vector<std::string>& items) {
+    std::string unit;
+    for (const std::string& it : items)
+      if (const std::optional<std::string> u = quantity_unit(it); u && !u->empty()) unit = *u;
+    std::vector<double> out;
+    for (const std::string& it : items) {
+      const std::optional<std::string> u = quantity_unit(it);
+      const bool bare = !unit.empty() && u && u->empty();
+      try {
+        out.push_back(parse_quantity(bare ? trim(it) + " " + unit : trim(it), dim::length));
+      } catch (const UnitError& e) {
+        throw ModelError(what + e.what() + " (expected lengths, e.g. \"0:60 um:31\" or \"10 um, 50 um\")");
+      }
+    }
+    return out;
+  };
+  std::vector<double> out;
+  std::vector<std::string> parts;
+  if (text.find(':') != std::string::npos) {
+    std::stringstream ss(text);
+    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+    if (parts.size() != 3) throw ModelError(what + "expected START:END:COUNT");
+    const std::vector<double> ab = lengths({parts[0], parts[1]});
+    const std::string count = trim(parts[2]);
+    long n = 0;
+    const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
+    if (count.empty() || ec != std::errc() || end != count.data() + count.size() || n < 2 ||
+        n > static_cast<long>(kMaxTravels))
+      throw ModelError(what + "COUNT must be a whole number from 2 to " + std::to_string(kMaxTravels));
+    for (long i = 0; i < n; ++i) out.push_back(ab[0] + (ab[1] - ab[0]) * static_cast<double>(i) / (n - 1));
+  } else {
+    std::stringstream ss(text);
+    for (std::string p; std::getline(ss, p, ',');) parts.push_back(p);
+    out = lengths(parts);
+  }
+  if (out.empty() || out.size() > kMaxTravels) throw ModelError(what + "between 1 and 10,000 travels");
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (!(std::isfinite(out[i]) && out[i] >= 0.0)) throw ModelError(what + "travels must not be negative");
+    if (i > 0 && !(out[i] > out[i - 1])) throw ModelError(what + "travels must be increasing");
+  }
+  return out;
+}
+
 int run_bearing_command(const BearingCommandOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const MachineSpec spec = load_model(options.model_file, options.overrides);
@@ -304,7 +352,15 @@ int run_bearing_command(const BearingCommandOptions& options) {
   const std::string where = spec.source.string() + ": bearings." + b.name;
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, 11);
   const std::vector<double> load = parse_load(options.load);
-  if (b.type == BearingType::FloatingRing) return run_floating_ring(options, spec, b, speeds, load, t0);
+  const std::vector<double> travel =
+      options.radial_travel.empty() ? std::vector<double>{} : parse_travel_list(options.radial_travel);
+  if (b.type == BearingType::FloatingRing) {
+    if (!travel.empty()) throw ModelError("--radial-travel: load-deflection curves are for ball bearings");
+    return run_floating_ring(options, spec, b, speeds, load, t0);
+  }
+  if (!travel.empty() && (load[0] != 0.0 || load[1] != 0.0 || load[2] != 0.0))
+    throw ModelError("--radial-travel and --load: the load-deflection curve starts from the unloaded, centred "
+                     "bearing; give one of them");
 
   std::unique_ptr<BallBearingElement> element;
   try {
@@ -318,6 +374,16 @@ int run_bearing_command(const BearingCommandOptions& options) {
     results = qs.sweep(speeds, Eigen::Vector3d(load[0], load[1], load[2]));
   } catch (const QuasiStaticError& e) {
     throw ModelError(where + " with --load '" + options.load + "': " + e.what());
+  }
+
+  std::vector<std::vector<LoadDeflectionPoint>> curves;
+  for (const BallBearingEquilibrium& r : results) {
+    if (travel.empty()) break;
+    try {
+      curves.push_back(qs.load_deflection(r.speed, travel));
+    } catch (const QuasiStaticError& e) {
+      throw ModelError(where + " with --radial-travel '" + options.radial_travel + "': " + e.what());
+    }
   }
 
   std::filesystem::create_directories(options.output_dir);
@@ -376,7 +442,42 @@ int run_bearing_command(const BearingCommandOptions& options) {
                       {"balls", balls}});
   }
   j["results"] = points;
+  if (!curves.empty()) {
+    nlohmann::json jc = nlohmann::json::array();
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+      nlohmann::json pts = nlohmann::json::array();
+      for (const LoadDeflectionPoint& p : curves[i])
+        pts.push_back({{"travel_m", p.travel},
+                       {"load_n", p.load},
+                       {"cross_load_n", p.cross_load},
+                       {"moment_x_n_m", p.moment_x},
+                       {"moment_y_n_m", p.moment_y},
+                       {"secant_stiffness_n_per_m", p.secant},
+                       {"tangent_stiffness_n_per_m", p.tangent},
+                       {"max_contact_load_n", p.max_contact_load}});
+      jc.push_back({{"speed_rpm", results[i].speed * kRadPerSToRpm}, {"points", pts}});
+    }
+    j["load_deflection"] = {
+        {"description",
+         "inner ring moved radially along x from the centred equilibrium, its tilt held at zero (as a shaft between "
+         "two bearings holds it), axial place kept; load = force that holds it there; secant = load / travel, the "
+         "stiffness a circular whirl of that radius sees; tangent = d load / d travel"},
+        {"curves", jc}};
+  }
   write_output_file(options.output_dir / "bearing.json", j.dump(1) + "\n");
+  if (!curves.empty()) {
+    OutputFile file(options.output_dir / "load_deflection.csv");
+    std::ostream& csv = file.stream();
+    csv << "speed_rpm,travel_m,load_n,cross_load_n,moment_x_n_m,moment_y_n_m,secant_stiffness_n_per_m,"
+           "tangent_stiffness_n_per_m,max_contact_load_n\n"
+        << std::setprecision(10);
+    for (std::size_t i = 0; i < curves.size(); ++i)
+      for (const LoadDeflectionPoint& p : curves[i])
+        csv << results[i].speed * kRadPerSToRpm << ',' << p.travel << ',' << p.load << ',' << p.cross_load << ','
+            << p.moment_x << ',' << p.moment_y << ',' << p.secant << ',' << p.tangent << ',' << p.max_contact_load
+            << '\n';
+    file.commit();
+  }
   {
     OutputFile file(options.output_dir / "bearing.csv");
     std::ostream& csv = file.stream();
@@ -426,17 +527,53 @@ int run_bearing_command(const BearingCommandOptions& options) {
               << r.stiffness(0, 0) << std::setw(13) << r.stiffness(1, 1) << std::setw(13) << r.stiffness(3, 3)
               << "\n";
   }
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    std::cout << "  load-deflection at " << std::fixed << std::setprecision(0) << results[i].speed * kRadPerSToRpm
+              << " rpm (tilt held):   travel [um]   load [N]   secant [N/m]   tangent [N/m]   Q_max [N]\n";
+    for (const LoadDeflectionPoint& p : curves[i])
+      std::cout << std::fixed << std::setw(47) << std::setprecision(2) << p.travel * 1e6 << std::setw(11)
+                << p.load << std::scientific << std::setprecision(4) << std::setw(15) << p.secant << std::setw(16)
+                << p.tangent << std::fixed << std::setprecision(1) << std::setw(12) << p.max_contact_load << "\n";
+  }
   std::cout << std::defaultfloat;
   if (options.plots) write_pictures(b.name, results, options.output_dir);
+  if (options.plots && !curves.empty()) {
+    plot::LineChart chart;
+    chart.title = "Load-deflection of ball bearing " + b.name + " (inner ring moved radially, tilt held)";
+    chart.xlabel = "radial travel of the inner ring [µm]";
+    chart.ylabel = "radial load [N]";
+    static const char* kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2"};
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+      std::ostringstream label;
+      label << std::fixed << std::setprecision(0) << results[i].speed * kRadPerSToRpm << " rpm";
+      plot::Series line{label.str(), {}, {}, plot::Series::Style::LinesPoints, kColours[i % 7], 1.6};
+      for (const LoadDeflectionPoint& p : curves[i]) {
+        line.x.push_back(p.travel * 1e6);
+        line.y.push_back(p.load);
+      }
+      chart.series.push_back(line);
+    }
+    plot::render_png(chart, options.output_dir / "load_deflection.png");
+  }
   post::write_bearing_report(options.output_dir, j,
                              {command_line(),
-                              options.plots ? std::vector<std::string>{"stiffness.png", "tilt_stiffness.png"}
+                              options.plots ? (curves.empty() ? std::vector<std::string>{"stiffness.png",
+                                                                                         "tilt_stiffness.png"}
+                                                              : std::vector<std::string>{"stiffness.png",
+                                                                                         "tilt_stiffness.png",
+                                                                                         "load_deflection.png"})
                                             : std::vector<std::string>{},
-                              {"bearing.json", "bearing.csv", "bearing_balls.csv"}, {}});
+                              curves.empty() ? std::vector<std::string>{"bearing.json", "bearing.csv",
+                                                                        "bearing_balls.csv"}
+                                             : std::vector<std::string>{"bearing.json", "bearing.csv",
+                                                                        "bearing_balls.csv", "load_deflection.csv"},
+                              {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, bearing_balls.csv, report.html"
-            << (options.plots ? ", stiffness.png, tilt_stiffness.png" : "") << " (" << std::setprecision(3) << wall
-            << " s)\n";
+  std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, bearing_balls.csv"
+            << (curves.empty() ? "" : ", load_deflection.csv") << ", report.html"
+            << (options.plots ? ", stiffness.png, tilt_stiffness.png" : "")
+            << (options.plots && !curves.empty() ? ", load_deflection.png" : "") << " (" << std::setprecision(3)
+            << wall << " s)\n";
   return 0;
 }
 

@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
                       "Static load on the inner ring or journal \"Fx,Fy[,Fz]\" (N, units allowed); Fz adds to a ball "
                       "bearing's preload")
       ->capture_default_str();
+  bearing->add_option("--radial-travel", bearing_options.radial_travel,
+                      "Ball bearings: load-deflection curve at each speed, the inner ring moved radially by these "
+                      "travels with its tilt held: START:END:COUNT or a comma list of lengths (\"0:60 um:31\")");
   bearing->add_option("-o,--output", bearing_options.output_dir, "Output directory")->capture_default_str();
   bearing->add_flag("!--no-plots", bearing_options.plots, "Do not draw PNG pictures");
   add_sets(bearing);

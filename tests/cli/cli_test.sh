@@ -181,6 +181,21 @@ assert 4.5e7 < r[0]["stiffness"][0][0] < 5.5e7, r[0]["stiffness"][0][0]
 assert r[-1]["cage_speed_ratio"] > r[1]["cage_speed_ratio"] > 0.3
 assert len(r[-1]["balls"]) == 8
 EOF2
+    # The load-deflection curve (--radial-travel): one per speed in the JSON, the CSV and the picture; the bare
+    # START takes END's unit; the load rises with the travel and the secant stiffness hardens (Hertz).
+    "$exe" bearing "$src/examples/reference_ball.toml" --speeds "0, 46000 rpm" --radial-travel "0:50 um:6" \
+      -o "$out/ld" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    expect_files "$out/ld" load_deflection.csv load_deflection.png
+    [ "$(wc -l < "$out/ld/load_deflection.csv")" -eq 13 ] || fail "load_deflection.csv: $(cat "$out/ld/load_deflection.csv")"
+    python3 - "$out/ld/bearing.json" <<'EOF2' || fail "load_deflection: $(head -c 3000 "$out/ld/bearing.json")"
+import json, sys
+c = json.load(open(sys.argv[1]))["load_deflection"]["curves"]
+assert len(c) == 2 and c[1]["speed_rpm"] == 46000 and len(c[1]["points"]) == 6
+p = c[1]["points"]
+assert abs(p[-1]["travel_m"] - 50e-6) < 1e-12
+assert all(b["load_n"] > a["load_n"] for a, b in zip(p, p[1:]))
+assert p[-1]["secant_stiffness_n_per_m"] > 3 * p[0]["tangent_stiffness_n_per_m"]
+EOF2
     ;;
   bearing_floating_ring)
     # turbodyn bearing on the reference floating ring with thermal films: files, pictures, the ring speed ratio
@@ -238,6 +253,13 @@ EOF2
     expect_error "--load '1,2,3,4'" "$src/examples/reference_ball.toml" --speeds 0 --load "1,2,3,4"
     expect_error "--load '1 kg,2'" "$src/examples/reference_ball.toml" --speeds 0 --load "1 kg,2"
     expect_error "cannot carry the load" "$src/examples/reference_ball.toml" --speeds 0 --load "3e6,0"
+    expect_error "--radial-travel '5:1 um:3': travels must be increasing" "$src/examples/reference_ball.toml" \
+      --speeds 0 --radial-travel "5:1 um:3"
+    expect_error "expected a length" "$src/examples/reference_ball.toml" --speeds 0 --radial-travel "1 N"
+    expect_error "give one of them" "$src/examples/reference_ball.toml" --speeds 0 --radial-travel "1 um" --load "1,0"
+    expect_error "cannot be moved by" "$src/examples/reference_ball.toml" --speeds 0 --radial-travel "1 mm"
+    expect_error "are for ball bearings" "$src/examples/reference_floating_ring.toml" --speeds "30000 rpm" \
+      --radial-travel "1 um"
     expect_error "pitch_diameter" "$src/examples/reference_ball.toml" --speeds 0 \
       --set "bearings.compressor.pitch_diameter=4 mm"
     ;;

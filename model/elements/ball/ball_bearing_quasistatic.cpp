@@ -400,6 +400,59 @@ BearingLinearisation ball_bearing_linearisation(const std::string& name, const B
   };
 }
 
+std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double speed,
+                                                                        const std::vector<double>& travel) const {
+  constexpr double kMaxTravelStep = 1e-6;  // m: continuation steps; Newton from the last point converges
+  for (std::size_t i = 0; i < travel.size(); ++i)
+    if (!(std::isfinite(travel[i]) && travel[i] >= 0.0 && (i == 0 || travel[i] > travel[i - 1])))
+      throw std::invalid_argument("load-deflection travels must be finite, non-negative and increasing");
+  const BallBearingSpec& sp = element_.spec();
+  BallBearingEquilibrium s = solve(speed, Eigen::Vector3d::Zero());
+  const Vector5d centred = s.displacement;
+  auto at = [&](double x, BallBearingEquilibrium& state) {
+    Vector5d q = centred;
+    q(0) = x;
+    q(1) = q(3) = q(4) = 0.0;
+    if (!equilibrate(speed, q, state)) {
+      std::ostringstream os;
+      os << "no equilibrium of the balls found at " << std::llround(speed * kRadPerSToRpm)
+         << " rpm with the inner ring moved by " << x * 1e6 << " um";
+      throw QuasiStaticError(os.str());
+    }
+    double deflection = 0.0;
+    for (const QuasiStaticBall& b : state.balls) deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
+    if (deflection > options_.max_deflection_ratio * sp.ball_diameter) {
+      std::ostringstream os;
+      os << "the bearing cannot be moved by " << x * 1e6 << " um at " << std::llround(speed * kRadPerSToRpm)
+         << " rpm: a contact deflection of " << deflection * 1e6 << " um exceeds " << options_.max_deflection_ratio * 100
+         << " % of the ball diameter, beyond Hertz theory";
+      throw QuasiStaticError(os.str());
+    }
+  };
+  std::vector<LoadDeflectionPoint> out;
+  double x = 0.0;
+  for (double target : travel) {
+    while (x < target) {
+      x = std::min(target, x + kMaxTravelStep);
+      at(x, s);
+    }
+    LoadDeflectionPoint p;
+    p.travel = target;
+    p.load = -s.shaft_force(0);
+    p.cross_load = -s.shaft_force(1);
+    p.moment_x = -s.shaft_force(3);
+    p.moment_y = -s.shaft_force(4);
+    for (const QuasiStaticBall& b : s.balls) p.max_contact_load = std::max({p.max_contact_load, b.inner_load, b.outer_load});
+    BallBearingEquilibrium a = s, b = s;
+    at(target + kStep, a);
+    at(target > kStep ? target - kStep : -kStep, b);
+    p.tangent = -(a.shaft_force(0) - b.shaft_force(0)) / (2.0 * kStep);
+    p.secant = target > 0.0 ? p.load / target : p.tangent;
+    out.push_back(p);
+  }
+  return out;
+}
+
 void add_ball_bearing_linearisations(const MachineSpec& machine, Rotor& rotor) {
   const double length = machine.shaft_length();
   for (const BearingSpec& b : machine.bearings) {

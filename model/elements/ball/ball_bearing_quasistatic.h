@@ -63,6 +63,21 @@ struct BallBearingEquilibrium {
   int iterations = 0;       ///< Newton iterations of the inner-ring equilibrium
 };
 
+/// One point of a bearing's load-deflection curve (BallBearingQuasiStatic::load_deflection): the inner ring moved
+/// radially along x by `travel`, its tilt held at zero and its axial place kept, the balls and the outer ring's
+/// axial place in equilibrium.
+struct LoadDeflectionPoint {
+  double travel = 0.0;                    ///< m
+  double load = 0.0;                      ///< radial force that holds the ring there, -F_x of the balls (N)
+  double cross_load = 0.0;                ///< -F_y (N); zero for balls spaced evenly about x
+  double moment_x = 0.0, moment_y = 0.0;  ///< moments that hold the tilt at zero, -M of the balls (N m)
+  /// load / travel (N/m; at zero travel the tangent): for an axisymmetric bearing the force of a ring displaced by
+  /// r in any direction is this load along the displacement, so a circular whirl of radius r sees this stiffness.
+  double secant = 0.0;
+  double tangent = 0.0;            ///< d load / d travel (N/m), central differences
+  double max_contact_load = 0.0;   ///< largest Q_i, Q_o (N)
+};
+
 struct QuasiStaticOptions {
   /// Ball azimuths psi_j (rad); empty: 2 pi j / Z. The cage holds them (their tangential forces go to the cage).
   std::vector<double> azimuths;
@@ -96,6 +111,13 @@ class BallBearingQuasiStatic {
   /// at `speed`, starting from (and overwriting) the ball and outer-ring positions in `state`; fills its
   /// displacement, shaft force and balls. False if Newton did not converge.
   bool equilibrate(double speed, const Vector5d& q, BallBearingEquilibrium& state) const;
+
+  /// The load-deflection curve at `speed` (rad/s) without external load: for each of `travel` (m, >= 0,
+  /// increasing) the ring moved along x from the centred equilibrium, reached by continuation in steps of at most
+  /// 1 um. The ring's tilt is held, as a shaft between two bearings holds it; with a free tilt a single angular
+  /// contact bearing carries little radial load. Throws QuasiStaticError where no equilibrium is found or a contact
+  /// deflection exceeds max_deflection_ratio of the ball diameter, std::invalid_argument for a bad travel list.
+  std::vector<LoadDeflectionPoint> load_deflection(double speed, const std::vector<double>& travel) const;
 
   const BallBearingElement& element() const { return element_; }
   int n_balls() const { return n_balls_; }
