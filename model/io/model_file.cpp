@@ -341,8 +341,10 @@ void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   s.spin_friction = r.flag_or("spin_friction", s.spin_friction);
   s.race_traction =
       r.choice("race_traction", {"spatial", "planar"}, "spatial") == "planar" ? RaceTraction::Planar : RaceTraction::Spatial;
+  // The default is the lubricated law, the one a bearing engineer defends for an oil-lubricated bearing; the paper's
+  // Eq. 23 is "coulomb", which the examples name to reproduce the paper (docs/ball-bearing.md).
   s.traction_law =
-      r.choice("traction_law", {"coulomb", "eyring"}, "coulomb") == "eyring" ? TractionLaw::Eyring : TractionLaw::Coulomb;
+      r.choice("traction_law", {"coulomb", "eyring"}, "eyring") == "eyring" ? TractionLaw::Eyring : TractionLaw::Coulomb;
   // The lubricated law's inlet viscosity: given, or the model's oil at its temperature.
   s.lubricant_viscosity = r.quantity_or("lubricant_viscosity", dim::viscosity, 0.0, Bound::Positive);
   if (s.traction_law == TractionLaw::Eyring && s.lubricant_viscosity == 0.0)

@@ -75,7 +75,9 @@ struct BallBearingSpec {
   double friction_v2 = 0.005;      ///< v_2 in m/s (tanh regularisation of sgn)
   bool spin_friction = true;       ///< add the spin moment of each race contact (3 pi / 16) mu Q a
   RaceTraction race_traction = RaceTraction::Spatial;  ///< which slip the race friction acts on
-  TractionLaw traction_law = TractionLaw::Coulomb;     ///< which law sizes the race traction
+  /// Which law sizes the race traction. A model file's default is Eyring, with the [oil]'s viscosity
+  /// (model/io/model_file.cpp); a spec built in code names its law, Eq. 23 unless it says otherwise.
+  TractionLaw traction_law = TractionLaw::Coulomb;
   // Lubricated traction (TractionLaw::Eyring); defaults typical of a mineral engine oil (docs/ball-bearing.md).
   double lubricant_viscosity = 0.0;          ///< eta_0 in Pa s at the contact inlet; 0 = the model's [oil]
   double pressure_viscosity = 2.0e-8;        ///< alpha in 1/Pa, Barus pressure-viscosity coefficient

@@ -113,6 +113,22 @@ TEST(ModelFile, LubricatedTractionTakesTheModelsOilUnlessGivenAndItsKeysNeedIt) 
               HasSubstr("pressure_viscosity"));
 }
 
+TEST(ModelFile, ABallBearingThatNamesNoTractionLawGetsTheLubricatedOne) {
+  // The default race traction of a model file is the lubricated (EHL) law with the model's oil; the examples name
+  // the paper's Eq. 23 ("coulomb") to reproduce the paper. The example without its traction_law lines:
+  std::ifstream in(example("reference_ball.toml"));
+  std::string text, line;
+  while (std::getline(in, line))
+    if (line.rfind("traction_law", 0) != 0) text += line + "\n";
+  const MachineSpec s = load_model_from_string(text, "reference_ball_without_traction_law.toml");
+  ASSERT_EQ(s.bearings.size(), 2u);
+  for (const BearingSpec& b : s.bearings) {
+    EXPECT_EQ(b.ball.traction_law, TractionLaw::Eyring) << b.name;
+    EXPECT_DOUBLE_EQ(b.ball.lubricant_viscosity, s.oil.viscosity_at(s.oil.temperature)) << b.name;
+  }
+  EXPECT_EQ(load_model(example("reference_ball.toml")).bearings[0].ball.traction_law, TractionLaw::Coulomb);
+}
+
 TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {
   const std::string f = example("reference_ball_sfd.toml");
   const MachineSpec s = load_model(f, {parse_override("bearings.compressor.damper.end_seal_gap=20 um"),
