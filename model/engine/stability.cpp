@@ -42,8 +42,10 @@ constexpr double kConverged = 1e-9, kAccepted = 1e-6;
 constexpr int kMaxIterations = 400, kMaxNewton = 60;
 // Pseudo-time steps (in units of 1 / speed): the first, and the largest (then the iteration is Newton's method).
 constexpr double kFirstPseudoStep = 1.0, kLargestPseudoStep = 1e12;
-// Continuation in speed: no step larger than this (rad/s), about 2,400 rpm.
+// Continuation in speed: no step larger than this (rad/s), about 2,400 rpm; a step that fails is halved at most
+// this many times.
 constexpr double kMaxSpeedStep = 250.0;
+constexpr int kMaxStepHalvings = 6;
 // Damping ratios above -this count as round-off for modes above frequency_max.
 constexpr double kHighFrequencyNoise = 1e-3;
 
@@ -180,7 +182,9 @@ class ElementSteadyState {
 };
 
 // The element's steady state at `speed` by continuation from rest, each step started from the secant through the
-// last two solutions (angles excepted). Returns the states and the frame speed in *frame.
+// last two solutions (angles excepted). A step that finds no steady state is retried at half the length, down to
+// kMaxSpeedStep / 2^kMaxStepHalvings, and the step grows back after a success. Returns the states and the frame
+// speed in *frame.
 Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout, double speed, double* frame,
                                      double* residual) {
   ElementSteadyState solver(e, layout);
@@ -188,12 +192,19 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
   Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
   e.initial_states(x.data());
   const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(speed) / kMaxSpeedStep)));
+  // Positions along the continuation in units of the smallest step: an undisturbed continuation lands on
+  // speed * k / steps exactly (the power-of-two units cancel), whatever steps were halved elsewhere.
+  constexpr long kUnits = 1L << kMaxStepHalvings;
+  const long end = static_cast<long>(steps) * kUnits;
+  long at = 0, step = kUnits;
+  const auto speed_at = [&](long position) { return speed * static_cast<double>(position) / static_cast<double>(end); };
   Eigen::VectorXd prev = x;
   double prev_speed = 0.0, last_speed = 0.0, norm = 0.0;
-  for (int k = 1; k <= steps; ++k) {
-    const double s = speed * k / steps;
+  while (at < end) {
+    const long next = std::min(end, at + step);
+    const double s = speed_at(next);
     Eigen::VectorXd guess(m);
-    if (k == 1) {
+    if (at == 0) {
       guess = x;
       e.initial_states_at_speed(s, guess.data());
     } else {
@@ -201,21 +212,29 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
       // Angles are not extrapolated: a ball's place in its pocket is neutral and may have moved in the last solve.
       for (const auto& a : layout.turning_angles) guess(a.first) = x(a.first);
     }
-    prev = x;
-    prev_speed = last_speed;
     const Eigen::VectorXd start = guess;
     norm = solver.newton(s, guess);
     if (!(norm <= kAccepted)) {
       guess = start;
       norm = solver.solve(s, guess);
     }
-    if (!(norm <= kAccepted))
+    if (!(norm <= kAccepted)) {
+      if (step > 1) {
+        step /= 2;
+        continue;
+      }
       throw std::runtime_error("element '" + e.name() + "': no steady state found at " + rpm_text(s) +
                                " (the iteration stopped at a scaled rate of " + number_text(norm) +
-                               "; where friction saturates, e.g. the balls' gyroscopic moment above what the "
+                               " with continuation steps of " + number_text(speed / static_cast<double>(end) * kRadPerSToRpm) +
+                               " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
                                "traction carries, it finds no slope)");
+    }
+    prev = x;
+    prev_speed = last_speed;
     x = guess;
     last_speed = s;
+    at = next;
+    step = std::min(kUnits, 2 * step);
   }
   *frame = solver.frame_speed(x);
   *residual = norm;

@@ -159,6 +159,18 @@ TEST(Stability, TheBallSetsWaveGrowsOnlyWhereTheShaftCanMoveAtTheBearings) {
   EXPECT_NEAR(p_held.frame_speed / p_free.frame_speed, 1.0, 1e-6);
 }
 
+TEST(Stability, TheContinuationHalvesAStepThatFindsNoSteadyState) {
+  // With 200 N of preload the continuation's second regular step towards 20,000 rpm (2,222 -> 4,444 rpm) found no
+  // steady state, while the same speeds reached in other steps did; a failing step is now retried at half the
+  // length. The regular steps are unchanged: the example's state at 95,000 rpm is the one before (the other tests).
+  MachineSpec spec = reference_ball();
+  for (BearingSpec& b : spec.bearings) b.ball.preload = 200.0;
+  const StabilityPoint p = analyse_stability(spec, 20000 * kRpm);
+  EXPECT_LT(p.residual, 1e-6);
+  ASSERT_FALSE(p.modes.empty());
+  EXPECT_NEAR(p.frame_speed / (20000 * kRpm), 0.378, 0.01);  // the cage speed ratio at 200 N
+}
+
 TEST(Stability, TheWhirlIsTheBearingsOwnAndRoundOffAtHighFrequencyIsDropped) {
   // A shaft 430 times stiffer (E = 9e13 Pa): the growing whirl near the cage frequency stays (docs/ball-bearing.md:
   // 630 Hz, 307 1/s at 95,000 rpm), so it is the bearings' own; the stiff shaft's bending modes at MHz, whose damping
