@@ -241,10 +241,10 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
                               "growing, elements only"}, rows);
   page.paragraph("Modes with at least " + share + " of their motion in the rotor's degrees of freedom (states "
                  "scaled by their typical sizes; --min-rotor-share) count as rotor modes, as in the pictures and "
-                 "the terminal listing. Frequency in the housing frame, positive for forward whirl. The ball-set share is "
-                 "the part of the mode in the balls' orbital angles and rates, the lobes the circumferential order "
-                 "of that motion (1: a one-lobed density wave, the balls closing up on one side). Every mode is "
-                 "in stability.json and stability.csv.");
+                 "the terminal listing. Frequency in the housing frame, positive for forward whirl. The ball-set "
+                 "share is the part of the mode in the balls' orbital angles and rates, the lobes the "
+                 "circumferential order of that motion (1: a one-lobed density wave, the balls closing up on one "
+                 "side). Every mode is in stability.json and stability.csv.");
   pictures_and_files(page, in);
   page.write(dir);
 }

@@ -197,7 +197,9 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
   constexpr long kUnits = 1L << kMaxStepHalvings;
   const long end = static_cast<long>(steps) * kUnits;
   long at = 0, step = kUnits;
-  const auto speed_at = [&](long position) { return speed * static_cast<double>(position) / static_cast<double>(end); };
+  const auto speed_at = [&](long position) {
+    return speed * static_cast<double>(position) / static_cast<double>(end);
+  };
   Eigen::VectorXd prev = x;
   double prev_speed = 0.0, last_speed = 0.0, norm = 0.0;
   while (at < end) {
@@ -225,8 +227,8 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
       }
       throw std::runtime_error("element '" + e.name() + "': no steady state found at " + rpm_text(s) +
                                " (the iteration stopped at a scaled rate of " + number_text(norm) +
-                               " with continuation steps of " + number_text(speed / static_cast<double>(end) * kRadPerSToRpm) +
-                               " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
+                               " with continuation steps of " +
+                               number_text(speed / static_cast<double>(end) * kRadPerSToRpm) + " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
                                "traction carries, it finds no slope)");
     }
     prev = x;

@@ -420,12 +420,13 @@ std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double 
       throw QuasiStaticError(os.str());
     }
     double deflection = 0.0;
-    for (const QuasiStaticBall& b : state.balls) deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
+    for (const QuasiStaticBall& b : state.balls)
+      deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
     if (deflection > options_.max_deflection_ratio * sp.ball_diameter) {
       std::ostringstream os;
       os << "the bearing cannot be moved by " << x * 1e6 << " um at " << std::llround(speed * kRadPerSToRpm)
-         << " rpm: a contact deflection of " << deflection * 1e6 << " um exceeds " << options_.max_deflection_ratio * 100
-         << " % of the ball diameter, beyond Hertz theory";
+         << " rpm: a contact deflection of " << deflection * 1e6 << " um exceeds "
+         << options_.max_deflection_ratio * 100 << " % of the ball diameter, beyond Hertz theory";
       throw QuasiStaticError(os.str());
     }
   };
@@ -442,7 +443,8 @@ std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double 
     p.cross_load = -s.shaft_force(1);
     p.moment_x = -s.shaft_force(3);
     p.moment_y = -s.shaft_force(4);
-    for (const QuasiStaticBall& b : s.balls) p.max_contact_load = std::max({p.max_contact_load, b.inner_load, b.outer_load});
+    for (const QuasiStaticBall& b : s.balls)
+      p.max_contact_load = std::max({p.max_contact_load, b.inner_load, b.outer_load});
     BallBearingEquilibrium a = s, b = s;
     at(target + kStep, a);
     at(target > kStep ? target - kStep : -kStep, b);
