@@ -532,8 +532,8 @@ int run_bearing_command(const BearingCommandOptions& options) {
               << " rpm (tilt held):   travel [um]   load [N]   secant [N/m]   tangent [N/m]   Q_max [N]\n";
     for (const LoadDeflectionPoint& p : curves[i])
       std::cout << std::fixed << std::setw(47) << std::setprecision(2) << p.travel * 1e6 << std::setw(11)
-                << p.load << std::scientific << std::setprecision(4) << std::setw(15) << p.secant << std::setw(16)
-                << p.tangent << std::fixed << std::setprecision(1) << std::setw(12) << p.max_contact_load << "\n";
+                << (std::abs(p.load) < 5e-3 ? 0.0 : p.load)  // no "-0.00" from round-off at zero travel
+                << std::scientific << std::setprecision(4) << std::setw(15) << p.secant << std::setw(16) << p.tangent << std::fixed << std::setprecision(1) << std::setw(12) << p.max_contact_load << "\n";
   }
   std::cout << std::defaultfloat;
   if (options.plots) write_pictures(b.name, results, options.output_dir);

@@ -447,7 +447,7 @@ std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double 
       p.max_contact_load = std::max({p.max_contact_load, b.inner_load, b.outer_load});
     BallBearingEquilibrium a = s, b = s;
     at(target + kStep, a);
-    at(target > kStep ? target - kStep : -kStep, b);
+    at(target - kStep, b);  // the ring may move to -x: central differences at every travel, 0 included
     p.tangent = -(a.shaft_force(0) - b.shaft_force(0)) / (2.0 * kStep);
     p.secant = target > 0.0 ? p.load / target : p.tangent;
     out.push_back(p);

@@ -264,6 +264,9 @@ TEST(BallBearingQuasiStatic, LoadDeflectionCurveMatchesTheReferencesAndHardens) 
       EXPECT_GT(c.back().secant, 3.0 * c[0].tangent);
     }
   }
+  // A travel below the differencing step (1 nm) is differenced centrally too: its tangent is the centred one.
+  const std::vector<LoadDeflectionPoint> tiny = qs.load_deflection(46000 * kRpm, {0.0, 1e-9});
+  EXPECT_NEAR(tiny[1].tangent / tiny[0].tangent, 1.0, 1e-3);
   EXPECT_THROW(qs.load_deflection(0.0, {2e-6, 1e-6}), std::invalid_argument);
   EXPECT_THROW(qs.load_deflection(0.0, {-1e-6}), std::invalid_argument);
   EXPECT_THROW(qs.load_deflection(0.0, {1e-3}), QuasiStaticError);  // a contact deflection far beyond 2 % of D
