@@ -1,13 +1,11 @@
 #include "app/bearing_command.h"
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -300,49 +298,8 @@ std::vector<double> parse_load(const std::string& text) {
 }
 
 std::vector<double> parse_travel_list(const std::string& text) {
-  constexpr std::size_t kMaxTravels = 10000;
-  const std::string what = "--radial-travel '" + text + "': ";
-  const auto lengths = [&](const std::vector<std::string>& items) {
-    std::string unit;
-    for (const std::string& it : items)
-      if (const std::optional<std::string> u = quantity_unit(it); u && !u->empty()) unit = *u;
-    std::vector<double> out;
-    for (const std::string& it : items) {
-      const std::optional<std::string> u = quantity_unit(it);
-      const bool bare = !unit.empty() && u && u->empty();
-      try {
-        out.push_back(parse_quantity(bare ? trim(it) + " " + unit : trim(it), dim::length));
-      } catch (const UnitError& e) {
-        throw ModelError(what + e.what() + " (expected lengths, e.g. \"0:60 um:31\" or \"10 um, 50 um\")");
-      }
-    }
-    return out;
-  };
-  std::vector<double> out;
-  std::vector<std::string> parts;
-  if (text.find(':') != std::string::npos) {
-    std::stringstream ss(text);
-    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() != 3) throw ModelError(what + "expected START:END:COUNT");
-    const std::vector<double> ab = lengths({parts[0], parts[1]});
-    const std::string count = trim(parts[2]);
-    long n = 0;
-    const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
-    if (count.empty() || ec != std::errc() || end != count.data() + count.size() || n < 2 ||
-        n > static_cast<long>(kMaxTravels))
-      throw ModelError(what + "COUNT must be a whole number from 2 to " + std::to_string(kMaxTravels));
-    for (long i = 0; i < n; ++i) out.push_back(ab[0] + (ab[1] - ab[0]) * static_cast<double>(i) / (n - 1));
-  } else {
-    std::stringstream ss(text);
-    for (std::string p; std::getline(ss, p, ',');) parts.push_back(p);
-    out = lengths(parts);
-  }
-  if (out.empty() || out.size() > kMaxTravels) throw ModelError(what + "between 1 and 10,000 travels");
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (!(std::isfinite(out[i]) && out[i] >= 0.0)) throw ModelError(what + "travels must not be negative");
-    if (i > 0 && !(out[i] > out[i - 1])) throw ModelError(what + "travels must be increasing");
-  }
-  return out;
+  constexpr long kMaxTravels = 10000;
+  return parse_quantity_list(text, "--radial-travel", dim::length, "travels", kMaxTravels);
 }
 
 int run_bearing_command(const BearingCommandOptions& options) {

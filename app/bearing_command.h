@@ -36,9 +36,8 @@ int run_bearing_command(const BearingCommandOptions& options);
 /// Parses "Fx,Fy" or "Fx,Fy,Fz" (N, units allowed). Throws ModelError naming --load.
 std::vector<double> parse_load(const std::string& text);
 
-/// Parses --radial-travel: "START:END:COUNT" or a comma list of lengths (m); a bare number takes the unit of the
-/// item written with one ("0:60 um:31"), SI metres without any. Non-negative and increasing, at most 10,000 values.
-/// Throws ModelError naming --radial-travel.
+/// Parses --radial-travel (parse_quantity_list for lengths, "0:60 um:31"; at most 10,000 values). Throws ModelError
+/// naming --radial-travel.
 std::vector<double> parse_travel_list(const std::string& text);
 
 }  // namespace turbodyn::app

@@ -33,21 +33,23 @@ std::string trim(std::string s) {
   return s;
 }
 
-double speed_value(const std::string& text, const std::string& whole) {
+// One value of a list option (`option` "--speeds" and so on), checked for its dimension and plausible size.
+double list_value(const std::string& text, const std::string& option, const std::string& whole, const Dimension& d) {
   double v = 0.0;
   try {
-    v = parse_quantity(trim(text), dim::angular_speed);
+    v = parse_quantity(trim(text), d);
   } catch (const UnitError& e) {
-    throw ModelError("--speeds '" + whole + "': " + e.what());
+    throw ModelError(option + " '" + whole + "': " + e.what());
   }
-  if (const std::string why = limits::implausible(v, dim::angular_speed); !why.empty())
-    throw ModelError("--speeds '" + whole + "': " + why);
+  if (const std::string why = limits::implausible(v, d); !why.empty())
+    throw ModelError(option + " '" + whole + "': " + why);
   return v;
 }
 
-// A bare number among speeds of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
-// "30000, 95000 rpm"); without any unit the values are rad/s.
-std::vector<double> speed_values(const std::vector<std::string>& items, const std::string& text) {
+// A bare number among values of which the last written with a unit has one takes that unit ("20000:150000 rpm:14",
+// "30000, 95000 rpm"); without any unit the values are in SI units (rad/s, m).
+std::vector<double> list_values(const std::vector<std::string>& items, const std::string& option,
+                                const std::string& text, const Dimension& d) {
   std::vector<std::optional<std::string>> units;
   std::string unit;
   for (const std::string& it : items) {
@@ -57,7 +59,7 @@ std::vector<double> speed_values(const std::vector<std::string>& items, const st
   std::vector<double> out;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const bool bare = !unit.empty() && units[i] && units[i]->empty();
-    out.push_back(speed_value(bare ? trim(items[i]) + " " + unit : items[i], text));
+    out.push_back(list_value(bare ? trim(items[i]) + " " + unit : items[i], option, text, d));
   }
   return out;
 }
@@ -239,38 +241,42 @@ void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings) {
                        "(modal, response) do not include them yet, so they would give wrong answers");
 }
 
-std::vector<double> parse_speed_list(const std::string& text) {
+std::vector<double> parse_quantity_list(const std::string& text, const std::string& option, const Dimension& d,
+                                        const std::string& noun, long max_count) {
+  const std::string what = option + " '" + text + "': ";
   std::vector<double> out;
   if (text.find(':') != std::string::npos) {
     std::vector<std::string> parts;
     std::stringstream ss(text);
     for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() != 3) throw ModelError("--speeds '" + text + "': expected START:END:COUNT");
-    const std::vector<double> ab = speed_values({parts[0], parts[1]}, text);
+    if (parts.size() != 3) throw ModelError(what + "expected START:END:COUNT");
+    const std::vector<double> ab = list_values({parts[0], parts[1]}, option, text, d);
     const double a = ab[0], b = ab[1];
     const std::string count = trim(parts[2]);
     long n = 0;
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
-    if (count.empty() || ec != std::errc() || end != count.data() + count.size() || n < 2 ||
-        n > limits::kMaxModalSpeeds)
-      throw ModelError("--speeds '" + text + "': COUNT must be a whole number from 2 to " +
-                       std::to_string(limits::kMaxModalSpeeds));
-    if (!(b > a)) throw ModelError("--speeds '" + text + "': END must be larger than START");
-    for (int i = 0; i < n; ++i) out.push_back(a + (b - a) * i / (n - 1));
+    if (count.empty() || ec != std::errc() || end != count.data() + count.size() || n < 2 || n > max_count)
+      throw ModelError(what + "COUNT must be a whole number from 2 to " + std::to_string(max_count));
+    if (!(b > a)) throw ModelError(what + "END must be larger than START");
+    for (long i = 0; i < n; ++i) out.push_back(a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1));
   } else {
     std::vector<std::string> items;
     std::stringstream ss(text);
     for (std::string p; std::getline(ss, p, ',');) items.push_back(p);
-    out = speed_values(items, text);
+    out = list_values(items, option, text, d);
     for (std::size_t i = 1; i < out.size(); ++i)
-      if (!(out[i] > out[i - 1])) throw ModelError("--speeds '" + text + "': speeds must be increasing");
+      if (!(out[i] > out[i - 1])) throw ModelError(what + noun + " must be increasing");
   }
-  for (double s : out)
-    if (s < 0) throw ModelError("--speeds '" + text + "': speeds must not be negative");
-  if (out.size() > static_cast<std::size_t>(limits::kMaxModalSpeeds))
-    throw ModelError("--speeds '" + text + "': more than " + std::to_string(limits::kMaxModalSpeeds) + " speeds");
-  if (out.empty()) throw ModelError("--speeds is empty");
+  for (double v : out)
+    if (v < 0) throw ModelError(what + noun + " must not be negative");
+  if (out.size() > static_cast<std::size_t>(max_count))
+    throw ModelError(what + "more than " + std::to_string(max_count) + " " + noun);
+  if (out.empty()) throw ModelError(option + " is empty");
   return out;
+}
+
+std::vector<double> parse_speed_list(const std::string& text) {
+  return parse_quantity_list(text, "--speeds", dim::angular_speed, "speeds", limits::kMaxModalSpeeds);
 }
 
 std::vector<double> analysis_speeds(const MachineSpec& spec, const std::string& option, int count) {

@@ -7,6 +7,7 @@
 
 #include "model/io/model_file.h"
 #include "model/rotor/modal.h"
+#include "model/spec/units.h"
 
 namespace turbodyn::app {
 
@@ -33,8 +34,14 @@ std::vector<double> analysis_speeds(const MachineSpec& spec, const std::string& 
 /// dampers, pedestal masses.
 void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings = false);
 
-/// Parses a speed list: "0:150000 rpm:31" (start:end:count, units on the numbers) or "0, 50000 rpm, 2500 Hz".
-/// Throws ModelError naming the option.
+/// Parses a list option of quantities of dimension `d`: "START:END:COUNT" (units on the numbers, "0:150000 rpm:31")
+/// or a comma list ("0, 50000 rpm, 2500 Hz"); a bare number takes the unit of the items written with one, SI units
+/// without any. Values plausible for `d`, not negative, increasing, at most `max_count`. Throws ModelError naming
+/// `option` ("--speeds"), with `noun` ("speeds") in its messages.
+std::vector<double> parse_quantity_list(const std::string& text, const std::string& option, const Dimension& d,
+                                        const std::string& noun, long max_count);
+
+/// Parses a speed list (parse_quantity_list for --speeds, rad/s).
 std::vector<double> parse_speed_list(const std::string& text);
 
 }  // namespace turbodyn::app

@@ -253,8 +253,10 @@ EOF2
     expect_error "--load '1,2,3,4'" "$src/examples/reference_ball.toml" --speeds 0 --load "1,2,3,4"
     expect_error "--load '1 kg,2'" "$src/examples/reference_ball.toml" --speeds 0 --load "1 kg,2"
     expect_error "cannot carry the load" "$src/examples/reference_ball.toml" --speeds 0 --load "3e6,0"
-    expect_error "--radial-travel '5:1 um:3': travels must be increasing" "$src/examples/reference_ball.toml" \
+    expect_error "--radial-travel '5:1 um:3': END must be larger than START" "$src/examples/reference_ball.toml" \
       --speeds 0 --radial-travel "5:1 um:3"
+    expect_error "--radial-travel '5 um, 1 um': travels must be increasing" "$src/examples/reference_ball.toml" \
+      --speeds 0 --radial-travel "5 um, 1 um"
     expect_error "expected a length" "$src/examples/reference_ball.toml" --speeds 0 --radial-travel "1 N"
     expect_error "give one of them" "$src/examples/reference_ball.toml" --speeds 0 --radial-travel "1 um" --load "1,0"
     expect_error "cannot be moved by" "$src/examples/reference_ball.toml" --speeds 0 --radial-travel "1 mm"
