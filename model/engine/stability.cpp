@@ -228,7 +228,8 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
       throw std::runtime_error("element '" + e.name() + "': no steady state found at " + rpm_text(s) +
                                " (the iteration stopped at a scaled rate of " + number_text(norm) +
                                " with continuation steps of " +
-                               number_text(speed / static_cast<double>(end) * kRadPerSToRpm) + " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
+                               number_text(speed / static_cast<double>(end) * kRadPerSToRpm) +
+                               " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
                                "traction carries, it finds no slope)");
     }
     prev = x;
