@@ -337,7 +337,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
   for (const BallBearingEquilibrium& r : results) {
     if (travel.empty()) break;
     try {
-      curves.push_back(qs.load_deflection(r.speed, travel));
+      curves.push_back(qs.load_deflection(r.speed, travel, &r));  // r: the unloaded equilibrium (no --load)
     } catch (const QuasiStaticError& e) {
       throw ModelError(where + " with --radial-travel '" + options.radial_travel + "': " + e.what());
     }

@@ -38,6 +38,13 @@ std::string describe(double speed, const Vector5d& load) {
   return os.str();
 }
 
+// The largest contact deflection of the balls (m): against QuasiStaticOptions::max_deflection_ratio.
+double largest_contact_deflection(const std::vector<QuasiStaticBall>& balls) {
+  double deflection = 0.0;
+  for (const QuasiStaticBall& b : balls) deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
+  return deflection;
+}
+
 }  // namespace
 
 BallBearingQuasiStatic::BallBearingQuasiStatic(const BallBearingElement& element, QuasiStaticOptions options)
@@ -267,8 +274,7 @@ void BallBearingQuasiStatic::solve_at_speed(double speed, BallBearingEquilibrium
     if (s.displacement.cwiseAbs().maxCoeff() > sp.ball_diameter)
       throw QuasiStaticError("no equilibrium found " + where + ": the inner ring moved by more than a ball diameter");
   }
-  double deflection = 0.0;
-  for (const QuasiStaticBall& b : s.balls) deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
+  const double deflection = largest_contact_deflection(s.balls);
   if (deflection > options_.max_deflection_ratio * sp.ball_diameter) {
     std::ostringstream os;
     os << "the bearing cannot carry the load " << where << ": a contact deflection of " << deflection * 1e6
@@ -401,13 +407,16 @@ BearingLinearisation ball_bearing_linearisation(const std::string& name, const B
 }
 
 std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double speed,
-                                                                        const std::vector<double>& travel) const {
+                                                                        const std::vector<double>& travel,
+                                                                        const BallBearingEquilibrium* centred_in) const {
   constexpr double kMaxTravelStep = 1e-6;  // m: continuation steps; Newton from the last point converges
   for (std::size_t i = 0; i < travel.size(); ++i)
     if (!(std::isfinite(travel[i]) && travel[i] >= 0.0 && (i == 0 || travel[i] > travel[i - 1])))
       throw std::invalid_argument("load-deflection travels must be finite, non-negative and increasing");
   const BallBearingSpec& sp = element_.spec();
-  BallBearingEquilibrium s = solve(speed, Eigen::Vector3d::Zero());
+  if (centred_in && (centred_in->speed != speed || !centred_in->load.isZero()))
+    throw std::invalid_argument("load_deflection: the centred equilibrium given is not the unloaded one at this speed");
+  BallBearingEquilibrium s = centred_in ? *centred_in : solve(speed, Eigen::Vector3d::Zero());
   const Vector5d centred = s.displacement;
   auto at = [&](double x, BallBearingEquilibrium& state) {
     Vector5d q = centred;
@@ -419,9 +428,7 @@ std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double 
          << " rpm with the inner ring moved by " << x * 1e6 << " um";
       throw QuasiStaticError(os.str());
     }
-    double deflection = 0.0;
-    for (const QuasiStaticBall& b : state.balls)
-      deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
+    const double deflection = largest_contact_deflection(state.balls);
     if (deflection > options_.max_deflection_ratio * sp.ball_diameter) {
       std::ostringstream os;
       os << "the bearing cannot be moved by " << x * 1e6 << " um at " << std::llround(speed * kRadPerSToRpm)

@@ -117,7 +117,9 @@ class BallBearingQuasiStatic {
   /// 1 um. The ring's tilt is held, as a shaft between two bearings holds it; with a free tilt a single angular
   /// contact bearing carries little radial load. Throws QuasiStaticError where no equilibrium is found or a contact
   /// deflection exceeds max_deflection_ratio of the ball diameter, std::invalid_argument for a bad travel list.
-  std::vector<LoadDeflectionPoint> load_deflection(double speed, const std::vector<double>& travel) const;
+  /// `centred`: the unloaded equilibrium at `speed` if the caller has it (solve(speed, 0)), else it is solved here.
+  std::vector<LoadDeflectionPoint> load_deflection(double speed, const std::vector<double>& travel,
+                                                   const BallBearingEquilibrium* centred = nullptr) const;
 
   const BallBearingElement& element() const { return element_; }
   int n_balls() const { return n_balls_; }

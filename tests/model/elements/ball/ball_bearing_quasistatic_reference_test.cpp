@@ -242,9 +242,9 @@ TEST(BallBearingQuasiStatic, LoadDeflectionCurveMatchesTheReferencesAndHardens) 
   const std::vector<double> travel = {0.0, 2e-6, 10e-6, 30e-6, 50e-6};
   for (const double w : {0.0, 100000 * kRpm}) {
     const double tol = w == 0.0 ? 0.01 : 0.02;
-    const std::vector<LoadDeflectionPoint> c = qs.load_deflection(w, travel);
-    ASSERT_EQ(c.size(), travel.size());
     const BallBearingEquilibrium centred = qs.solve(w, Eigen::Vector3d::Zero());
+    const std::vector<LoadDeflectionPoint> c = qs.load_deflection(w, travel, &centred);
+    ASSERT_EQ(c.size(), travel.size());
     EXPECT_NEAR(c[0].load, 0.0, 1e-6);
     EXPECT_NEAR(c[0].tangent / centred.stiffness(0, 0), 1.0, 1e-3);
     JonesHarris::Result ref = jh.solve(w, 0.0);
@@ -268,6 +268,8 @@ TEST(BallBearingQuasiStatic, LoadDeflectionCurveMatchesTheReferencesAndHardens) 
   const std::vector<LoadDeflectionPoint> tiny = qs.load_deflection(46000 * kRpm, {0.0, 1e-9});
   EXPECT_NEAR(tiny[1].tangent / tiny[0].tangent, 1.0, 1e-3);
   EXPECT_THROW(qs.load_deflection(0.0, {2e-6, 1e-6}), std::invalid_argument);
+  const BallBearingEquilibrium loaded = qs.solve(0.0, Eigen::Vector3d(50.0, 0.0, 0.0));
+  EXPECT_THROW(qs.load_deflection(0.0, {1e-6}, &loaded), std::invalid_argument);
   EXPECT_THROW(qs.load_deflection(0.0, {-1e-6}), std::invalid_argument);
   EXPECT_THROW(qs.load_deflection(0.0, {1e-3}), QuasiStaticError);  // a contact deflection far beyond 2 % of D
 }
