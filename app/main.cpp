@@ -76,6 +76,11 @@ int main(int argc, char** argv) {
   modal->add_option("--frame", frame, "inertial (default) or rotating (paper Eq. 9 in the shaft frame)")
       ->check(CLI::IsMember({"inertial", "rotating"}));
   modal->add_flag("!--no-plots", modal_options.plots, "Do not draw PNG pictures");
+  modal->add_option("--amplitudes", modal_options.amplitudes,
+                    "Also the forward 1x critical speeds at these whirl amplitudes (START:END:COUNT or a comma "
+                    "list, \"0.1:500 um:25\"), the ball bearings' quasi-static reaction at each");
+  modal->add_option("--amplitude-at", modal_options.amplitude_at,
+                    "Where the amplitude is measured: disks.NAME or bearings.NAME (default: the first disk)");
   add_sets(modal);
 
   turbodyn::app::BearingCommandOptions bearing_options;

@@ -13,6 +13,7 @@
 
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "model/elements/floating_ring_steady.h"
+#include "model/engine/backbone.h"
 #include "model/io/output_file.h"
 #include "model/io/result_header.h"
 #include "post/plot.h"
@@ -220,6 +221,115 @@ void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const
   plot::render_png(chart, png, plot::Size{1000, 800});
 }
 
+// The node and label of --amplitude-at: "disks.NAME" or "bearings.NAME", "" = the first disk.
+std::pair<int, std::string> amplitude_reference(const MachineSpec& spec, const Rotor& rotor, const std::string& at) {
+  const double length = spec.shaft_length();
+  if (at.empty()) {
+    if (spec.disks.empty())
+      throw ModelError(spec.source.string() + ": --amplitudes: the model has no disk; say where the amplitude is "
+                       "measured with --amplitude-at bearings.NAME");
+    return {rotor.node_at(std::clamp(spec.disks.front().z, 0.0, length)), "disks." + spec.disks.front().name};
+  }
+  for (const DiskSpec& d : spec.disks)
+    if (at == "disks." + d.name) return {rotor.node_at(std::clamp(d.z, 0.0, length)), at};
+  for (const BearingSpec& b : spec.bearings)
+    if (at == "bearings." + b.name) return {rotor.node_at(std::clamp(b.z, 0.0, length)), at};
+  std::string names;
+  for (const DiskSpec& d : spec.disks) names += (names.empty() ? "" : ", ") + ("disks." + d.name);
+  for (const BearingSpec& b : spec.bearings) names += (names.empty() ? "" : ", ") + ("bearings." + b.name);
+  throw ModelError(spec.source.string() + ": --amplitude-at '" + at + "': no such disk or bearing (the model has " +
+                   names + ")");
+}
+
+// modal.json's "backbones" (docs/output-format.md).
+nlohmann::json backbone_json(const std::vector<Backbone>& backbones, const std::string& amplitude_at) {
+  nlohmann::json bbs = nlohmann::json::array();
+  for (const Backbone& b : backbones) {
+    nlohmann::json pts = nlohmann::json::array();
+    for (const BackbonePoint& p : b.points) {
+      nlohmann::json brg = nlohmann::json::array();
+      for (const BackboneBearing& x : p.bearings)
+        brg.push_back({{"name", x.name},
+                       {"displacement_m", x.displacement},
+                       {"tilt_rad", x.tilt},
+                       {"force_n", x.force},
+                       {"moment_nm", x.moment},
+                       {"max_contact_load_n", x.max_contact_load}});
+      pts.push_back({{"amplitude_m", p.amplitude},
+                     {"speed_rad_s", p.speed},
+                     {"speed_rpm", p.speed * kRadPerSToRpm},
+                     {"frequency_hz", p.speed / (2 * M_PI)},
+                     {"bearings", brg}});
+    }
+    bbs.push_back({{"branch", b.branch},
+                   {"linear_speed_rad_s", b.linear_speed},
+                   {"linear_speed_rpm", b.linear_speed * kRadPerSToRpm},
+                   {"points", pts},
+                   {"complete", b.stopped.empty()},
+                   {"stopped", b.stopped}});
+  }
+  return {{"amplitude_at", amplitude_at}, {"branches", bbs}};
+}
+
+// backbone.csv and the listing of the critical speeds at an amplitude.
+void write_backbone_table(const std::vector<Backbone>& backbones, const std::string& amplitude_at,
+                          const std::filesystem::path& path) {
+  OutputFile file(path);
+  std::ostream& csv = file.stream();
+  csv << "branch,amplitude_m,speed_rad_s,speed_rpm,frequency_hz,bearing,displacement_m,tilt_rad,force_n,moment_nm,"
+         "max_contact_load_n\n"
+      << std::setprecision(10);
+  for (const Backbone& b : backbones)
+    for (const BackbonePoint& p : b.points)
+      for (const BackboneBearing& x : p.bearings)
+        csv << b.branch + 1 << ',' << p.amplitude << ',' << p.speed << ',' << p.speed * kRadPerSToRpm << ','
+            << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ',' << x.tilt << ',' << x.force
+            << ',' << x.moment << ',' << x.max_contact_load << '\n';
+  file.commit();
+  std::cout << "Forward 1x critical speeds at an amplitude at " << amplitude_at << ":\n";
+  for (const Backbone& b : backbones) {
+    std::cout << "  branch " << b.branch + 1 << " (linearised: " << std::fixed << std::setprecision(0)
+              << b.linear_speed * kRadPerSToRpm << " rpm)\n";
+    for (const BackbonePoint& p : b.points) {
+      std::cout << "    " << std::setprecision(3) << std::setw(10) << p.amplitude * 1e6 << " um: " << std::setw(7)
+                << std::setprecision(0) << p.speed * kRadPerSToRpm << " rpm (" << std::setprecision(1)
+                << p.speed / (2 * M_PI) << " Hz)";
+      for (const BackboneBearing& x : p.bearings)
+        std::cout << "  " << x.name << " " << std::setprecision(2) << std::abs(x.displacement) * 1e6 << " um "
+                  << std::setprecision(0) << std::abs(x.force) << " N";
+      std::cout << "\n";
+    }
+    if (!b.stopped.empty()) std::cout << "    ends: " << b.stopped << "\n";
+  }
+  std::cout << std::defaultfloat;
+}
+
+// Critical speed against amplitude, one line per branch, its linearised critical speed marked at zero amplitude.
+void write_backbone_picture(const MachineSpec& spec, const std::vector<Backbone>& backbones, const std::string& at,
+                            const std::filesystem::path& png) {
+  using plot::Series;
+  plot::LineChart chart;
+  chart.title = "Forward 1x critical speeds at an amplitude: " + spec.name;
+  chart.xlabel = "whirl amplitude at " + at + " [um]";
+  chart.ylabel = "critical speed [rpm]";
+  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
+  Series lin{"linearised (modal)", {}, {}, Series::Style::Points, plot::style::kCriticalSpeed, 2.5};
+  for (const Backbone& b : backbones) {
+    Series s{"branch " + std::to_string(b.branch + 1), {}, {}, Series::Style::LinesPoints, colors[b.branch % 6], 1.5};
+    for (const BackbonePoint& p : b.points) {
+      s.x.push_back(p.amplitude * 1e6);
+      s.y.push_back(p.speed * kRadPerSToRpm);
+    }
+    if (s.x.empty()) continue;
+    chart.series.push_back(s);
+    lin.x.push_back(0.0);
+    lin.y.push_back(b.linear_speed * kRadPerSToRpm);
+  }
+  if (!lin.x.empty()) chart.series.push_back(lin);
+  chart.legend_position = "bottom right";
+  plot::render_png(chart, png);
+}
+
 }  // namespace
 
 void require_linear_supports(const MachineSpec& spec, bool nonlinear_bearings) {
@@ -309,6 +419,11 @@ int run_modal_command(const ModalCommandOptions& options) {
     for (int i = 0; i < kRingTableSpeeds; ++i) table.push_back(low + (top - low) * i / (kRingTableSpeeds - 1));
     if (top > 0.0) add_floating_ring_linearisations(spec, rotor, table);
   }
+  if (!options.amplitudes.empty())
+    for (const BearingSpec& b : spec.bearings)
+      if (b.type != BearingType::Ball && b.type != BearingType::Linear)
+        throw ModelError(spec.source.string() + ": --amplitudes: bearings." + b.name + ": the critical speeds at an "
+                         "amplitude take ball and linear bearings only, not " + to_string(b.type) + " bearings");
   ModalOptions mo;
   mo.n_modes = options.n_modes > 0 ? options.n_modes : spec.modal.n_modes;
   mo.frame = options.frame;
@@ -322,6 +437,39 @@ int run_modal_command(const ModalCommandOptions& options) {
     for (double s : shape_speeds) shapes.push_back(modal_analysis(rotor, s, mo));
   } catch (const QuasiStaticError& e) {
     throw ModelError(spec.source.string() + ": a ball bearing's linearisation failed: " + e.what());
+  }
+
+  // Critical speeds at an amplitude: each forward 1x critical of the analysed range continued in amplitude.
+  std::vector<Backbone> backbones;
+  std::string amplitude_at;
+  if (!options.amplitudes.empty()) {
+    constexpr long kMaxAmplitudes = 200;
+    BackboneOptions bo;
+    bo.amplitudes = parse_quantity_list(options.amplitudes, "--amplitudes", dim::length, "amplitudes", kMaxAmplitudes);
+    if (!(bo.amplitudes.front() > 0.0))
+      throw ModelError("--amplitudes '" + options.amplitudes + "': amplitudes must be greater than zero");
+    std::tie(bo.reference_node, amplitude_at) = amplitude_reference(spec, rotor, options.amplitude_at);
+    std::vector<double> starts;
+    std::vector<int> branches;
+    for (const CriticalSpeed& c : campbell.critical)
+      if (c.order == 1.0 && c.whirl == Whirl::Forward) {
+        starts.push_back(c.speed);
+        branches.push_back(c.branch);
+      }
+    if (starts.empty())
+      throw ModelError(spec.source.string() + ": --amplitudes: no forward 1x critical speed between " +
+                       std::to_string(std::llround(speeds.front() * kRadPerSToRpm)) + " and " +
+                       std::to_string(std::llround(speeds.back() * kRadPerSToRpm)) + " rpm; widen --speeds");
+    try {
+      backbones = synchronous_backbones(spec, build_rotor(spec), starts, bo);
+      for (std::size_t i = 0; i < backbones.size(); ++i) backbones[i].branch = branches[i];  // the Campbell branch
+    } catch (const QuasiStaticError& e) {
+      throw ModelError(spec.source.string() + ": --amplitudes: a ball bearing's equilibrium failed: " + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(spec.source.string() + ": --amplitudes: " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw ModelError(spec.source.string() + ": --amplitudes: " + e.what());
+    }
   }
 
   std::filesystem::create_directories(options.output_dir);
@@ -372,6 +520,7 @@ int run_modal_command(const ModalCommandOptions& options) {
     shape_json.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
   }
   j["mode_shapes"] = shape_json;
+  if (!options.amplitudes.empty()) j["backbones"] = backbone_json(backbones, amplitude_at);
   write_output_file(options.output_dir / "modal.json", j.dump(1) + "\n");
   {
     OutputFile file(options.output_dir / "campbell.csv");
@@ -400,6 +549,7 @@ int run_modal_command(const ModalCommandOptions& options) {
               << std::setprecision(1) << c.frequency << " Hz), zeta " << std::setprecision(4) << c.damping_ratio
               << "\n";
   std::cout << std::defaultfloat;
+  if (!options.amplitudes.empty()) write_backbone_table(backbones, amplitude_at, options.output_dir / "backbone.csv");
 
   std::vector<std::string> pictures;
   if (options.plots) {
@@ -416,12 +566,27 @@ int run_modal_command(const ModalCommandOptions& options) {
       pictures.push_back("modes_" + speed_tag(r.speed) + ".png");
       write_mode_shape_picture(spec, rotor, r, options.output_dir / pictures.back());
     }
+    const bool any_point = std::any_of(backbones.begin(), backbones.end(),
+                                       [](const Backbone& b) { return !b.points.empty(); });
+    if (any_point) {
+      write_backbone_picture(spec, backbones, amplitude_at, options.output_dir / "backbone.png");
+      pictures.push_back("backbone.png");
+    }
   }
-  post::write_modal_report(options.output_dir, j, {command_line(), pictures, {"modal.json", "campbell.csv"}, {}});
+  std::vector<std::string> files{"modal.json", "campbell.csv"};
+  if (!options.amplitudes.empty()) files.push_back("backbone.csv");
+  post::write_modal_report(options.output_dir, j, {command_line(), pictures, files, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv, report.html"
             << (options.plots ? ", campbell.png, damping.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall
             << " s)\n";
+  // A backbone that ended before the last amplitude: written so far and marked (complete: false), exit code 3.
+  for (const Backbone& b : backbones)
+    if (!b.stopped.empty()) {
+      std::cerr << "turbodyn modal: branch " << b.branch + 1 << "'s critical speeds at an amplitude end early: "
+                << b.stopped << "\n";
+      return 3;
+    }
   return 0;
 }
 

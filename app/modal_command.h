@@ -19,9 +19,15 @@ struct ModalCommandOptions {
   int n_modes = 0;                       ///< 0 = from the model file
   Frame frame = Frame::Inertial;
   bool plots = true;
+  /// "" = none; else the whirl amplitudes of the critical speeds at an amplitude ("0.1:500 um:25", a comma list)
+  std::string amplitudes;
+  /// where the amplitude is measured: "disks.NAME" or "bearings.NAME"; "" = the first disk
+  std::string amplitude_at;
 };
 
-/// Runs the analysis and writes modal.json, campbell.csv, campbell.png and modes_*.png into the output directory.
+/// Runs the analysis and writes modal.json, campbell.csv, campbell.png and modes_*.png into the output directory;
+/// with amplitudes also the synchronous critical speeds at each amplitude (model/engine/backbone.h): backbone.csv,
+/// backbone.png and modal.json's "backbones".
 /// Returns the process exit code.
 int run_modal_command(const ModalCommandOptions& options);
 

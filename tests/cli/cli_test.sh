@@ -274,6 +274,49 @@ EOF2
     [ $? -eq 2 ] || fail "damper accepted: $(cat "$out/sfd.log")"
     grep -q "squeeze-film dampers are nonlinear" "$out/sfd.log" || fail "message: $(cat "$out/sfd.log")"
     ;;
+  modal_amplitudes)
+    # turbodyn modal --amplitudes: the forward 1x critical speeds at a whirl amplitude (model/engine/backbone.h).
+    # Variant II's second critical hardens from 700 Hz towards the run's passage (docs/validation.md); outputs and
+    # bad input.
+    "$exe" modal "$src/examples/reference_ball.toml" --speeds "36000:60000 rpm:9" --amplitudes "100, 500 um" \
+      -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    expect_files "$out" modal.json backbone.csv backbone.png report.html
+    grep -q "^ *500.000 um: *4561[0-9] rpm (760.[0-9] Hz)" "$out/log" || fail "branch 2 at 500 um: $(cat "$out/log")"
+    head -1 "$out/backbone.csv" | grep -q "^branch,amplitude_m,speed_rad_s" || fail "csv: $(head -1 "$out/backbone.csv")"
+    python3 - "$out/modal.json" <<'EOF2' || fail "modal.json backbones"
+import json, sys
+b = json.load(open(sys.argv[1]))["backbones"]
+assert b["amplitude_at"] == "disks.compressor", b["amplitude_at"]
+second = b["branches"][0]
+assert second["branch"] == 1 and second["complete"] and len(second["points"]) == 2, second
+assert 45000 < second["points"][1]["speed_rpm"] < 46000, second["points"][1]
+EOF2
+    # The first mode hardly moves the compressor wheel: its amplitude there turns back at about 30 um, where the
+    # backbone ends, written so far and marked, exit 3.
+    "$exe" modal "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:13" --amplitudes "10, 40 um" --no-plots \
+      -o "$out/fold" > "$out/fold.log" 2>&1
+    [ $? -eq 3 ] || fail "exit $? for a fold: $(cat "$out/fold.log")"
+    grep -q "branch 1's critical speeds at an amplitude end early: no synchronous whirl found beyond" "$out/fold.log" \
+      || fail "fold message: $(cat "$out/fold.log")"
+    python3 -c "import json,sys; b=json.load(open(sys.argv[1]))['backbones']['branches']; assert not b[0]['complete'] and len(b[0]['points']) == 1" \
+      "$out/fold/modal.json" || fail "fold not marked"
+    expect_modal_error() {  # expected-message then arguments
+      local msg=$1; shift
+      "$exe" modal "$@" --no-plots -o "$out/bad" > "$out/bad.log" 2>&1
+      local rc=$?
+      [ $rc -eq 2 ] || fail "exit $rc for $*: $(cat "$out/bad.log")"
+      grep -q -- "$msg" "$out/bad.log" || fail "message for $*: $(cat "$out/bad.log")"
+    }
+    expect_modal_error "--amplitude-at 'disks.nope': no such disk or bearing (the model has disks.compressor" \
+      "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitudes "1 um" --amplitude-at disks.nope
+    expect_modal_error "--amplitudes '0:10 um:3': amplitudes must be greater than zero" \
+      "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitudes "0:10 um:3"
+    expect_modal_error "--amplitudes '1 kg'" "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitudes "1 kg"
+    expect_modal_error "no forward 1x critical speed between 0 and 10000 rpm" \
+      "$src/examples/reference_ball.toml" --speeds "0:10000 rpm:3" --amplitudes "1 um"
+    expect_modal_error "--amplitudes: bearings.compressor: the critical speeds at an amplitude take ball and linear bearings only" \
+      "$src/examples/reference_floating_ring.toml" --speeds "30000:150000 rpm:3" --amplitudes "1 um"
+    ;;
   stability_reference_ball)
     # Issue 17: turbodyn stability on the ball-bearing rotor finds the growing forward whirl at 95,000 rpm and
     # none at 30,000 rpm (the bare 30000 takes the list's unit); a floating-ring model is refused naming the
