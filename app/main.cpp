@@ -134,6 +134,9 @@ int main(int argc, char** argv) {
   plot->add_option("RUN_DIR", plot_options.run_dir, "Output directory of turbodyn run")->required();
   plot->add_option("--campbell", plot_options.campbell_csv,
                    "campbell.csv of turbodyn modal: draw its natural frequencies on the spectrograms");
+  plot->add_option("--backbone", plot_options.backbone_json,
+                   "modal.json of turbodyn modal --amplitudes: draw its critical speeds at an amplitude on that "
+                   "disk's 1x order track (may be given more than once)");
   add_sets(plot);
 
   turbodyn::app::ResponseCommandOptions response_options;

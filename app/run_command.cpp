@@ -68,6 +68,44 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
   return out;
 }
 
+// The critical speeds at an amplitude of `turbodyn modal --amplitudes` (its modal.json) as lines of amplitude against
+// rotor speed in Hz, for the 1x order track of the disk they were measured at.
+post::OrderOverlay read_backbone_overlay(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw ModelError(file.string() + ": cannot be read");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw ModelError(file.string() + ": not a modal.json: " + e.what());
+  }
+  if (!j.contains("backbones") || !j["backbones"].contains("amplitude_at") || !j["backbones"].contains("branches"))
+    throw ModelError(file.string() + ": not a modal.json of turbodyn modal --amplitudes (no \"backbones\")");
+  const std::string at = j["backbones"]["amplitude_at"].get<std::string>();
+  if (at.rfind("disks.", 0) != 0)
+    throw ModelError(file.string() + ": its amplitudes were measured at " + at +
+                     "; a run has order tracks of the disks' displacements only (turbodyn modal --amplitude-at disks.NAME)");
+  post::OrderOverlay o;
+  o.stem = "disk." + at.substr(6);
+  const char* colors[] = {"#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  try {
+    for (const auto& b : j["backbones"]["branches"]) {
+      const int branch = b.at("branch").get<int>();
+      plot::Series s{"critical speed at the amplitude, branch " + std::to_string(branch + 1) + " (turbodyn modal)",
+                     {}, {}, plot::Series::Style::LinesPoints, colors[branch % 4], 1.2};
+      for (const auto& p : b.at("points")) {
+        s.x.push_back(p.at("speed_rad_s").get<double>() / (2 * M_PI));
+        s.y.push_back(p.at("amplitude_m").get<double>());
+      }
+      if (!s.x.empty()) o.series.push_back(std::move(s));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw ModelError(file.string() + ": backbones: " + e.what());
+  }
+  if (o.series.empty()) throw ModelError(file.string() + ": its backbones have no points");
+  return o;
+}
+
 // The result files of a run directory besides the pictures, for the report's links.
 std::vector<std::string> run_files(const std::filesystem::path& dir) {
   std::vector<std::string> files;
@@ -82,6 +120,8 @@ int run_plot_command(const PlotCommandOptions& options) {
   // The overlay file first: a bad one is reported before the model and the time series are read.
   const std::vector<plot::Series> campbell =
       options.campbell_csv.empty() ? std::vector<plot::Series>{} : read_campbell_overlay(options.campbell_csv);
+  std::vector<post::OrderOverlay> order_overlays;
+  for (const std::filesystem::path& f : options.backbone_json) order_overlays.push_back(read_backbone_overlay(f));
   const std::filesystem::path summary_file = options.run_dir / "summary.json";
   std::ifstream in(summary_file);
   if (!in) throw ModelError(summary_file.string() + ": cannot be read (not the output directory of turbodyn run?)");
@@ -115,7 +155,8 @@ int run_plot_command(const PlotCommandOptions& options) {
   }
   std::vector<std::string> pictures, warnings;
   nlohmann::json spectral = nlohmann::json::object();
-  if (r.time.size() > 1) post::draw_run_pictures(spec, r, options.run_dir, pictures, warnings, spectral, campbell);
+  if (r.time.size() > 1) post::draw_run_pictures(spec, r, options.run_dir, pictures, warnings, spectral, campbell,
+                                                   order_overlays);
   j["pictures"] = pictures;
   j["spectrogram_maxima"] = spectral;
   j["warnings"] = warnings;

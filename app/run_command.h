@@ -25,6 +25,9 @@ struct PlotCommandOptions {
   std::vector<Override> overrides;  ///< applied after the run's own, e.g. output.spectrogram_segment=4096
   /// campbell.csv of `turbodyn modal`: its forward and backward natural frequencies are drawn on the spectrograms.
   std::filesystem::path campbell_csv;
+  /// modal.json files of `turbodyn modal --amplitudes` measured at a disk: their critical speeds at an amplitude are
+  /// drawn on that disk's 1x order track.
+  std::vector<std::filesystem::path> backbone_json;
 };
 
 /// Redraws the pictures of an earlier run from its timeseries.h5 (also a partial one), with the model file and

@@ -75,7 +75,21 @@ for v in "${variants[@]}"; do
       [[ -f out/validation/modal_ball/campbell.csv ]] ||
         "$exe" modal examples/reference_linear.toml --speeds "0:150000 rpm:61" --no-plots \
           --set bearings.compressor.k=5e7 --set bearings.turbine.k=5e7 -o out/validation/modal_ball > /dev/null
-      "$exe" plot "$dir" --campbell out/validation/modal_ball/campbell.csv > /dev/null
+      backbones=()
+      if [[ $v == ball ]]; then
+        # The forward 1x critical speeds at a whirl amplitude (turbodyn modal --amplitudes) on the wheels' 1x order
+        # tracks: the second critical measured at the compressor wheel, the first at the turbine wheel (the
+        # compressor wheel sits near the first mode's node).
+        [[ -f out/validation/backbone_compressor/modal.json ]] ||
+          "$exe" modal "$model" --speeds "36000:60000 rpm:9" --amplitudes "1:600 um:40" --no-plots \
+            -o out/validation/backbone_compressor > /dev/null
+        [[ -f out/validation/backbone_turbine/modal.json ]] ||
+          "$exe" modal "$model" --speeds "0:36000 rpm:13" --amplitudes "1:600 um:40" --amplitude-at disks.turbine \
+            --no-plots -o out/validation/backbone_turbine > /dev/null
+        backbones=(--backbone out/validation/backbone_compressor/modal.json
+                   --backbone out/validation/backbone_turbine/modal.json)
+      fi
+      "$exe" plot "$dir" --campbell out/validation/modal_ball/campbell.csv "${backbones[@]}" > /dev/null
       ;;
   esac
   # The pictures docs/validation.md shows.
@@ -94,6 +108,10 @@ for v in "${variants[@]}"; do
       for f in ring_speed_ratio film_temperatures; do
         if [[ -f $dir/$f.png ]]; then cp "$dir/$f.png" "docs/images/variant_${v}_$f.png"; fi
       done
+      if [[ $v == ball ]]; then
+        cp "$dir/order1x_disk.compressor.png" docs/images/variant_ball_order1x_compressor.png
+        cp "$dir/order1x_disk.turbine.png" docs/images/variant_ball_order1x_turbine.png
+      fi
       ;;
   esac
 done

@@ -141,7 +141,8 @@ std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const s
 
 void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
                        std::vector<std::string>& written, std::vector<std::string>& warnings,
-                       nlohmann::json& spectral, const std::vector<plot::Series>& campbell) {
+                       nlohmann::json& spectral, const std::vector<plot::Series>& campbell,
+                       const std::vector<OrderOverlay>& order_overlays) {
   const OutputSpec& out = spec.output;
   const double fs = out.sample_rate;
   const int speed_col = column_of(r, ProbeChannel::Kind::Speed), angle_col = column_of(r, ProbeChannel::Kind::Angle);
@@ -192,6 +193,7 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
   }
 
   // Order tracking of 1x: amplitude against speed, x and y of each probe pair in one picture.
+  std::vector<std::string> drawn_overlays;
   signal::OrderTrackOptions oo;
   oo.order = 1.0;
   oo.points = 300;
@@ -216,6 +218,24 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
         for (double& v : amp) v *= disp.factor;
         chart.series.push_back({ch->name, t.speeds, amp, plot::Series::Style::Lines, "", 1.5});
       }
+      // Overlays up to 1.5 times the track's largest amplitude, so that the track keeps the picture's scale.
+      double track_max = 0.0;
+      for (const plot::Series& s : chart.series)
+        for (double v : s.y) track_max = std::max(track_max, v);
+      for (const OrderOverlay& o : order_overlays) {
+        if (o.stem != stem) continue;
+        drawn_overlays.push_back(o.stem);
+        for (const plot::Series& s : o.series) {
+          plot::Series shown = s;
+          shown.x.clear();
+          shown.y.clear();
+          for (std::size_t i = 0; i < s.x.size() && s.y[i] * disp.factor <= 1.5 * track_max; ++i) {
+            shown.x.push_back(s.x[i]);
+            shown.y.push_back(s.y[i] * disp.factor);
+          }
+          if (!shown.x.empty()) chart.series.push_back(std::move(shown));
+        }
+      }
       const std::string file = "order1x_" + stem + ".png";
       plot::render_png(chart, dir / file);
       written.push_back(file);
@@ -224,6 +244,10 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     }
     ++c;  // skip the partner
   }
+
+  for (const OrderOverlay& o : order_overlays)
+    if (std::find(drawn_overlays.begin(), drawn_overlays.end(), o.stem) == drawn_overlays.end())
+      warnings.push_back("the overlay for " + o.stem + " was not drawn: the run has no 1x order track of it");
 
   // Orbits of each disk at chosen speeds: 5 revolutions around the sample where the speed is reached.
   std::vector<double> orbit_hz;

@@ -73,8 +73,16 @@ std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const s
 /// names to `written` and what was not drawn to `warnings`; `spectral` receives, per spectrogram, its largest amplitude (SI) and where it lies;
 /// `campbell` (rotor speed [Hz], frequency [Hz]) series are drawn on the spectrograms against speed. Throws
 /// plot::PlotError when gnuplot fails.
+/// `order_overlays` are drawn on the 1x order track of the probe pair named by their stem ("disk.compressor"):
+/// e.g. the critical speeds at an amplitude of `turbodyn modal --amplitudes` (x rotor speed [Hz], y the amplitude in
+/// SI units, scaled as the track is); one that names no track is reported in `warnings`.
+struct OrderOverlay {
+  std::string stem;
+  std::vector<plot::Series> series;
+};
 void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std::filesystem::path& dir,
                        std::vector<std::string>& written, std::vector<std::string>& warnings,
-                       nlohmann::json& spectral, const std::vector<plot::Series>& campbell = {});
+                       nlohmann::json& spectral, const std::vector<plot::Series>& campbell = {},
+                       const std::vector<OrderOverlay>& order_overlays = {});
 
 }  // namespace turbodyn::post

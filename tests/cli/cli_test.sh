@@ -69,6 +69,24 @@ EOF2
     "$exe" plot "$out/run" --campbell "$out/modal/campbell.csv" > "$out/log" 2>&1 || fail "plot --campbell: $(cat "$out/log")"
     "$exe" plot "$out/run" --campbell "$out/run/summary.json" > "$out/log" 2>&1
     [ $? -eq 2 ] && grep -q "not a campbell.csv" "$out/log" || fail "bad --campbell file: $(cat "$out/log")"
+    # The critical speeds at an amplitude of `turbodyn modal --amplitudes` on the compressor wheel's 1x order track.
+    "$exe" modal "$src/examples/reference_linear.toml" --amplitudes "1, 10 um" --no-plots -o "$out/backbone" \
+      > "$out/log" 2>&1 || fail "modal --amplitudes: $(cat "$out/log")"
+    rm "$out/run/order1x_disk.compressor.png"
+    "$exe" plot "$out/run" --backbone "$out/backbone/modal.json" > "$out/log" 2>&1 || fail "plot --backbone: $(cat "$out/log")"
+    [ -s "$out/run/order1x_disk.compressor.png" ] || fail "no order track redrawn"
+    grep -q '"warnings": \[\]' "$out/run/summary.json" || fail "warnings: $(grep -A3 warnings "$out/run/summary.json")"
+    expect_plot_error() {  # expected-message then arguments
+      local msg=$1; shift
+      "$exe" plot "$out/run" "$@" > "$out/log" 2>&1
+      local rc=$?
+      [ $rc -eq 2 ] && grep -q -- "$msg" "$out/log" || fail "exit $rc for $*: $(cat "$out/log")"
+    }
+    expect_plot_error "not a modal.json" --backbone "$out/modal/campbell.csv"
+    expect_plot_error "not a modal.json of turbodyn modal --amplitudes" --backbone "$out/modal/modal.json"
+    "$exe" modal "$src/examples/reference_linear.toml" --amplitudes "1 um" --amplitude-at bearings.turbine --no-plots \
+      -o "$out/backbone_bearing" > "$out/log" 2>&1 || fail "modal --amplitude-at bearings.turbine: $(cat "$out/log")"
+    expect_plot_error "order tracks of the disks' displacements only" --backbone "$out/backbone_bearing/modal.json"
     "$exe" plot "$out/nowhere" > "$out/log" 2>&1
     rc=$?
     [ $rc -eq 2 ] || fail "plot of a missing directory: exit $rc, expected 2"
