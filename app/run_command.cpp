@@ -84,7 +84,8 @@ post::OrderOverlay read_backbone_overlay(const std::filesystem::path& file) {
   const std::string at = j["backbones"]["amplitude_at"].get<std::string>();
   if (at.rfind("disks.", 0) != 0)
     throw ModelError(file.string() + ": its amplitudes were measured at " + at +
-                     "; a run has order tracks of the disks' displacements only (turbodyn modal --amplitude-at disks.NAME)");
+                     "; a run has order tracks of the disks' displacements only (turbodyn modal --amplitude-at "
+                     "disks.NAME)");
   post::OrderOverlay o;
   o.stem = "disk." + at.substr(6);
   const char* colors[] = {"#9467bd", "#8c564b", "#e377c2", "#17becf"};
