@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
                     "Also the forward 1x critical speeds at these whirl amplitudes (START:END:COUNT or a comma "
                     "list, \"0.1:500 um:25\"), the ball bearings' quasi-static reaction at each");
   modal->add_option("--amplitude-at", modal_options.amplitude_at,
-                    "Where the amplitude is measured: disks.NAME or bearings.NAME (default: the first disk)");
+                    "Where the amplitude is measured: disks.NAME or bearings.NAME (default: for each branch the "
+                    "disk that moves most in its mode)");
   add_sets(modal);
 
   turbodyn::app::BearingCommandOptions bearing_options;

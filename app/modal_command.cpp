@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -221,19 +222,24 @@ void write_mode_shape_picture(const MachineSpec& spec, const Rotor& rotor, const
   plot::render_png(chart, png, plot::Size{1000, 800});
 }
 
-// The node and label of --amplitude-at: "disks.NAME" or "bearings.NAME", "" = the first disk.
-std::pair<int, std::string> amplitude_reference(const MachineSpec& spec, const Rotor& rotor, const std::string& at) {
+// The places whose whirl radius may be the amplitude, node and label: --amplitude-at "disks.NAME" or
+// "bearings.NAME", or without it every disk (each branch then takes the one that moves most in its mode).
+std::vector<std::pair<int, std::string>> amplitude_references(const MachineSpec& spec, const Rotor& rotor,
+                                                              const std::string& at) {
   const double length = spec.shaft_length();
+  std::vector<std::pair<int, std::string>> out;
   if (at.empty()) {
-    if (spec.disks.empty())
+    for (const DiskSpec& d : spec.disks)
+      out.emplace_back(rotor.node_at(std::clamp(d.z, 0.0, length)), "disks." + d.name);
+    if (out.empty())
       throw ModelError(spec.source.string() + ": --amplitudes: the model has no disk; say where the amplitude is "
                        "measured with --amplitude-at bearings.NAME");
-    return {rotor.node_at(std::clamp(spec.disks.front().z, 0.0, length)), "disks." + spec.disks.front().name};
+    return out;
   }
   for (const DiskSpec& d : spec.disks)
-    if (at == "disks." + d.name) return {rotor.node_at(std::clamp(d.z, 0.0, length)), at};
+    if (at == "disks." + d.name) return {{rotor.node_at(std::clamp(d.z, 0.0, length)), at}};
   for (const BearingSpec& b : spec.bearings)
-    if (at == "bearings." + b.name) return {rotor.node_at(std::clamp(b.z, 0.0, length)), at};
+    if (at == "bearings." + b.name) return {{rotor.node_at(std::clamp(b.z, 0.0, length)), at}};
   std::string names;
   for (const DiskSpec& d : spec.disks) names += (names.empty() ? "" : ", ") + ("disks." + d.name);
   for (const BearingSpec& b : spec.bearings) names += (names.empty() ? "" : ", ") + ("bearings." + b.name);
@@ -242,7 +248,7 @@ std::pair<int, std::string> amplitude_reference(const MachineSpec& spec, const R
 }
 
 // modal.json's "backbones" (docs/output-format.md).
-nlohmann::json backbone_json(const std::vector<Backbone>& backbones, const std::string& amplitude_at) {
+nlohmann::json backbone_json(const std::vector<Backbone>& backbones, const std::map<int, std::string>& place) {
   nlohmann::json bbs = nlohmann::json::array();
   for (const Backbone& b : backbones) {
     nlohmann::json pts = nlohmann::json::array();
@@ -262,34 +268,35 @@ nlohmann::json backbone_json(const std::vector<Backbone>& backbones, const std::
                      {"bearings", brg}});
     }
     bbs.push_back({{"branch", b.branch},
+                   {"amplitude_at", place.at(b.reference_node)},
                    {"linear_speed_rad_s", b.linear_speed},
                    {"linear_speed_rpm", b.linear_speed * kRadPerSToRpm},
                    {"points", pts},
                    {"complete", b.stopped.empty()},
                    {"stopped", b.stopped}});
   }
-  return {{"amplitude_at", amplitude_at}, {"branches", bbs}};
+  return {{"branches", bbs}};
 }
 
 // backbone.csv and the listing of the critical speeds at an amplitude.
-void write_backbone_table(const std::vector<Backbone>& backbones, const std::string& amplitude_at,
+void write_backbone_table(const std::vector<Backbone>& backbones, const std::map<int, std::string>& place,
                           const std::filesystem::path& path) {
   OutputFile file(path);
   std::ostream& csv = file.stream();
-  csv << "branch,amplitude_m,speed_rad_s,speed_rpm,frequency_hz,bearing,displacement_m,tilt_rad,force_n,moment_nm,"
+  csv << "branch,amplitude_at,amplitude_m,speed_rad_s,speed_rpm,frequency_hz,bearing,displacement_m,tilt_rad,force_n,moment_nm,"
          "max_contact_load_n\n"
       << std::setprecision(10);
   for (const Backbone& b : backbones)
     for (const BackbonePoint& p : b.points)
       for (const BackboneBearing& x : p.bearings)
-        csv << b.branch + 1 << ',' << p.amplitude << ',' << p.speed << ',' << p.speed * kRadPerSToRpm << ','
+        csv << b.branch + 1 << ',' << place.at(b.reference_node) << ',' << p.amplitude << ',' << p.speed << ',' << p.speed * kRadPerSToRpm << ','
             << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ',' << x.tilt << ',' << x.force
             << ',' << x.moment << ',' << x.max_contact_load << '\n';
   file.commit();
-  std::cout << "Forward 1x critical speeds at an amplitude at " << amplitude_at << ":\n";
+  std::cout << "Forward 1x critical speeds at a whirl amplitude:\n";
   for (const Backbone& b : backbones) {
     std::cout << "  branch " << b.branch + 1 << " (linearised: " << std::fixed << std::setprecision(0)
-              << b.linear_speed * kRadPerSToRpm << " rpm)\n";
+              << b.linear_speed * kRadPerSToRpm << " rpm), amplitude at " << place.at(b.reference_node) << "\n";
     for (const BackbonePoint& p : b.points) {
       std::cout << "    " << std::setprecision(3) << std::setw(10) << p.amplitude * 1e6 << " um: " << std::setw(7)
                 << std::setprecision(0) << p.speed * kRadPerSToRpm << " rpm (" << std::setprecision(1)
@@ -305,17 +312,18 @@ void write_backbone_table(const std::vector<Backbone>& backbones, const std::str
 }
 
 // Critical speed against amplitude, one line per branch, its linearised critical speed marked at zero amplitude.
-void write_backbone_picture(const MachineSpec& spec, const std::vector<Backbone>& backbones, const std::string& at,
-                            const std::filesystem::path& png) {
+void write_backbone_picture(const MachineSpec& spec, const std::vector<Backbone>& backbones,
+                            const std::map<int, std::string>& place, const std::filesystem::path& png) {
   using plot::Series;
   plot::LineChart chart;
   chart.title = "Forward 1x critical speeds at an amplitude: " + spec.name;
-  chart.xlabel = "whirl amplitude at " + at + " [um]";
+  chart.xlabel = "whirl amplitude [um] at each branch's place";
   chart.ylabel = "critical speed [rpm]";
   const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
   Series lin{"linearised (modal)", {}, {}, Series::Style::Points, plot::style::kCriticalSpeed, 2.5};
   for (const Backbone& b : backbones) {
-    Series s{"branch " + std::to_string(b.branch + 1), {}, {}, Series::Style::LinesPoints, colors[b.branch % 6], 1.5};
+    Series s{"branch " + std::to_string(b.branch + 1) + " at " + place.at(b.reference_node), {}, {},
+             Series::Style::LinesPoints, colors[b.branch % 6], 1.5};
     for (const BackbonePoint& p : b.points) {
       s.x.push_back(p.amplitude * 1e6);
       s.y.push_back(p.speed * kRadPerSToRpm);
@@ -441,14 +449,17 @@ int run_modal_command(const ModalCommandOptions& options) {
 
   // Critical speeds at an amplitude: each forward 1x critical of the analysed range continued in amplitude.
   std::vector<Backbone> backbones;
-  std::string amplitude_at;
+  std::map<int, std::string> amplitude_place;
   if (!options.amplitudes.empty()) {
     constexpr long kMaxAmplitudes = 200;
     BackboneOptions bo;
     bo.amplitudes = parse_quantity_list(options.amplitudes, "--amplitudes", dim::length, "amplitudes", kMaxAmplitudes);
     if (!(bo.amplitudes.front() > 0.0))
       throw ModelError("--amplitudes '" + options.amplitudes + "': amplitudes must be greater than zero");
-    std::tie(bo.reference_node, amplitude_at) = amplitude_reference(spec, rotor, options.amplitude_at);
+    for (const auto& [node, label] : amplitude_references(spec, rotor, options.amplitude_at)) {
+      bo.reference_nodes.push_back(node);
+      amplitude_place[node] = label;
+    }
     std::vector<double> starts;
     std::vector<int> branches;
     for (const CriticalSpeed& c : campbell.critical)
@@ -520,7 +531,7 @@ int run_modal_command(const ModalCommandOptions& options) {
     shape_json.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
   }
   j["mode_shapes"] = shape_json;
-  if (!options.amplitudes.empty()) j["backbones"] = backbone_json(backbones, amplitude_at);
+  if (!options.amplitudes.empty()) j["backbones"] = backbone_json(backbones, amplitude_place);
   write_output_file(options.output_dir / "modal.json", j.dump(1) + "\n");
   {
     OutputFile file(options.output_dir / "campbell.csv");
@@ -549,7 +560,7 @@ int run_modal_command(const ModalCommandOptions& options) {
               << std::setprecision(1) << c.frequency << " Hz), zeta " << std::setprecision(4) << c.damping_ratio
               << "\n";
   std::cout << std::defaultfloat;
-  if (!options.amplitudes.empty()) write_backbone_table(backbones, amplitude_at, options.output_dir / "backbone.csv");
+  if (!options.amplitudes.empty()) write_backbone_table(backbones, amplitude_place, options.output_dir / "backbone.csv");
 
   std::vector<std::string> pictures;
   if (options.plots) {
@@ -569,7 +580,7 @@ int run_modal_command(const ModalCommandOptions& options) {
     const bool any_point = std::any_of(backbones.begin(), backbones.end(),
                                        [](const Backbone& b) { return !b.points.empty(); });
     if (any_point) {
-      write_backbone_picture(spec, backbones, amplitude_at, options.output_dir / "backbone.png");
+      write_backbone_picture(spec, backbones, amplitude_place, options.output_dir / "backbone.png");
       pictures.push_back("backbone.png");
     }
   }

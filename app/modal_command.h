@@ -21,7 +21,8 @@ struct ModalCommandOptions {
   bool plots = true;
   /// "" = none; else the whirl amplitudes of the critical speeds at an amplitude ("0.1:500 um:25", a comma list)
   std::string amplitudes;
-  /// where the amplitude is measured: "disks.NAME" or "bearings.NAME"; "" = the first disk
+  /// where the amplitude is measured: "disks.NAME" or "bearings.NAME"; "" = for each branch the disk that moves
+  /// most in its linearised mode
   std::string amplitude_at;
 };
 

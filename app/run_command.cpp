@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <algorithm>
 #include <cmath>
 #include <chrono>
 #include <csignal>
@@ -69,8 +70,8 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
 }
 
 // The critical speeds at an amplitude of `turbodyn modal --amplitudes` (its modal.json) as lines of amplitude against
-// rotor speed in Hz, for the 1x order track of the disk they were measured at.
-post::OrderOverlay read_backbone_overlay(const std::filesystem::path& file) {
+// rotor speed in Hz, one overlay per disk the branches were measured at, for that disk's 1x order track.
+std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw ModelError(file.string() + ": cannot be read");
   nlohmann::json j;
@@ -79,18 +80,17 @@ post::OrderOverlay read_backbone_overlay(const std::filesystem::path& file) {
   } catch (const std::exception& e) {
     throw ModelError(file.string() + ": not a modal.json: " + e.what());
   }
-  if (!j.contains("backbones") || !j["backbones"].contains("amplitude_at") || !j["backbones"].contains("branches"))
+  if (!j.contains("backbones") || !j["backbones"].contains("branches"))
     throw ModelError(file.string() + ": not a modal.json of turbodyn modal --amplitudes (no \"backbones\")");
-  const std::string at = j["backbones"]["amplitude_at"].get<std::string>();
-  if (at.rfind("disks.", 0) != 0)
-    throw ModelError(file.string() + ": its amplitudes were measured at " + at +
-                     "; a run has order tracks of the disks' displacements only (turbodyn modal --amplitude-at "
-                     "disks.NAME)");
-  post::OrderOverlay o;
-  o.stem = "disk." + at.substr(6);
+  std::vector<post::OrderOverlay> out;
   const char* colors[] = {"#9467bd", "#8c564b", "#e377c2", "#17becf"};
   try {
     for (const auto& b : j["backbones"]["branches"]) {
+      const std::string at = b.at("amplitude_at").get<std::string>();
+      if (at.rfind("disks.", 0) != 0)
+        throw ModelError(file.string() + ": its amplitudes were measured at " + at +
+                         "; a run has order tracks of the disks' displacements only (turbodyn modal --amplitude-at "
+                         "disks.NAME)");
       const int branch = b.at("branch").get<int>();
       plot::Series s{"critical speed at the amplitude, branch " + std::to_string(branch + 1) + " (turbodyn modal)",
                      {}, {}, plot::Series::Style::LinesPoints, colors[branch % 4], 1.2};
@@ -98,13 +98,17 @@ post::OrderOverlay read_backbone_overlay(const std::filesystem::path& file) {
         s.x.push_back(p.at("speed_rad_s").get<double>() / (2 * M_PI));
         s.y.push_back(p.at("amplitude_m").get<double>());
       }
-      if (!s.x.empty()) o.series.push_back(std::move(s));
+      if (s.x.empty()) continue;
+      const std::string stem = "disk." + at.substr(6);
+      auto it = std::find_if(out.begin(), out.end(), [&](const post::OrderOverlay& o) { return o.stem == stem; });
+      if (it == out.end()) it = out.insert(out.end(), post::OrderOverlay{stem, {}});
+      it->series.push_back(std::move(s));
     }
   } catch (const nlohmann::json::exception& e) {
     throw ModelError(file.string() + ": backbones: " + e.what());
   }
-  if (o.series.empty()) throw ModelError(file.string() + ": its backbones have no points");
-  return o;
+  if (out.empty()) throw ModelError(file.string() + ": its backbones have no points");
+  return out;
 }
 
 // The result files of a run directory besides the pictures, for the report's links.
@@ -122,7 +126,8 @@ int run_plot_command(const PlotCommandOptions& options) {
   const std::vector<plot::Series> campbell =
       options.campbell_csv.empty() ? std::vector<plot::Series>{} : read_campbell_overlay(options.campbell_csv);
   std::vector<post::OrderOverlay> order_overlays;
-  for (const std::filesystem::path& f : options.backbone_json) order_overlays.push_back(read_backbone_overlay(f));
+  for (const std::filesystem::path& f : options.backbone_json)
+    for (post::OrderOverlay& o : read_backbone_overlays(f)) order_overlays.push_back(std::move(o));
   const std::filesystem::path summary_file = options.run_dir / "summary.json";
   std::ifstream in(summary_file);
   if (!in) throw ModelError(summary_file.string() + ": cannot be read (not the output directory of turbodyn run?)");

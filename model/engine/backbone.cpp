@@ -258,10 +258,10 @@ std::vector<Backbone> synchronous_backbones(const MachineSpec& machine, const Ro
   for (std::size_t i = 0; i < amps.size(); ++i)
     if (!(std::isfinite(amps[i]) && amps[i] > 0.0 && (i == 0 || amps[i] > amps[i - 1])))
       throw std::invalid_argument("amplitudes must be finite, positive and increasing");
-  if (options.reference_node < 0 || options.reference_node >= rotor.n_dof / kDofPerNode)
-    throw std::invalid_argument("reference node out of range");
+  if (options.reference_nodes.empty()) throw std::invalid_argument("no reference node given");
+  for (int node : options.reference_nodes)
+    if (node < 0 || node >= rotor.n_dof / kDofPerNode) throw std::invalid_argument("reference node out of range");
   const WhirlProblem problem(machine, rotor);
-  const int ref = problem.reduced(options.reference_node, kX);
   const double limit_ratio = QuasiStaticOptions{}.max_deflection_ratio;
 
   std::vector<Backbone> out;
@@ -280,6 +280,11 @@ std::vector<Backbone> synchronous_backbones(const MachineSpec& machine, const Ro
       throw QuasiStaticError("no equilibrium of the ball bearings at " + rpm(w.speed));
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jp, Eigen::ComputeFullV);
     Eigen::VectorXd shape = svd.matrixV().col(problem.size() - 1);
+    bb.reference_node = options.reference_nodes.front();
+    for (int node : options.reference_nodes)
+      if (std::abs(shape(problem.reduced(node, kX))) > std::abs(shape(problem.reduced(bb.reference_node, kX))))
+        bb.reference_node = node;
+    const int ref = problem.reduced(bb.reference_node, kX);
     if (std::abs(shape(ref)) < 1e-6 * shape.lpNorm<Eigen::Infinity>())
       throw std::invalid_argument("the reference node hardly moves in the mode at " + rpm(w.speed) +
                                   "; take another reference");

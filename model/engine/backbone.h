@@ -43,6 +43,7 @@ struct BackbonePoint {
 struct Backbone {
   int branch = 0;              ///< index of the start speed it continues (ascending), from 0; callers may relabel
   double linear_speed = 0.0;   ///< the linearised rotor's critical speed it starts from (rad/s)
+  int reference_node = 0;      ///< the node whose whirl radius is the amplitude (from BackboneOptions)
   std::vector<BackbonePoint> points;  ///< one per amplitude reached, ascending amplitude
   /// Empty if every amplitude was reached; else why the backbone ends before the last (no equilibrium of the
   /// whirl found, a contact beyond Hertz theory), naming the amplitude.
@@ -50,7 +51,9 @@ struct Backbone {
 };
 
 struct BackboneOptions {
-  int reference_node = 0;           ///< the node whose x is the amplitude
+  /// The nodes whose x may be the amplitude: with one, it is every branch's; with several, each branch takes the
+  /// one that moves most in its linearised mode (e.g. the wheels: the one that is not near the mode's node).
+  std::vector<int> reference_nodes;
   std::vector<double> amplitudes;   ///< m, > 0, increasing
 };
 

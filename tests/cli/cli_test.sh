@@ -300,19 +300,24 @@ EOF2
       -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
     expect_files "$out" modal.json backbone.csv backbone.png report.html
     grep -q "^ *500.000 um: *4561[0-9] rpm (760.[0-9] Hz)" "$out/log" || fail "branch 2 at 500 um: $(cat "$out/log")"
-    head -1 "$out/backbone.csv" | grep -q "^branch,amplitude_m,speed_rad_s" || fail "csv: $(head -1 "$out/backbone.csv")"
+    head -1 "$out/backbone.csv" | grep -q "^branch,amplitude_at,amplitude_m,speed_rad_s" || fail "csv: $(head -1 "$out/backbone.csv")"
     python3 - "$out/modal.json" <<'EOF2' || fail "modal.json backbones"
 import json, sys
 b = json.load(open(sys.argv[1]))["backbones"]
-assert b["amplitude_at"] == "disks.compressor", b["amplitude_at"]
 second = b["branches"][0]
+assert second["amplitude_at"] == "disks.compressor", second["amplitude_at"]
 assert second["branch"] == 1 and second["complete"] and len(second["points"]) == 2, second
 assert 45000 < second["points"][1]["speed_rpm"] < 46000, second["points"][1]
 EOF2
+    # Without --amplitude-at each branch is measured at the wheel that moves most in its mode.
+    "$exe" modal "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:13" --amplitudes "10, 40 um" --no-plots \
+      -o "$out/both" > "$out/both.log" 2>&1 || fail "exit $? for both branches: $(cat "$out/both.log")"
+    grep -q "branch 1 (linearised: 32897 rpm), amplitude at disks.turbine" "$out/both.log" || fail "$(cat "$out/both.log")"
+    grep -q "branch 2 (linearised: 42004 rpm), amplitude at disks.compressor" "$out/both.log" || fail "$(cat "$out/both.log")"
     # The first mode hardly moves the compressor wheel: its amplitude there turns back at about 30 um, where the
     # backbone ends, written so far and marked, exit 3.
     "$exe" modal "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:13" --amplitudes "10, 40 um" --no-plots \
-      -o "$out/fold" > "$out/fold.log" 2>&1
+      --amplitude-at disks.compressor -o "$out/fold" > "$out/fold.log" 2>&1
     [ $? -eq 3 ] || fail "exit $? for a fold: $(cat "$out/fold.log")"
     grep -q "branch 1's critical speeds at an amplitude end early: no synchronous whirl found beyond" "$out/fold.log" \
       || fail "fold message: $(cat "$out/fold.log")"

@@ -47,7 +47,7 @@ TEST(Backbone, OnLinearBearingsItIsTheCampbellCriticalAtEveryAmplitude) {
   const std::vector<double> crit = forward_criticals(rotor, 150000 * kRpm);
   ASSERT_FALSE(crit.empty());
   BackboneOptions o;
-  o.reference_node = rotor.node_at(spec.disks.front().z);
+  o.reference_nodes = {rotor.node_at(spec.disks.front().z)};
   o.amplitudes = {1e-6, 1e-4, 1e-2};
   const std::vector<Backbone> bbs = synchronous_backbones(spec, rotor, crit, o);
   ASSERT_EQ(bbs.size(), crit.size());
@@ -80,14 +80,21 @@ TEST(Backbone, BallBearingsStartAtTheModalCriticalsAndMeetTheRunsResonanceAtItsA
   ASSERT_TRUE(rotor.bearings.empty());
   BackboneOptions o;
   // The first mode moves the turbine end (the compressor wheel sits near its node), the second the compressor end.
-  o.reference_node = rotor.node_at(0.122);
+  o.reference_nodes = {rotor.node_at(0.122)};
   o.amplitudes = {1e-8, 31e-6};
   const Backbone first = synchronous_backbones(spec, rotor, {crit[0]}, o).at(0);
-  o.reference_node = rotor.node_at(0.012);
+  o.reference_nodes = {rotor.node_at(0.012)};
   o.amplitudes = {1e-8, 100e-6, kRunAmplitude};
   const Backbone second = synchronous_backbones(spec, rotor, {crit[1]}, o).at(0);
   ASSERT_TRUE(first.stopped.empty()) << first.stopped;
   ASSERT_TRUE(second.stopped.empty()) << second.stopped;
+  // Given both wheels, each branch takes the one that moves most in its mode: the same backbones.
+  o.reference_nodes = {rotor.node_at(0.012), rotor.node_at(0.122)};
+  o.amplitudes = {31e-6};
+  const std::vector<Backbone> both = synchronous_backbones(spec, rotor, crit, o);
+  EXPECT_EQ(both.at(0).reference_node, rotor.node_at(0.122));
+  EXPECT_EQ(both.at(1).reference_node, rotor.node_at(0.012));
+  EXPECT_NEAR(both.at(0).points.at(0).speed / first.points[1].speed, 1.0, 1e-6);
   EXPECT_NEAR(first.points[0].speed / crit[0], 1.0, 1e-4);
   EXPECT_NEAR(second.points[0].speed / crit[1], 1.0, 1e-4);
   // The first critical softens (the preload's far-side contacts unload, the tilt stiffness saturates), the second
@@ -137,7 +144,7 @@ TEST(Backbone, ARigidSymmetricRotorWhirlsAtItsBearingsSecantStiffness) {
   for (double c : forward_criticals(lin, 150000 * kRpm))
     if (std::abs(c - w0) < std::abs(start - w0)) start = c;
   BackboneOptions o;
-  o.reference_node = rotor.node_at(0.035);
+  o.reference_nodes = {rotor.node_at(0.035)};
   o.amplitudes = {1e-6, 10e-6, 30e-6};
   const Backbone b = synchronous_backbones(spec, rotor, {start}, o).at(0);
   ASSERT_TRUE(b.stopped.empty()) << b.stopped;
@@ -154,7 +161,7 @@ TEST(Backbone, RefusesWhatItCannotTake) {
   const MachineSpec ball = load_model(testing::source_dir() + "/examples/reference_ball.toml");
   const Rotor rotor = build_rotor(ball);
   BackboneOptions o;
-  o.reference_node = 0;
+  o.reference_nodes = {0};
   o.amplitudes = {2e-6, 1e-6};
   EXPECT_THROW(synchronous_backbones(ball, rotor, {3000.0}, o), std::invalid_argument);
   o.amplitudes = {0.0};
