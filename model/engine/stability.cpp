@@ -230,7 +230,8 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
                                " with continuation steps of " +
                                number_text(speed / static_cast<double>(end) * kRadPerSToRpm) +
                                " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
-                               "traction carries, it finds no slope)");
+                               "traction carries, it finds no slope, and where the rolling state folds back on a "
+                               "falling friction law, friction_sliding < friction_static, it ends)");
     }
     prev = x;
     prev_speed = last_speed;
