@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/modal_command.h"
+#include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "post/plot.h"
 #include "post/report.h"
 #include "app/command_line.h"
@@ -20,8 +21,14 @@ namespace turbodyn::app {
 
 int run_response_command(const ResponseCommandOptions& options) {
   const MachineSpec spec = load_model(options.model_file, options.overrides);
-  require_linear_supports(spec);
-  const Rotor rotor = build_rotor(spec);
+  require_linear_supports(spec, true);
+  for (const BearingSpec& b : spec.bearings)
+    if (b.type == BearingType::FloatingRing)
+      throw ModelError(spec.source.string() + ": bearings." + b.name + ": floating-ring bearings are in the linear "
+                       "analyses of `turbodyn modal` only; the unbalance response takes linear and ball bearings");
+  Rotor rotor = build_rotor(spec);
+  // Ball bearings: their quasi-static linearisation at every speed, as in `turbodyn modal` (docs/ball-bearing.md).
+  add_ball_bearing_linearisations(spec, rotor);
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, std::max(spec.modal.n_speeds, 201));
   std::filesystem::create_directories(options.output_dir);
 
@@ -34,7 +41,12 @@ int run_response_command(const ResponseCommandOptions& options) {
     for (const char* s : {".fx_amplitude_n", ".fy_amplitude_n"}) names.push_back("bearing." + b.name + s);
   std::vector<std::vector<double>> cols(names.size());
   for (double w : speeds) {
-    const SteadyResponse r = unbalance_response(rotor, w);
+    SteadyResponse r;
+    try {
+      r = unbalance_response(rotor, w);
+    } catch (const QuasiStaticError& e) {
+      throw ModelError(spec.source.string() + ": a ball bearing's linearisation failed: " + e.what());
+    }
     std::size_t c = 0;
     cols[c++].push_back(w);
     cols[c++].push_back(w / (2 * M_PI));

@@ -23,12 +23,14 @@ SteadyResponse unbalance_response(const Rotor& rotor, double speed) {
   r.speed = speed;
   r.q = lu.solve(F);
   if (!r.q.allFinite()) throw std::runtime_error("the dynamic stiffness matrix is singular at this speed");
-  Eigen::Matrix2d k, c;
+  // A bearing's force on all 4 DOFs of its node (a ball bearing's linearisation couples translation and tilt; a
+  // table has zeros outside the x, y block).
+  Eigen::Matrix4d k, c;
   for (const LinearBearing& b : rotor.bearings) {
     b.coefficients(speed, k, c);
     const int i = rotor.dof(b.node, kX);
-    const Eigen::Vector2cd u(r.q(i), r.q(i + 1));
-    const Eigen::Vector2cd f = (k.cast<std::complex<double>>() + I * speed * c.cast<std::complex<double>>()) * u;
+    const Eigen::Vector4cd u = r.q.segment<4>(i);
+    const Eigen::Vector4cd f = (k.cast<std::complex<double>>() + I * speed * c.cast<std::complex<double>>()) * u;
     r.bearing_fx.push_back(f(0));
     r.bearing_fy.push_back(f(1));
   }

@@ -291,6 +291,14 @@ EOF2
     "$exe" modal "$src/examples/reference_ball_sfd.toml" --speeds "0:150000 rpm:7" -o "$out/sfd" > "$out/sfd.log" 2>&1
     [ $? -eq 2 ] || fail "damper accepted: $(cat "$out/sfd.log")"
     grep -q "squeeze-film dampers are nonlinear" "$out/sfd.log" || fail "message: $(cat "$out/sfd.log")"
+    # turbodyn response takes the same linearisation; floating rings stay refused there.
+    "$exe" response "$src/examples/reference_ball.toml" --speeds "20000:50000 rpm:31" -o "$out/response" \
+      > "$out/response.log" 2>&1 || fail "response: exit $?: $(cat "$out/response.log")"
+    expect_files "$out/response" response.csv response.json response.png
+    head -1 "$out/response/response.csv" | grep -q "bearing.compressor.fx_amplitude_n" || fail "no bearing forces"
+    "$exe" response "$src/examples/reference_floating_ring.toml" -o "$out/fr" > "$out/fr.log" 2>&1
+    [ $? -eq 2 ] && grep -q "floating-ring bearings are in the linear analyses of .turbodyn modal. only" "$out/fr.log" \
+      || fail "floating rings in response: $(cat "$out/fr.log")"
     ;;
   modal_amplitudes)
     # turbodyn modal --amplitudes: the forward 1x critical speeds at a whirl amplitude (model/engine/backbone.h).

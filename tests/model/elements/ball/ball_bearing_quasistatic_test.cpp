@@ -12,6 +12,7 @@
 #include "model/elements/ball/race_geometry.h"
 #include "model/io/model_file.h"
 #include "model/rotor/modal.h"
+#include "model/rotor/response.h"
 #include "model/spec/errors.h"
 #include "tests/support/ball_bearing_fixtures.h"
 #include "tests/support/test_support.h"
@@ -221,6 +222,22 @@ TEST(BallBearingQuasiStatic, ModalAnalysisOfTheReferenceBallRotor) {
     EXPECT_TRUE(std::isfinite(cs.speed) && cs.speed > 0.0);
     std::printf("[ modal ] 1x %s branch %d: %.0f rpm (%.1f Hz), zeta %.4g\n", to_string(cs.whirl).c_str(),
                 cs.branch + 1, cs.speed / kRpm, cs.frequency, cs.damping_ratio);
+  }
+  // The unbalance response on the same linearisation (`turbodyn response`) peaks at the forward critical speeds:
+  // the largest whirl of a wheel within 1 % of each crossing lies at it to 0.05 % (steps of 0.025 %).
+  for (const CriticalSpeed& cs : c.critical) {
+    if (cs.whirl != Whirl::Forward || cs.order != 1.0) continue;
+    double best = 0.0, at = 0.0;
+    for (int i = -40; i <= 40; ++i) {
+      const double w = cs.speed * (1.0 + 2.5e-4 * i);
+      const SteadyResponse r = unbalance_response(rotor, w);
+      for (const RigidDisk& d : rotor.disks) {
+        const double a = major_semi_axis(r.q(rotor.dof(d.node, kX)), r.q(rotor.dof(d.node, kY)));
+        if (a > best) best = a, at = w;
+      }
+    }
+    EXPECT_NEAR(at / cs.speed, 1.0, 5e-4) << "branch " << cs.branch;
+    std::printf("[ response ] peak at %.1f Hz (%.3g m), critical %.1f Hz\n", at / (2 * M_PI), best, cs.frequency);
   }
   // A squeeze-film damper stays refused, saying that it is nonlinear.
   const MachineSpec sfd = load_model(testing::source_dir() + "/examples/reference_ball_sfd.toml");
