@@ -427,6 +427,9 @@ int run_modal_command(const ModalCommandOptions& options) {
     for (int i = 0; i < kRingTableSpeeds; ++i) table.push_back(low + (top - low) * i / (kRingTableSpeeds - 1));
     if (top > 0.0) add_floating_ring_linearisations(spec, rotor, table);
   }
+  if (options.amplitudes.empty() && !options.amplitude_at.empty())
+    throw ModelError("--amplitude-at '" + options.amplitude_at + "': says where the amplitudes of --amplitudes are "
+                     "measured; give --amplitudes too");
   if (!options.amplitudes.empty())
     for (const BearingSpec& b : spec.bearings)
       if (b.type != BearingType::Ball && b.type != BearingType::Linear)

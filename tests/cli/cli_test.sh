@@ -340,6 +340,8 @@ EOF2
     }
     expect_modal_error "--amplitude-at 'disks.nope': no such disk or bearing (the model has disks.compressor" \
       "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitudes "1 um" --amplitude-at disks.nope
+    expect_modal_error "--amplitude-at 'disks.turbine': says where the amplitudes of --amplitudes are measured" \
+      "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitude-at disks.turbine
     expect_modal_error "--amplitudes '0:10 um:3': amplitudes must be greater than zero" \
       "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitudes "0:10 um:3"
     expect_modal_error "--amplitudes '1 kg'" "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:7" --amplitudes "1 kg"
