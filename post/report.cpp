@@ -177,6 +177,30 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
     }
     page.table("modes", {"mode", "damped natural frequency", "damping ratio", "whirl"}, rows);
   }
+  if (j.contains("backbones")) {
+    page.heading("Forward 1x critical speeds at a whirl amplitude");
+    page.paragraph("The rotor's synchronous whirl on the ball bearings' nonlinear quasi-static reaction (turbodyn "
+                   "modal --amplitudes): where a passage of each size peaks.");
+    const nlohmann::json& branches = j["backbones"].at("branches");
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      const std::string at = json_pointer("/backbones/branches", b);
+      const nlohmann::json& br = branches[b];
+      rows.clear();
+      for (std::size_t i = 0; i < br.at("points").size(); ++i) {
+        const std::string pt = json_pointer(at + "/points", i);
+        rows.push_back({HtmlPage::number(F, j, pt + "/amplitude_m", 1e6, "µm", 4),
+                        HtmlPage::number(F, j, pt + "/speed_rpm", 1.0, "rpm", 5),
+                        HtmlPage::number(F, j, pt + "/frequency_hz", 1.0, "Hz")});
+      }
+      page.paragraph_html("Branch " + std::to_string(br.at("branch").get<int>() + 1) + ", amplitude at " +
+                     html_escape(text(br, "amplitude_at")) + "; linearised " +
+                     HtmlPage::number(F, j, at + "/linear_speed_rpm", 1.0, "rpm", 5) + "." +
+                     (br.value("complete", true) ? std::string()
+                                                 : " INCOMPLETE: " + html_escape(text(br, "stopped"))));
+      if (!rows.empty())
+        page.table("backbone_" + std::to_string(b), {"whirl amplitude", "critical speed", "frequency"}, rows);
+    }
+  }
   pictures_and_files(page, in);
   page.write(dir);
 }

@@ -331,6 +331,9 @@ EOF2
       || fail "fold message: $(cat "$out/fold.log")"
     python3 -c "import json,sys; b=json.load(open(sys.argv[1]))['backbones']['branches']; assert not b[0]['complete'] and len(b[0]['points']) == 1" \
       "$out/fold/modal.json" || fail "fold not marked"
+    grep -q "Forward 1x critical speeds at a whirl amplitude" "$out/fold/report.html" || fail "no report section"
+    grep -q "INCOMPLETE: no synchronous whirl found beyond" "$out/fold/report.html" || fail "report: fold not marked"
+    python3 "$src/tests/cli/check_report.py" "$out/fold" modal 10 || fail "report numbers"
     expect_modal_error() {  # expected-message then arguments
       local msg=$1; shift
       "$exe" modal "$@" --no-plots -o "$out/bad" > "$out/bad.log" 2>&1
