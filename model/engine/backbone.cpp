@@ -226,17 +226,12 @@ BackbonePoint make_point(const WhirlProblem& problem, const WhirlState& w, doubl
   return pt;
 }
 
-double largest_deflection(const BallBearingEquilibrium& e) {
-  double d = 0.0;
-  for (const QuasiStaticBall& b : e.balls) d = std::max({d, b.inner_deflection, b.outer_deflection});
-  return d;
-}
-
-// Empty, or why the whirl at amplitude `a` is beyond the model: a ball contact deflected by more than `ratio` of its
-// ball diameter.
-std::string beyond_hertz(const WhirlProblem& problem, const WhirlState& w, double a, double ratio) {
+// Empty, or why the whirl at amplitude `a` is beyond the model: a ball contact deflected by more than its quasi-static
+// model's max_deflection_ratio of the ball diameter.
+std::string beyond_hertz(const WhirlProblem& problem, const WhirlState& w, double a) {
   for (std::size_t b = 0; b < problem.balls().size(); ++b) {
-    const double dmax = largest_deflection(w.bearings[b]);
+    const double dmax = largest_contact_deflection(w.bearings[b].balls);
+    const double ratio = problem.balls()[b].qs->options().max_deflection_ratio;
     const double lim = ratio * problem.balls()[b].element->spec().ball_diameter;
     if (dmax > lim) {
       std::ostringstream os;
@@ -262,7 +257,6 @@ std::vector<Backbone> synchronous_backbones(const MachineSpec& machine, const Ro
   for (int node : options.reference_nodes)
     if (node < 0 || node >= rotor.n_dof / kDofPerNode) throw std::invalid_argument("reference node out of range");
   const WhirlProblem problem(machine, rotor);
-  const double limit_ratio = QuasiStaticOptions{}.max_deflection_ratio;
 
   std::vector<Backbone> out;
   for (std::size_t k = 0; k < start_speeds.size(); ++k) {
@@ -314,7 +308,7 @@ std::vector<Backbone> synchronous_backbones(const MachineSpec& machine, const Ro
         if (ok) {
           w = std::move(trial);
           reached = a;
-          bb.stopped = beyond_hertz(problem, w, a, limit_ratio);
+          bb.stopped = beyond_hertz(problem, w, a);
           if (!bb.stopped.empty()) break;
           a = std::min(target, kMaxAmplitudeRatio * reached);
           halvings = 0;

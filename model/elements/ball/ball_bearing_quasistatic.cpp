@@ -38,14 +38,13 @@ std::string describe(double speed, const Vector5d& load) {
   return os.str();
 }
 
-// The largest contact deflection of the balls (m): against QuasiStaticOptions::max_deflection_ratio.
+}  // namespace
+
 double largest_contact_deflection(const std::vector<QuasiStaticBall>& balls) {
   double deflection = 0.0;
   for (const QuasiStaticBall& b : balls) deflection = std::max({deflection, b.inner_deflection, b.outer_deflection});
   return deflection;
 }
-
-}  // namespace
 
 BallBearingQuasiStatic::BallBearingQuasiStatic(const BallBearingElement& element, QuasiStaticOptions options)
     : element_(element), options_(std::move(options)), n_balls_(element.spec().n_balls) {

@@ -122,6 +122,7 @@ class BallBearingQuasiStatic {
                                                    const BallBearingEquilibrium* centred = nullptr) const;
 
   const BallBearingElement& element() const { return element_; }
+  const QuasiStaticOptions& options() const { return options_; }
   int n_balls() const { return n_balls_; }
 
  private:
@@ -140,6 +141,10 @@ class BallBearingQuasiStatic {
   int n_balls_ = 0;
   std::vector<double> azimuths_;
 };
+
+/// The largest contact deflection of the balls (m), to hold against QuasiStaticOptions::max_deflection_ratio of the
+/// ball diameter.
+double largest_contact_deflection(const std::vector<QuasiStaticBall>& balls);
 
 /// The linearised coefficients of a ball bearing for the rotor's linear analyses (modal): at each speed the
 /// quasi-static equilibrium of the centred shaft (preload only, no gravity), reached by continuation from rest,
