@@ -77,7 +77,6 @@ class WhirlProblem {
       s.qs = std::make_unique<BallBearingQuasiStatic>(*s.element);
       balls_.push_back(std::move(s));
     }
-    J_ = rotor.quarter_turn();
     m_omega_ = rotor.spin_softening();
   }
 
@@ -88,10 +87,9 @@ class WhirlProblem {
   // The linear part in the x-z plane at `speed`: P^T (K + K_b + speed^2 M_Omega) P. Throws for linear bearings
   // that couple the plane to the other or differ between the planes.
   Eigen::MatrixXd linear_part(double speed) const {
+    check_linear_bearings(speed);
     Eigen::MatrixXd K = rotor_.K, D = rotor_.D;
     rotor_.add_bearings(speed, K, D);
-    const Eigen::MatrixXd Kb = K - rotor_.K;
-    constexpr double kSymmetryTolerance = 1e-9;
     K += speed * speed * m_omega_;
     Eigen::MatrixXd A(size(), size());
     for (int i = 0; i < n_nodes_; ++i)
@@ -101,16 +99,27 @@ class WhirlProblem {
             const int ri = rotor_.dof(i, a == 0 ? kX : kThetaY), cj = rotor_.dof(j, b == 0 ? kX : kThetaY);
             A(2 * i + a, 2 * j + b) = K(ri, cj);
           }
-    const Eigen::MatrixXd coupling = Kb * J_ - J_ * Kb;
-    double cross = 0.0;  // x-plane rows against y-plane columns: (x, theta_y) vs (y, theta_x)
-    for (int i = 0; i < n_nodes_; ++i)
-      for (int j = 0; j < n_nodes_; ++j)
-        for (Dof a : {kX, kThetaY})
-          for (Dof b : {kY, kThetaX}) cross = std::max(cross, std::abs(Kb(rotor_.dof(i, a), rotor_.dof(j, b))));
-    if (coupling.norm() > kSymmetryTolerance * (1.0 + Kb.norm()) || cross > kSymmetryTolerance * (1.0 + Kb.norm()))
-      throw std::runtime_error("the critical speeds at an amplitude need linear bearings that are the same in every "
-                               "direction and not cross-coupled (kxx = kyy, kxy = kyx = 0) at " + rpm(speed));
     return A;
+  }
+
+  // Each linear bearing's 4 x 4 block at `speed` must commute with the quarter turn (the same in every direction)
+  // and leave the x-z plane (x, theta_y) uncoupled from the y-z plane (y, theta_x).
+  void check_linear_bearings(double speed) const {
+    constexpr double kSymmetryTolerance = 1e-9;
+    Eigen::Matrix4d quarter = Eigen::Matrix4d::Zero();  // Rotor::quarter_turn on one node
+    quarter(1, 0) = quarter(3, 2) = 1.0;
+    quarter(0, 1) = quarter(2, 3) = -1.0;
+    for (const LinearBearing& b : rotor_.bearings) {
+      Eigen::Matrix4d k, c;
+      b.coefficients(speed, k, c);
+      double cross = 0.0;
+      for (Dof r : {kX, kThetaY})
+        for (Dof q : {kY, kThetaX}) cross = std::max(cross, std::abs(k(r, q)));
+      const double tolerance = kSymmetryTolerance * (1.0 + k.norm());
+      if ((k * quarter - quarter * k).norm() > tolerance || cross > tolerance)
+        throw std::runtime_error("the critical speeds at an amplitude need linear bearings that are the same in "
+                                 "every direction and not cross-coupled (kxx = kyy, kxy = kyx = 0) at " + rpm(speed));
+    }
   }
 
   // The ball bearings' equilibria at the deflection p and `speed` (starting from, and overwriting, `states`) and
@@ -165,7 +174,7 @@ class WhirlProblem {
   const Rotor& rotor_;
   int n_nodes_ = 0;
   std::vector<BallSupport> balls_;
-  Eigen::MatrixXd J_, m_omega_;
+  Eigen::MatrixXd m_omega_;
 };
 
 // Newton's method on (p, speed) with p(ref) = amplitude, from `w` (overwritten by the solution). False if it
