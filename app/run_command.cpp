@@ -69,17 +69,23 @@ std::vector<plot::Series> read_campbell_overlay(const std::filesystem::path& fil
   return out;
 }
 
-// The critical speeds at an amplitude of `turbodyn modal --amplitudes` (its modal.json) as lines of amplitude against
-// rotor speed in Hz, one overlay per disk the branches were measured at, for that disk's 1x order track.
-std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::path& file) {
+// A JSON result file of `kind` ("summary.json"); `hint` follows "cannot be read" (e.g. what the directory should be).
+nlohmann::json read_json(const std::filesystem::path& file, const std::string& kind, const std::string& hint) {
   std::ifstream in(file);
-  if (!in) throw ModelError(file.string() + ": cannot be read");
+  if (!in) throw ModelError(file.string() + ": cannot be read" + hint);
   nlohmann::json j;
   try {
     in >> j;
   } catch (const std::exception& e) {
-    throw ModelError(file.string() + ": not a modal.json: " + e.what());
+    throw ModelError(file.string() + ": not a " + kind + ": " + e.what());
   }
+  return j;
+}
+
+// The critical speeds at an amplitude of `turbodyn modal --amplitudes` (its modal.json) as lines of amplitude against
+// rotor speed in Hz, one overlay per disk the branches were measured at, for that disk's 1x order track.
+std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::path& file) {
+  const nlohmann::json j = read_json(file, "modal.json", "");
   if (!j.contains("backbones") || !j["backbones"].contains("branches"))
     throw ModelError(file.string() + ": not a modal.json of turbodyn modal --amplitudes (no \"backbones\")");
   std::vector<post::OrderOverlay> out;
@@ -129,14 +135,7 @@ int run_plot_command(const PlotCommandOptions& options) {
   for (const std::filesystem::path& f : options.backbone_json)
     for (post::OrderOverlay& o : read_backbone_overlays(f)) order_overlays.push_back(std::move(o));
   const std::filesystem::path summary_file = options.run_dir / "summary.json";
-  std::ifstream in(summary_file);
-  if (!in) throw ModelError(summary_file.string() + ": cannot be read (not the output directory of turbodyn run?)");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw ModelError(summary_file.string() + ": not a summary.json: " + e.what());
-  }
+  nlohmann::json j = read_json(summary_file, "summary.json", " (not the output directory of turbodyn run?)");
   if (!j.contains("model") || !j["model"].contains("source") || !j.contains("overrides"))
     throw ModelError(summary_file.string() + ": no model.source or overrides (not written by turbodyn run)");
   std::vector<Override> overrides;
