@@ -148,6 +148,9 @@ int main(int argc, char** argv) {
   response->add_option("--speeds", response_options.speeds,
                        "Speeds: START:END:COUNT or a comma list, units allowed; default from [modal]");
   response->add_flag("!--no-plots", response_options.plots, "Do not draw PNG pictures");
+  response->add_flag("--nonlinear", response_options.nonlinear,
+                     "Also the nonlinear steady state on the ball bearings' quasi-static reaction, traced through "
+                     "its folds (jump speeds)");
   add_sets(response);
 
   // The study commands' common options: the study file, the output directory and the parallel runs.

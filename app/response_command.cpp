@@ -9,6 +9,8 @@
 
 #include "app/modal_command.h"
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/engine/unbalance_whirl.h"
+#include "model/spec/constants.h"
 #include "post/plot.h"
 #include "post/report.h"
 #include "app/command_line.h"
@@ -19,6 +21,87 @@
 
 namespace turbodyn::app {
 
+namespace {
+
+// The nonlinear response's curve: one row per point of each piece.
+nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
+  nlohmann::json out;
+  out["covers_range"] = nl.covers_range;
+  out["assumptions"] = {
+      "forward circular whirl at the rotor speed: a static deflection in the frame that turns with the shaft",
+      "ball bearings: quasi-static reaction at the ring's displacement and tilt (outer-race control, no race "
+      "traction, no contact damping, balls at 2 pi j / Z from the displacement), as turbodyn modal --amplitudes",
+      "linear bearings and the rotor's non-rotating damping act on the whirl's velocity; no gravity",
+      "folds: where the speed turns back a slow run-up jumps to another branch, where it turns forward again a slow "
+      "run-down does"};
+  for (const UnbalanceWhirlPiece& piece : nl.pieces) {
+    nlohmann::json p;
+    p["direction"] = piece.upward ? "up" : "down";
+    p["complete"] = piece.stopped.empty();
+    if (!piece.stopped.empty()) p["stopped"] = piece.stopped;
+    p["folds"] = nlohmann::json::array();
+    for (const UnbalanceWhirlFold& f : piece.folds)
+      p["folds"].push_back({{"speed_rad_s", f.speed},
+                            {"speed_hz", f.speed / (2 * M_PI)},
+                            {"speed_rpm", f.speed * kRadPerSToRpm},
+                            {"largest_radius_m", f.largest_radius},
+                            {"kind", f.speed_turns_back ? "turns back" : "turns forward"}});
+    nlohmann::json& c = p["columns"];
+    c["speed_rad_s"] = nlohmann::json::array();
+    c["speed_hz"] = nlohmann::json::array();
+    for (const UnbalanceWhirlPoint& pt : piece.points) {
+      c["speed_rad_s"].push_back(pt.speed);
+      c["speed_hz"].push_back(pt.speed / (2 * M_PI));
+      for (std::size_t d = 0; d < nl.disks.size(); ++d) {
+        c["disk." + nl.disks[d] + ".radius_m"].push_back(pt.disk_radius[d]);
+        c["disk." + nl.disks[d] + ".phase_rad"].push_back(pt.disk_phase[d]);
+      }
+      for (std::size_t b = 0; b < nl.bearings.size(); ++b) {
+        c["bearing." + nl.bearings[b] + ".force_n"].push_back(pt.bearing_force[b]);
+        c["bearing." + nl.bearings[b] + ".max_contact_load_n"].push_back(pt.max_contact_load[b]);
+      }
+    }
+    out["pieces"].push_back(p);
+  }
+  return out;
+}
+
+void write_nonlinear_csv(const UnbalanceWhirl& nl, const std::filesystem::path& path) {
+  OutputFile file(path);
+  std::ostream& csv = file.stream();
+  csv << std::setprecision(12) << "piece,direction,speed_rad_s,speed_hz";
+  for (const std::string& d : nl.disks) csv << ",disk." << d << ".radius_m,disk." << d << ".phase_rad";
+  for (const std::string& b : nl.bearings) csv << ",bearing." << b << ".force_n,bearing." << b << ".max_contact_load_n";
+  csv << "\n";
+  for (std::size_t k = 0; k < nl.pieces.size(); ++k)
+    for (const UnbalanceWhirlPoint& pt : nl.pieces[k].points) {
+      csv << k + 1 << "," << (nl.pieces[k].upward ? "up" : "down") << "," << pt.speed << "," << pt.speed / (2 * M_PI);
+      for (std::size_t d = 0; d < nl.disks.size(); ++d) csv << "," << pt.disk_radius[d] << "," << pt.disk_phase[d];
+      for (std::size_t b = 0; b < nl.bearings.size(); ++b)
+        csv << "," << pt.bearing_force[b] << "," << pt.max_contact_load[b];
+      csv << "\n";
+    }
+  file.commit();
+}
+
+void print_nonlinear(const UnbalanceWhirl& nl) {
+  std::cout << "Nonlinear steady state (ball bearings' quasi-static reaction, undamped contacts):\n";
+  for (std::size_t k = 0; k < nl.pieces.size(); ++k) {
+    const UnbalanceWhirlPiece& p = nl.pieces[k];
+    std::cout << "  piece " << k + 1 << " (" << (p.upward ? "up from the lowest" : "down from the highest")
+              << " speed): " << p.points.size() << " points"
+              << (p.stopped.empty() ? ", reaches the other end" : ", ends early: " + p.stopped) << "\n";
+    for (const UnbalanceWhirlFold& f : p.folds)
+      std::cout << "    fold at " << std::fixed << std::setprecision(0) << f.speed * kRadPerSToRpm << " rpm ("
+                << std::setprecision(1) << f.speed / (2 * M_PI) << " Hz), largest wheel whirl " << std::setprecision(2)
+                << f.largest_radius * 1e6 << " um: the speed turns "
+                << (f.speed_turns_back ? "back (a slow run-up jumps here)" : "forward (a slow run-down jumps here)")
+                << std::defaultfloat << "\n";
+  }
+}
+
+}  // namespace
+
 int run_response_command(const ResponseCommandOptions& options) {
   const MachineSpec spec = load_model(options.model_file, options.overrides);
   require_linear_supports(spec, true);
@@ -27,6 +110,7 @@ int run_response_command(const ResponseCommandOptions& options) {
       throw ModelError(spec.source.string() + ": bearings." + b.name + ": floating-ring bearings are in the linear "
                        "analyses of `turbodyn modal` only; the unbalance response takes linear and ball bearings");
   Rotor rotor = build_rotor(spec);
+  const Rotor bare = rotor;  // the nonlinear response takes the ball bearings themselves
   // Ball bearings: their quasi-static linearisation at every speed, as in `turbodyn modal` (docs/ball-bearing.md).
   add_ball_bearing_linearisations(spec, rotor);
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, std::max(spec.modal.n_speeds, 201));
@@ -76,6 +160,24 @@ int run_response_command(const ResponseCommandOptions& options) {
   }
   nlohmann::json j = result_header(spec, options.overrides);
   for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
+  UnbalanceWhirl nl;
+  if (options.nonlinear) {
+    UnbalanceWhirlOptions no;
+    no.end_speed = speeds.back();
+    no.start_speed = speeds.front() > 0.0 ? speeds.front() : std::max(speeds.size() > 1 ? speeds[1] : 0.0,
+                                                                       0.01 * speeds.back());
+    if (!(no.end_speed > no.start_speed))
+      throw ModelError("--nonlinear needs a range of speeds above zero (--speeds START:END:COUNT)");
+    try {
+      nl = nonlinear_unbalance_response(spec, bare, no);
+    } catch (const QuasiStaticError& e) {
+      throw ModelError(spec.source.string() + ": --nonlinear: a ball bearing's equilibrium failed: " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw ModelError(spec.source.string() + ": --nonlinear: " + e.what());
+    }
+    j["nonlinear"] = nonlinear_json(nl);
+    write_nonlinear_csv(nl, options.output_dir / "response_nonlinear.csv");
+  }
   write_output_file(options.output_dir / "response.json", j.dump(1) + "\n");
   if (options.plots) {
     plot::LineChart chart;
@@ -83,21 +185,57 @@ int run_response_command(const ResponseCommandOptions& options) {
     chart.xlabel = "rotor speed f_d [Hz]";
     chart.ylabel = "1x orbit major semi-axis [µm]";
     chart.logy = true;
+    static const char* const colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
     std::size_t c = 2;
-    for (const RigidDisk& d : rotor.disks) {
+    for (std::size_t k = 0; k < rotor.disks.size(); ++k) {
+      const RigidDisk& d = rotor.disks[k];
       std::vector<double> um = cols[c + 2];
       for (double& v : um) v *= 1e6;
-      chart.series.push_back({"disk " + d.name, cols[1], um, plot::Series::Style::Lines, "", 1.5});
+      const std::string colour = colours[k % 4];
+      if (!options.nonlinear) {
+        chart.series.push_back({"disk " + d.name, cols[1], um, plot::Series::Style::Lines, colour, 1.5});
+      } else {
+        chart.series.push_back({"disk " + d.name + ", linearised", cols[1], um, plot::Series::Style::Dashed, colour,
+                                1.0});
+        for (std::size_t p = 0; p < nl.pieces.size(); ++p) {
+          std::vector<double> hz, r;
+          for (const UnbalanceWhirlPoint& pt : nl.pieces[p].points) {
+            hz.push_back(pt.speed / (2 * M_PI));
+            r.push_back(pt.disk_radius[k] * 1e6);
+          }
+          chart.series.push_back({p == 0 ? "disk " + d.name + ", nonlinear" : "", hz, r,
+                                  plot::Series::Style::Lines, colour, 1.5});
+        }
+      }
       c += 4;
+    }
+    if (options.nonlinear) {
+      std::vector<double> hz, r;
+      for (const UnbalanceWhirlPiece& p : nl.pieces)
+        for (const UnbalanceWhirlFold& f : p.folds) {
+          hz.push_back(f.speed / (2 * M_PI));
+          r.push_back(f.largest_radius * 1e6);
+        }
+      if (!hz.empty()) chart.series.push_back({"folds (jump speeds)", hz, r, plot::Series::Style::Points, "black", 1.5});
     }
     plot::render_png(chart, options.output_dir / "response.png");
   }
+  std::vector<std::string> files{"response.json", "response.csv"};
+  if (options.nonlinear) files.push_back("response_nonlinear.csv");
   post::write_response_report(options.output_dir, j,
                               {command_line(), options.plots ? std::vector<std::string>{"response.png"}
                                                              : std::vector<std::string>{},
-                               {"response.json", "response.csv"}, {}});
+                               files, {}});
+  if (options.nonlinear) print_nonlinear(nl);
   std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json, report.html"
-            << (options.plots ? ", response.png" : "") << " (" << speeds.size() << " speeds)\n";
+            << (options.plots ? ", response.png" : "") << (options.nonlinear ? ", response_nonlinear.csv" : "")
+            << " (" << speeds.size() << " speeds)\n";
+  // Part of the range without a steady state within the model: written so far, exit code 3.
+  if (options.nonlinear && !nl.covers_range) {
+    std::cerr << "turbodyn response: the nonlinear response leaves part of the speed range without a steady state "
+                 "within the model (see the pieces above); written so far\n";
+    return 3;
+  }
   return 0;
 }
 

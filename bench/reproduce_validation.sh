@@ -107,6 +107,10 @@ for v in "${variants[@]}"; do
       if [[ $v == ball ]]; then
         cp "$dir/order1x_disk.compressor.png" docs/images/variant_ball_order1x_compressor.png
         cp "$dir/order1x_disk.turbine.png" docs/images/variant_ball_order1x_turbine.png
+        # The nonlinear unbalance response through the first two criticals (docs/ball-bearing.md).
+        "$exe" response "$model" --speeds "10000 rpm:60000 rpm:101" --nonlinear -o out/validation/response_ball \
+          > /dev/null
+        cp out/validation/response_ball/response.png docs/images/response_nonlinear_ball.png
       fi
       ;;
   esac

@@ -297,6 +297,35 @@ void write_response_report(const std::filesystem::path& dir, const nlohmann::jso
                     HtmlPage::number(F, j, json_pointer("/columns/speed_hz", k), kHzToRpm, "rpm", 5)});
   }
   page.table("peaks", {"column", "what", "peak", "at rotor speed"}, rows);
+  if (j.contains("nonlinear")) {
+    const nlohmann::json& nl = j.at("nonlinear");
+    page.heading("Nonlinear steady state");
+    page.paragraph("The forward synchronous whirl under the wheels' unbalance on the ball bearings' quasi-static "
+                   "reaction, traced by arclength continuation through its folds. Where the speed turns back a slow "
+                   "run-up jumps to another branch; where it turns forward again a slow run-down does.");
+    if (!nl.value("covers_range", false))
+      page.alert("Part of the speed range has no steady state within the model (the pieces end early, below).");
+    std::vector<Row> pieces, folds;
+    for (std::size_t k = 0; k < nl.at("pieces").size(); ++k) {
+      const nlohmann::json& p = nl.at("pieces")[k];
+      const std::string base = "/nonlinear/pieces/" + std::to_string(k);
+      pieces.push_back({std::to_string(k + 1), html_escape(text(p, "direction")),
+                        std::to_string(p.at("columns").at("speed_hz").size()),
+                        p.value("complete", false) ? "reaches the other end"
+                                                   : html_escape("ends early: " + text(p, "stopped"))});
+      for (std::size_t f = 0; f < p.at("folds").size(); ++f) {
+        const std::string fp = base + "/folds/" + std::to_string(f);
+        folds.push_back({std::to_string(k + 1), html_escape(text(p.at("folds")[f], "kind")),
+                         HtmlPage::number(F, j, fp + "/speed_rpm", 1.0, "rpm", 5),
+                         HtmlPage::number(F, j, fp + "/speed_hz", 1.0, "Hz"),
+                         HtmlPage::number(F, j, fp + "/largest_radius_m", 1e6, "µm")});
+      }
+    }
+    page.table("nonlinear_pieces", {"piece", "continued", "points", "status"}, pieces);
+    if (!folds.empty())
+      page.table("nonlinear_folds", {"piece", "the speed", "at rotor speed", "frequency", "largest wheel whirl"},
+                 folds);
+  }
   pictures_and_files(page, in);
   page.write(dir);
 }

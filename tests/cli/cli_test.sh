@@ -35,6 +35,44 @@ case $case in
     "$exe" response "$src/examples/reference_linear.toml" -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
     expect_files "$out" response.csv response.json response.png
     ;;
+  response_nonlinear)
+    # turbodyn response --nonlinear: the steady state on the ball bearings' quasi-static reaction, traced through its
+    # folds (model/engine/unbalance_whirl.h). Variant II's first forward critical softens and then hardens: its
+    # curve turns back at 496 Hz (a slow run-up jumps there) and forward again at 460 Hz (a slow run-down does).
+    "$exe" response "$src/examples/reference_ball.toml" --speeds "10000 rpm:60000 rpm:51" --nonlinear \
+      -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    expect_files "$out" response.csv response.json response_nonlinear.csv response.png report.html
+    grep -q "fold at 2978[0-9] rpm (496.[0-9] Hz), largest wheel whirl 13.[0-9]* um: the speed turns back" "$out/log" \
+      || fail "first fold: $(cat "$out/log")"
+    head -1 "$out/response_nonlinear.csv" | grep -q "^piece,direction,speed_rad_s,speed_hz,disk.compressor.radius_m" \
+      || fail "csv: $(head -1 "$out/response_nonlinear.csv")"
+    grep -q 'data-table="nonlinear_folds"' "$out/report.html" || fail "report without the folds"
+    python3 - "$out/response.json" <<'EOF2' || fail "response.json nonlinear"
+import json, sys
+nl = json.load(open(sys.argv[1]))["nonlinear"]
+assert nl["covers_range"], nl.keys()
+up = nl["pieces"][0]
+assert up["direction"] == "up" and [f["kind"] for f in up["folds"]][:2] == ["turns back", "turns forward"], up["folds"]
+assert 455 < up["folds"][1]["speed_hz"] < 465, up["folds"][1]
+c = up["columns"]
+assert len(c["speed_hz"]) == len(c["disk.turbine.radius_m"]) == len(c["bearing.turbine.force_n"]) > 50
+EOF2
+    # A hundred times the paper's unbalance: the curves from both ends climb their resonances beyond Hertz theory,
+    # which leaves the speeds between them without a steady state: written so far, exit code 3.
+    "$exe" response "$src/examples/reference_ball.toml" --speeds "10000 rpm:80000 rpm:15" --nonlinear --no-plots \
+      --set "disks.compressor.unbalance=39000 mg*mm" --set "disks.turbine.unbalance=58000 mg*mm" \
+      -o "$out/gap" > "$out/gap.log" 2>&1
+    [ $? -eq 3 ] || fail "exit $? for a gap: $(cat "$out/gap.log")"
+    grep -q "leaves part of the speed range without a steady state" "$out/gap.log" || fail "$(cat "$out/gap.log")"
+    python3 -c "import json,sys; n=json.load(open(sys.argv[1]))['nonlinear']; assert not n['covers_range'] and not n['pieces'][0]['complete']" \
+      "$out/gap/response.json" || fail "gap not marked"
+    # What it cannot take: a ball bearing in a squeeze-film damper.
+    "$exe" response "$src/examples/reference_ball_sfd.toml" --speeds "10000 rpm:30000 rpm:5" --nonlinear --no-plots \
+      -o "$out/sfd" > "$out/sfd.log" 2>&1
+    [ $? -eq 2 ] || fail "exit $? for a damper: $(cat "$out/sfd.log")"
+    grep -q "reference_ball_sfd.toml: bearings.compressor.damper: squeeze-film dampers are nonlinear" \
+      "$out/sfd.log" || fail "damper message: $(cat "$out/sfd.log")"
+    ;;
   run_short)
     "$exe" run "$src/examples/reference_linear.toml" --set "speed.end=40000 rpm" --set speed.duration=0.5 \
       -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"

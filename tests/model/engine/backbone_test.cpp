@@ -18,6 +18,7 @@
 #include "model/io/overrides.h"
 #include "model/rotor/modal.h"
 #include "model/spec/constants.h"
+#include "tests/model/engine/rigid_ball_rotor.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
@@ -120,14 +121,7 @@ TEST(Backbone, ARigidSymmetricRotorWhirlsAtItsBearingsSecantStiffness) {
   // F the radial load that holds one bearing's ring at A with its tilt held (the load-deflection curve, another
   // driver of the quasi-static model) and m the rotor's mass; solved here by fixed-point iteration in Omega. A
   // shaft of 14 mm and 1e14 Pa (476 times steel's modulus) leaves the bending at the 1e-3 level (-0.1 % at 30 um).
-  const MachineSpec spec = load_model(
-      testing::source_dir() + "/examples/reference_ball.toml",
-      {parse_override("materials.steel.E=1e14 Pa"), parse_override("shaft[0].outer_diameter=14 mm"),
-       parse_override("disks.compressor.z=35 mm"), parse_override("disks.turbine.z=105 mm"),
-       parse_override("disks.turbine.mass=0.119 kg"),
-       parse_override("disks.turbine.polar_inertia=2.5e-5 kg*m^2"),
-       parse_override("disks.turbine.diametral_inertia=1.6e-5 kg*m^2"),
-       parse_override("bearings.compressor.z=47.5 mm"), parse_override("bearings.turbine.z=92.5 mm")});
+  const MachineSpec spec = testing::rigid_symmetric_ball_rotor();
   const BallBearingElement element("compressor", spec.bearings.at(0).ball, 0, 0.0);
   const BallBearingQuasiStatic qs(element);
   const Rotor rotor = build_rotor(spec);

@@ -1,0 +1,373 @@
+#include "model/engine/unbalance_whirl.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "model/engine/synchronous_whirl.h"
+#include "model/spec/constants.h"
+
+namespace turbodyn {
+
+namespace {
+
+// The continuation works in scaled unknowns: the deflection over its largest translation (a tilt counted as the
+// displacement it gives kTiltLength away, about a wheel's overhang) and the speed over itself, both taken at the
+// last point of the curve, so that a step of the same size is a like change of the whirl at 10 nm and at 500 um.
+constexpr double kTiltLength = 0.01;           // m
+constexpr double kSmallestScale = 1e-10;       // m
+constexpr double kMaxSpeedStep = 0.01;         // relative change of the speed per step
+constexpr double kMaxDeflectionStep = 0.2;     // relative change of the deflection per step
+// Newton's corrections: relative to the deflection and the speed, or an absolute 1e-13 m on the deflection, where
+// the balls' equilibria leave their reaction exact to about 1e-9 N (a ball at the edge of a contact: Newton on it
+// stalls at 1e-8 of its force scale, docs/ball-bearing.md), i.e. 1e-16 m on bearings of 1e7 N/m.
+constexpr double kNewtonTolerance = 1e-8;
+constexpr double kAbsoluteTolerance = 1e-13;  // m
+constexpr int kMaxNewton = 10;
+constexpr int kFastNewton = 3;                 // at most this many iterations: the next step grows
+constexpr double kStepGrowth = 1.5;
+constexpr double kSmallestStep = 1e-7;         // scaled arclength
+
+std::string radius_text(double m) {
+  std::ostringstream os;
+  os.precision(3);
+  os << m * 1e6 << " um";
+  return os.str();
+}
+
+class Tracer {
+ public:
+  Tracer(const MachineSpec& machine, const Rotor& rotor, const WhirlProblem& problem)
+      : rotor_(rotor), problem_(problem), weights_(problem.size()) {
+    for (int i = 0; i < problem.size(); ++i) weights_(i) = problem.is_tilt(i) ? kTiltLength : 1.0;
+    for (const BearingSpec& b : machine.bearings) {
+      Support s;
+      s.name = b.name;
+      for (int k = 0; k < problem.n_balls(); ++k)
+        if (problem.ball_name(k) == b.name) s.ball = k;
+      for (std::size_t k = 0; k < rotor.bearings.size(); ++k)
+        if (rotor.bearings[k].name == b.name) s.linear = static_cast<int>(k);
+      if (s.ball >= 0 || s.linear >= 0) supports_.push_back(s);
+    }
+  }
+
+  std::vector<std::string> bearing_names() const {
+    std::vector<std::string> out;
+    for (const Support& s : supports_) out.push_back(s.name);
+    return out;
+  }
+
+  UnbalanceWhirlPiece trace(double from, double to, int max_points) const {
+    UnbalanceWhirlPiece piece;
+    piece.upward = to > from;
+    const double dir = piece.upward ? 1.0 : -1.0;
+    WhirlState w;
+    w.speed = from;
+    w.p = Eigen::VectorXd::Zero(problem_.size());
+    w.bearings = problem_.centred_bearings(from);
+    if (!solve_at_speed(w)) {
+      piece.stopped = "no steady state found at " + rpm_text(from);
+      return piece;
+    }
+    if (stop_beyond_hertz(w, piece)) return piece;
+    piece.points.push_back(point(w));
+    Eigen::VectorXd t;
+    double scale = scale_of(w.p);
+    if (!start_tangent(w, scale, dir, t)) {
+      piece.stopped = "no steady state found beyond " + rpm_text(from);
+      return piece;
+    }
+    double ds = step_limit(t);
+    while (static_cast<int>(piece.points.size()) < max_points) {
+      ds = std::min(ds, step_limit(t));
+      const double predicted = w.speed * (1.0 + ds * t(problem_.size()));
+      if (dir * t(problem_.size()) > 0.0 && dir * (predicted - to) >= 0.0) {
+        // The last step lands on the end of the range: the deflection predicted along the tangent, then corrected
+        // at that speed (on the same branch: no restart from the centre).
+        WhirlState last = w;
+        const double fraction = (to - w.speed) / (w.speed * t(problem_.size()));
+        last.p = w.p + (fraction * scale) * (t.head(problem_.size()).array() / weights_.array()).matrix();
+        last.speed = to;
+        if (newton_at_speed(last, 1.0)) {
+          if (stop_beyond_hertz(last, piece)) return piece;
+          piece.points.push_back(point(last));
+          return piece;
+        }
+        ds *= 0.5;
+        if (ds < kSmallestStep) break;
+        continue;
+      }
+      WhirlState next = w;
+      int iterations = 0;
+      if (!correct(w, scale, t, ds, next, iterations)) {
+        ds *= 0.5;
+        if (ds < kSmallestStep) break;
+        continue;
+      }
+      if (stop_beyond_hertz(next, piece)) return piece;
+      const double next_scale = scale_of(next.p);
+      // The previous tangent in the new point's scaling orients the new one.
+      Eigen::VectorXd previous = t;
+      previous.head(problem_.size()) *= scale / next_scale;
+      previous(problem_.size()) *= w.speed / next.speed;
+      Eigen::VectorXd t_next;
+      if (!tangent(next, next_scale, previous, t_next)) {
+        ds *= 0.5;
+        if (ds < kSmallestStep) break;
+        continue;
+      }
+      if ((t(problem_.size()) > 0.0) != (t_next(problem_.size()) > 0.0))
+        piece.folds.push_back(fold(w, next, t(problem_.size()) * w.speed, ds, t(problem_.size()) > 0.0));
+      if (dir * (next.speed - from) < 0.0) {
+        piece.stopped = "the response curve turns back past the start of the range at " + rpm_text(next.speed);
+        return piece;
+      }
+      w = std::move(next);
+      scale = next_scale;
+      t = t_next;
+      piece.points.push_back(point(w));
+      if (iterations <= kFastNewton) ds *= kStepGrowth;
+    }
+    std::ostringstream os;
+    if (static_cast<int>(piece.points.size()) >= max_points)
+      os << "the response curve has more than " << max_points << " points; it ends at " << rpm_text(w.speed);
+    else
+      os << "no steady state found beyond " << rpm_text(w.speed) << " (largest wheel whirl "
+         << radius_text(largest_radius(w.p)) << ")";
+    piece.stopped = os.str();
+    return piece;
+  }
+
+ private:
+  struct Support {
+    std::string name;
+    int ball = -1, linear = -1;
+  };
+
+  double scale_of(const Eigen::VectorXd& p) const {
+    return std::max(kSmallestScale, (p.array() * weights_.array()).abs().maxCoeff());
+  }
+
+  double largest_radius(const Eigen::VectorXd& p) const {
+    double r = 0.0;
+    for (const RigidDisk& d : rotor_.disks)
+      r = std::max(r, std::hypot(p(problem_.reduced(d.node, kX)), p(problem_.reduced(d.node, kY))));
+    return r;
+  }
+
+  double step_limit(const Eigen::VectorXd& t) const {
+    const int n = problem_.size();
+    return std::min(kMaxSpeedStep / std::max(std::abs(t(n)), 1e-12),
+                    kMaxDeflectionStep / std::max(t.head(n).lpNorm<Eigen::Infinity>(), 1e-12));
+  }
+
+  bool stop_beyond_hertz(const WhirlState& w, UnbalanceWhirlPiece& piece) const {
+    piece.stopped = problem_.beyond_hertz(w, "at " + rpm_text(w.speed) + " (largest wheel whirl " +
+                                                 radius_text(largest_radius(w.p)) + ")");
+    if (piece.stopped.empty()) return false;
+    piece.stopped += "; the response curve ends before it";
+    return true;
+  }
+
+  // Newton's method on the deflection at the state's speed, with the unbalance scaled by `load`.
+  bool newton_at_speed(WhirlState& w, double load) const {
+    Eigen::VectorXd r;
+    Eigen::MatrixXd Jp;
+    for (int it = 0; it < 2 * kMaxNewton; ++it) {
+      if (!problem_.residual(w.p, w.speed, w.bearings, r, load) || !problem_.jacobian_p(w, Jp)) return false;
+      const Eigen::VectorXd d = Jp.partialPivLu().solve(-r);
+      if (!d.allFinite()) return false;
+      w.p += d;
+      if ((d.array() * weights_.array()).abs().maxCoeff() <=
+          std::max(kNewtonTolerance * scale_of(w.p), kAbsoluteTolerance))
+        return problem_.residual(w.p, w.speed, w.bearings, r, load);
+    }
+    return false;
+  }
+
+  // The steady state at the state's speed from its deflection; if Newton's method fails from there (a large whirl
+  // far from the start), the unbalance is raised from a thousandth of its size in steps, each from the last.
+  bool solve_at_speed(WhirlState& w) const {
+    const WhirlState start = w;
+    if (newton_at_speed(w, 1.0)) return true;
+    w = start;
+    w.p.setZero();
+    double load = 0.0, factor = 4.0;  // at no unbalance the centred rotor is the steady state
+    while (load < 1.0) {
+      WhirlState trial = w;
+      const double next = load == 0.0 ? 1e-3 : std::min(1.0, load * factor);
+      if (load > 0.0) trial.p *= next / load;
+      if (newton_at_speed(trial, next)) {
+        w = std::move(trial);
+        load = next;
+      } else if (load == 0.0 || (factor = std::sqrt(factor)) < 1.01) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // The scaled Jacobian [dr/dp diag(scale / w), dr/dOmega Omega] at a state in equilibrium.
+  bool scaled_jacobian(const WhirlState& w, double scale, Eigen::MatrixXd& J) const {
+    const int n = problem_.size();
+    Eigen::MatrixXd Jp;
+    Eigen::VectorXd Js;
+    if (!problem_.jacobian_p(w, Jp) || !problem_.jacobian_speed(w, Js)) return false;
+    J.resize(n, n + 1);
+    for (int j = 0; j < n; ++j) J.col(j) = Jp.col(j) * (scale / weights_(j));
+    J.col(n) = Js * w.speed;
+    return true;
+  }
+
+  bool start_tangent(const WhirlState& w, double scale, double dir, Eigen::VectorXd& t) const {
+    const int n = problem_.size();
+    Eigen::MatrixXd J;
+    if (!scaled_jacobian(w, scale, J)) return false;
+    t.resize(n + 1);
+    t.head(n) = J.leftCols(n).partialPivLu().solve(-J.col(n));
+    t(n) = 1.0;
+    if (!t.allFinite()) return false;
+    t *= dir / t.norm();
+    return true;
+  }
+
+  // The unit tangent at w (scaled), oriented like `previous`.
+  bool tangent(const WhirlState& w, double scale, const Eigen::VectorXd& previous, Eigen::VectorXd& t) const {
+    const int n = problem_.size();
+    Eigen::MatrixXd J;
+    if (!scaled_jacobian(w, scale, J)) return false;
+    Eigen::MatrixXd A(n + 1, n + 1);
+    A.topRows(n) = J;
+    A.row(n) = previous.transpose();
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + 1);
+    rhs(n) = 1.0;
+    t = A.partialPivLu().solve(rhs);
+    if (!t.allFinite() || t.norm() == 0.0) return false;
+    t /= t.norm();
+    if (t.dot(previous) < 0.0) t = -t;
+    return true;
+  }
+
+  // Keller's pseudo-arclength corrector from w along the unit tangent t by ds (scaled at w's `scale`).
+  bool correct(const WhirlState& w, double scale, const Eigen::VectorXd& t, double ds, WhirlState& next,
+               int& iterations) const {
+    const int n = problem_.size();
+    auto to_scaled = [&](const WhirlState& s) {
+      Eigen::VectorXd z(n + 1);
+      z.head(n) = (s.p.array() * weights_.array()).matrix() / scale;
+      z(n) = s.speed / w.speed;
+      return z;
+    };
+    const Eigen::VectorXd z0 = to_scaled(w);
+    const Eigen::VectorXd predicted = z0 + ds * t;
+    next.p = (predicted.head(n).array() / weights_.array()).matrix() * scale;
+    next.speed = predicted(n) * w.speed;
+    Eigen::VectorXd r;
+    Eigen::MatrixXd J, A(n + 1, n + 1);
+    for (iterations = 1; iterations <= kMaxNewton; ++iterations) {
+      if (!(next.speed > 0.0) || !problem_.residual(next.p, next.speed, next.bearings, r)) return false;
+      if (!problem_.jacobian_p(next, J)) return false;
+      Eigen::VectorXd Js;
+      if (!problem_.jacobian_speed(next, Js)) return false;
+      for (int j = 0; j < n; ++j) A.block(0, j, n, 1) = J.col(j) * (scale / weights_(j));
+      A.block(0, n, n, 1) = Js * w.speed;
+      A.row(n) = t.transpose();
+      Eigen::VectorXd rhs(n + 1);
+      rhs.head(n) = -r;
+      rhs(n) = -t.dot(to_scaled(next) - predicted);
+      const Eigen::VectorXd d = A.partialPivLu().solve(rhs);
+      if (!d.allFinite()) return false;
+      next.p += (d.head(n).array() / weights_.array()).matrix() * scale;
+      next.speed += d(n) * w.speed;
+      if (d.head(n).lpNorm<Eigen::Infinity>() <= std::max(kNewtonTolerance, kAbsoluteTolerance / scale) &&
+          std::abs(d(n)) <= kNewtonTolerance) {
+        // Stay near the prediction: a corrector that wanders off may have jumped to another branch.
+        if ((to_scaled(next) - z0).norm() > 2.0 * ds) return false;
+        return next.speed > 0.0 && problem_.residual(next.p, next.speed, next.bearings, r);
+      }
+    }
+    return false;
+  }
+
+  // The fold between a and b: the speed along the curve as a quadratic in the arclength s with the speed and its
+  // slope (dOmega/ds = slope) at a and the speed at b (s = h).
+  UnbalanceWhirlFold fold(const WhirlState& a, const WhirlState& b, double slope, double h, bool turns_back) const {
+    UnbalanceWhirlFold f;
+    f.speed_turns_back = turns_back;
+    const double c = (b.speed - a.speed - slope * h) / (h * h);
+    double s = c != 0.0 ? -slope / (2.0 * c) : h;
+    s = std::clamp(s, 0.0, h);
+    f.speed = a.speed + slope * s + c * s * s;
+    const double ra = largest_radius(a.p), rb = largest_radius(b.p);
+    f.largest_radius = ra + (rb - ra) * (s / h);
+    return f;
+  }
+
+  UnbalanceWhirlPoint point(const WhirlState& w) const {
+    UnbalanceWhirlPoint pt;
+    pt.speed = w.speed;
+    for (const RigidDisk& d : rotor_.disks) {
+      const double x = w.p(problem_.reduced(d.node, kX)), y = w.p(problem_.reduced(d.node, kY));
+      pt.disk_radius.push_back(std::hypot(x, y));
+      pt.disk_phase.push_back(std::atan2(y, x));
+    }
+    for (const Support& s : supports_) {
+      if (s.ball >= 0) {
+        const Vector5d f = problem_.ball_force(w, s.ball);
+        pt.bearing_force.push_back(std::hypot(f(0), f(1)));
+        double qmax = 0.0;
+        for (const QuasiStaticBall& ball : w.bearings[s.ball].balls)
+          qmax = std::max({qmax, ball.inner_load, ball.outer_load});
+        pt.max_contact_load.push_back(qmax);
+      } else {
+        const LinearBearing& lb = rotor_.bearings[s.linear];
+        Eigen::Matrix4d k, c;
+        lb.coefficients(w.speed, k, c);
+        Eigen::Vector4d u;
+        u << w.p(problem_.reduced(lb.node, kX)), w.p(problem_.reduced(lb.node, kY)),
+            w.p(problem_.reduced(lb.node, kThetaX)), w.p(problem_.reduced(lb.node, kThetaY));
+        const Eigen::Vector4d ju(-u(1), u(0), -u(3), u(2));  // the whirl's velocity over Omega
+        const Eigen::Vector4d f = k * u + w.speed * (c * ju);
+        pt.bearing_force.push_back(std::hypot(f(0), f(1)));
+        pt.max_contact_load.push_back(0.0);
+      }
+    }
+    return pt;
+  }
+
+  const Rotor& rotor_;
+  const WhirlProblem& problem_;
+  Eigen::VectorXd weights_;
+  std::vector<Support> supports_;
+};
+
+}  // namespace
+
+UnbalanceWhirl nonlinear_unbalance_response(const MachineSpec& machine, const Rotor& rotor,
+                                            const UnbalanceWhirlOptions& options) {
+  if (!(std::isfinite(options.start_speed) && std::isfinite(options.end_speed) && options.start_speed > 0.0 &&
+        options.end_speed > options.start_speed))
+    throw std::invalid_argument("the speed range must be finite and increasing from above zero");
+  if (options.max_points < 2) throw std::invalid_argument("max_points must be at least 2");
+  const WhirlProblem problem(machine, rotor, WhirlProblem::Planes::Both, "the nonlinear unbalance response");
+  const Tracer tracer(machine, rotor, problem);
+  UnbalanceWhirl out;
+  out.bearings = tracer.bearing_names();
+  for (const RigidDisk& d : rotor.disks) out.disks.push_back(d.name);
+  out.pieces.push_back(tracer.trace(options.start_speed, options.end_speed, options.max_points));
+  if (out.pieces[0].stopped.empty()) {
+    out.covers_range = true;
+    return out;
+  }
+  out.pieces.push_back(tracer.trace(options.end_speed, options.start_speed, options.max_points));
+  double reached_up = options.start_speed, reached_down = options.end_speed;
+  for (const UnbalanceWhirlPoint& p : out.pieces[0].points) reached_up = std::max(reached_up, p.speed);
+  for (const UnbalanceWhirlPoint& p : out.pieces[1].points) reached_down = std::min(reached_down, p.speed);
+  out.covers_range = !out.pieces[0].points.empty() && !out.pieces[1].points.empty() && reached_down <= reached_up;
+  return out;
+}
+
+}  // namespace turbodyn

@@ -1,0 +1,73 @@
+// Nonlinear steady-state unbalance response of a rotor on ball bearings (`turbodyn response --nonlinear`,
+// docs/ball-bearing.md "Nonlinear unbalance response").
+//
+// At a constant speed the wheels' unbalances drive a forward circular whirl at the rotor speed, which in the frame
+// that turns with the shaft is a static deflection (synchronous_whirl.h):
+//   (K + K_b + Omega^2 M_Omega + Omega (D + C_b) J) q - f(q, Omega) = Omega^2 u,
+// f the ball bearings' quasi-static reactions. On linear bearings this is the linear unbalance response
+// (response.h) written in the turning frame. On ball bearings the response curve bends with the bearings'
+// stiffness: it may fold over, and between two folds three steady states exist at one speed. The curve is traced by
+// pseudo-arclength continuation in (q, Omega) (Keller 1977; Seydel, Practical Bifurcation and Stability Analysis,
+// Springer 2010, ch. 4), so it follows a fold instead of stopping at it. At a fold where the speed turns back a slow
+// run-up leaves the branch it is on and jumps to another one (Nayfeh & Mook 1979, §4.1, the jump phenomenon); at
+// one where the speed turns forward again a slow run-down does.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/rotor/rotor.h"
+#include "model/spec/model_spec.h"
+
+namespace turbodyn {
+
+struct UnbalanceWhirlPoint {
+  double speed = 0.0;                 ///< rad/s
+  std::vector<double> disk_radius;    ///< per Rotor::disks: radius of the wheel centre's circular whirl (m)
+  /// per Rotor::disks: angle of the wheel centre's deflection from the shaft's reference line (rad): x(t) =
+  /// radius cos(Omega t + phase), as the linear response's phase of x.
+  std::vector<double> disk_phase;
+  std::vector<double> bearing_force;     ///< per bearing (model order): amplitude of the force on the housing (N)
+  std::vector<double> max_contact_load;  ///< per bearing: a ball bearing's largest contact load (N), 0 if linear
+};
+
+/// A fold of the response curve: the speed turns back (a run-up jumps off here) or forward again (a run-down does).
+struct UnbalanceWhirlFold {
+  double speed = 0.0;         ///< rad/s, from a quadratic through the neighbouring points
+  double largest_radius = 0.0;  ///< the largest wheel whirl radius there (m)
+  bool speed_turns_back = true;  ///< true: the largest speed of a stretch of the curve
+};
+
+/// One stretch of the curve, continued from one end of the speed range.
+struct UnbalanceWhirlPiece {
+  bool upward = true;   ///< continued from the lowest speed (else from the highest)
+  std::vector<UnbalanceWhirlPoint> points;  ///< in the order of the continuation
+  std::vector<UnbalanceWhirlFold> folds;
+  /// Empty if it reached the other end of the range; else why it ended (a contact beyond Hertz theory, no steady
+  /// state found), naming the speed.
+  std::string stopped;
+};
+
+struct UnbalanceWhirl {
+  std::vector<std::string> bearings;  ///< names, model order (the order of bearing_force)
+  std::vector<std::string> disks;     ///< names, Rotor::disks order
+  /// The first continued upwards from the lowest speed; if it ends early, a second downwards from the highest.
+  std::vector<UnbalanceWhirlPiece> pieces;
+  /// True if the pieces together give a steady state at every speed of the range.
+  bool covers_range = false;
+};
+
+struct UnbalanceWhirlOptions {
+  double start_speed = 0.0, end_speed = 0.0;  ///< rad/s, 0 < start < end
+  int max_points = 5000;                      ///< per piece
+};
+
+/// The steady-state synchronous unbalance response over [start_speed, end_speed]. `machine` gives the ball
+/// bearings, `rotor` is built from it by build_rotor (its linear bearings and disks with their unbalances).
+/// Throws std::invalid_argument for a bad range, std::runtime_error for supports it cannot take (floating rings,
+/// journal bearings, dampers, radial springs, pedestal masses, linear bearings that differ between directions) and
+/// QuasiStaticError if a ball bearing has no centred equilibrium.
+UnbalanceWhirl nonlinear_unbalance_response(const MachineSpec& machine, const Rotor& rotor,
+                                            const UnbalanceWhirlOptions& options);
+
+}  // namespace turbodyn
