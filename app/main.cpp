@@ -138,6 +138,9 @@ int main(int argc, char** argv) {
   plot->add_option("--backbone", plot_options.backbone_json,
                    "modal.json of turbodyn modal --amplitudes: draw its critical speeds at an amplitude on that "
                    "disk's 1x order track (may be given more than once)");
+  plot->add_option("--response", plot_options.response_json,
+                   "response.json of turbodyn response --nonlinear: draw its steady states on the disks' 1x order "
+                   "tracks (may be given more than once)");
   add_sets(plot);
 
   turbodyn::app::ResponseCommandOptions response_options;

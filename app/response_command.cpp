@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -32,11 +33,13 @@ nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
       "ball bearings: quasi-static reaction at the ring's displacement and tilt (outer-race control, no race "
       "traction, no contact damping, balls at 2 pi j / Z from the displacement), as turbodyn modal --amplitudes",
       "linear bearings and the rotor's non-rotating damping act on the whirl's velocity; no gravity",
-      "folds: where the speed turns back a slow run-up jumps to another branch, where it turns forward again a slow "
-      "run-down does"};
+      "folds: where the speed turns back a slow run-up on that branch jumps to another one, where it turns forward "
+      "again a slow run-down on that branch does"};
   for (const UnbalanceWhirlPiece& piece : nl.pieces) {
     nlohmann::json p;
     p["direction"] = piece.upward ? "up" : "down";
+    p["from_speed_rpm"] = piece.start_speed * kRadPerSToRpm;
+    if (piece.joins >= 0) p["joins_piece"] = piece.joins + 1;
     p["complete"] = piece.stopped.empty();
     if (!piece.stopped.empty()) p["stopped"] = piece.stopped;
     p["folds"] = nlohmann::json::array();
@@ -88,14 +91,22 @@ void print_nonlinear(const UnbalanceWhirl& nl) {
   std::cout << "Nonlinear steady state (ball bearings' quasi-static reaction, undamped contacts):\n";
   for (std::size_t k = 0; k < nl.pieces.size(); ++k) {
     const UnbalanceWhirlPiece& p = nl.pieces[k];
-    std::cout << "  piece " << k + 1 << " (" << (p.upward ? "up from the lowest" : "down from the highest")
-              << " speed): " << p.points.size() << " points"
-              << (p.stopped.empty() ? ", reaches the other end" : ", ends early: " + p.stopped) << "\n";
+    std::ostringstream status;
+    if (p.joins >= 0)
+      status << ", joins piece " << p.joins + 1;
+    else if (p.stopped.empty())
+      status << ", reaches the " << (p.upward ? "highest" : "lowest") << " speed";
+    else
+      status << ", ends early: " << p.stopped;
+    std::cout << "  piece " << k + 1 << " (" << (p.upward ? "up" : "down") << " from " << std::fixed
+              << std::setprecision(0) << p.start_speed * kRadPerSToRpm << " rpm" << std::defaultfloat
+              << "): " << p.points.size() << " points" << status.str() << "\n";
     for (const UnbalanceWhirlFold& f : p.folds)
       std::cout << "    fold at " << std::fixed << std::setprecision(0) << f.speed * kRadPerSToRpm << " rpm ("
                 << std::setprecision(1) << f.speed / (2 * M_PI) << " Hz), largest wheel whirl " << std::setprecision(2)
                 << f.largest_radius * 1e6 << " um: the speed turns "
-                << (f.speed_turns_back ? "back (a slow run-up jumps here)" : "forward (a slow run-down jumps here)")
+                << (f.speed_turns_back ? "back (a slow run-up on this branch jumps off here)"
+                                     : "forward (a slow run-down on this branch jumps off here)")
                 << std::defaultfloat << "\n";
   }
 }

@@ -117,6 +117,47 @@ std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::pa
   return out;
 }
 
+// The nonlinear steady states of `turbodyn response --nonlinear` as overlays of the disks' 1x order tracks: one line
+// per piece of the curve and disk, the folds (jump speeds) as points.
+std::vector<post::OrderOverlay> read_response_overlays(const std::filesystem::path& file) {
+  const nlohmann::json j = read_json(file, "response.json", "");
+  if (!j.contains("nonlinear") || !j["nonlinear"].contains("pieces"))
+    throw ModelError(file.string() + ": not a response.json of turbodyn response --nonlinear (no \"nonlinear\")");
+  std::vector<post::OrderOverlay> out;
+  auto overlay = [&](const std::string& stem) -> post::OrderOverlay& {
+    auto it = std::find_if(out.begin(), out.end(), [&](const post::OrderOverlay& o) { return o.stem == stem; });
+    if (it == out.end()) it = out.insert(out.end(), post::OrderOverlay{stem, {}});
+    return *it;
+  };
+  constexpr const char* kColor = "#444444";
+  const std::string suffix = ".radius_m";
+  try {
+    const nlohmann::json& pieces = j["nonlinear"]["pieces"];
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const nlohmann::json& cols = pieces[k].at("columns");
+      std::vector<double> hz;
+      for (const auto& v : cols.at("speed_hz")) hz.push_back(v.get<double>());
+      for (const auto& [name, values] : cols.items()) {
+        if (name.rfind("disk.", 0) != 0 || name.size() <= suffix.size() ||
+            name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+          continue;
+        const std::string stem = name.substr(0, name.size() - suffix.size());
+        plot::Series s{k == 0 ? "steady state (turbodyn response --nonlinear)" : "", hz, {},
+                       plot::Series::Style::Lines, kColor, 1.2};
+        for (const auto& v : values) s.y.push_back(v.get<double>());
+        if (s.y.size() != s.x.size())
+          throw ModelError(file.string() + ": nonlinear piece " + std::to_string(k + 1) + ": " + name +
+                           " and speed_hz differ in length");
+        if (!s.x.empty()) overlay(stem).series.push_back(std::move(s));
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw ModelError(file.string() + ": nonlinear: " + e.what());
+  }
+  if (out.empty()) throw ModelError(file.string() + ": its nonlinear response has no points");
+  return out;
+}
+
 // The result files of a run directory besides the pictures, for the report's links.
 std::vector<std::string> run_files(const std::filesystem::path& dir) {
   std::vector<std::string> files;
@@ -134,6 +175,8 @@ int run_plot_command(const PlotCommandOptions& options) {
   std::vector<post::OrderOverlay> order_overlays;
   for (const std::filesystem::path& f : options.backbone_json)
     for (post::OrderOverlay& o : read_backbone_overlays(f)) order_overlays.push_back(std::move(o));
+  for (const std::filesystem::path& f : options.response_json)
+    for (post::OrderOverlay& o : read_response_overlays(f)) order_overlays.push_back(std::move(o));
   const std::filesystem::path summary_file = options.run_dir / "summary.json";
   nlohmann::json j = read_json(summary_file, "summary.json", " (not the output directory of turbodyn run?)");
   if (!j.contains("model") || !j["model"].contains("source") || !j.contains("overrides"))

@@ -28,6 +28,8 @@ struct PlotCommandOptions {
   /// modal.json files of `turbodyn modal --amplitudes` measured at a disk: their critical speeds at an amplitude are
   /// drawn on that disk's 1x order track.
   std::vector<std::filesystem::path> backbone_json;
+  /// response.json files of `turbodyn response --nonlinear`: their steady states on the disks' 1x order tracks.
+  std::vector<std::filesystem::path> response_json;
 };
 
 /// Redraws the pictures of an earlier run from its timeseries.h5 (also a partial one), with the model file and

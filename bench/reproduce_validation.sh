@@ -111,6 +111,14 @@ for v in "${variants[@]}"; do
         "$exe" response "$model" --speeds "10000 rpm:60000 rpm:101" --nonlinear -o out/validation/response_ball \
           > /dev/null
         cp out/validation/response_ball/response.png docs/images/response_nonlinear_ball.png
+        # A slow run-down through the first critical (1/16 of the paper's rate) on its steady states.
+        "$exe" run "$model" --set speed.start=38000rpm --set speed.end=24000rpm --set speed.duration=5.97333s \
+          --no-plots -o out/validation/rundown_ball > /dev/null
+        "$exe" response "$model" --speeds "15000 rpm:45000 rpm:61" --nonlinear --no-plots \
+          -o out/validation/response_ball_rundown > /dev/null
+        "$exe" plot out/validation/rundown_ball --response out/validation/response_ball_rundown/response.json \
+          > /dev/null
+        cp out/validation/rundown_ball/order1x_disk.turbine.png docs/images/response_nonlinear_rundown_turbine.png
       fi
       ;;
   esac

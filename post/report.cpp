@@ -302,17 +302,21 @@ void write_response_report(const std::filesystem::path& dir, const nlohmann::jso
     page.heading("Nonlinear steady state");
     page.paragraph("The forward synchronous whirl under the wheels' unbalance on the ball bearings' quasi-static "
                    "reaction, traced by arclength continuation through its folds. Where the speed turns back a slow "
-                   "run-up jumps to another branch; where it turns forward again a slow run-down does.");
+                   "run-up on that branch jumps to another one; where it turns forward again a slow run-down on it does.");
     if (!nl.value("covers_range", false))
       page.alert("Part of the speed range has no steady state within the model (the pieces end early, below).");
     std::vector<Row> pieces, folds;
     for (std::size_t k = 0; k < nl.at("pieces").size(); ++k) {
       const nlohmann::json& p = nl.at("pieces")[k];
       const std::string base = "/nonlinear/pieces/" + std::to_string(k);
-      pieces.push_back({std::to_string(k + 1), html_escape(text(p, "direction")),
-                        std::to_string(p.at("columns").at("speed_hz").size()),
-                        p.value("complete", false) ? "reaches the other end"
-                                                   : html_escape("ends early: " + text(p, "stopped"))});
+      const std::string status = p.contains("joins_piece")
+                                     ? "joins piece " + std::to_string(p.at("joins_piece").get<int>())
+                                 : p.value("complete", false) ? "reaches the end of the range"
+                                                              : "ends early: " + text(p, "stopped");
+      pieces.push_back({std::to_string(k + 1),
+                        html_escape(text(p, "direction")) + " from " +
+                            HtmlPage::number(F, j, base + "/from_speed_rpm", 1.0, "rpm", 5),
+                        std::to_string(p.at("columns").at("speed_hz").size()), html_escape(status)});
       for (std::size_t f = 0; f < p.at("folds").size(); ++f) {
         const std::string fp = base + "/folds/" + std::to_string(f);
         folds.push_back({std::to_string(k + 1), html_escape(text(p.at("folds")[f], "kind")),

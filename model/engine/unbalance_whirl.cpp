@@ -30,6 +30,8 @@ constexpr int kMaxNewton = 10;
 constexpr int kFastNewton = 3;                 // at most this many iterations: the next step grows
 constexpr double kStepGrowth = 1.5;
 constexpr double kSmallestStep = 1e-7;         // scaled arclength
+constexpr int kSeeds = 16;                     // intervals of the seeds' speeds across the range
+constexpr std::size_t kDuplicatePoints = 3;
 
 std::string radius_text(double m) {
   std::ostringstream os;
@@ -60,24 +62,30 @@ class Tracer {
     return out;
   }
 
-  UnbalanceWhirlPiece trace(double from, double to, int max_points) const {
-    UnbalanceWhirlPiece piece;
-    piece.upward = to > from;
-    const double dir = piece.upward ? 1.0 : -1.0;
-    WhirlState w;
-    w.speed = from;
+  // The steady state at `speed` reached from the centred rotor (by raising the unbalance if need be): the branch
+  // that grows out of the linear response there. False if none is found.
+  bool start_at(double speed, WhirlState& w) const {
+    w.speed = speed;
     w.p = Eigen::VectorXd::Zero(problem_.size());
-    w.bearings = problem_.centred_bearings(from);
-    if (!solve_at_speed(w)) {
-      piece.stopped = "no steady state found at " + rpm_text(from);
-      return piece;
-    }
+    w.bearings = problem_.centred_bearings(speed);
+    return solve_at_speed(w);
+  }
+
+  // Continues the curve from the steady state w, upwards to `hi` or downwards to `lo`, until it reaches that end,
+  // leaves the range at the other, runs into one of `others` (joins it) or ends.
+  UnbalanceWhirlPiece trace(WhirlState w, double lo, double hi, bool upward,
+                            const std::vector<UnbalanceWhirlPiece>& others, int max_points) const {
+    UnbalanceWhirlPiece piece;
+    piece.upward = upward;
+    piece.start_speed = w.speed;
+    const double dir = upward ? 1.0 : -1.0;
+    const double to = upward ? hi : lo;
     if (stop_beyond_hertz(w, piece)) return piece;
     piece.points.push_back(point(w));
     Eigen::VectorXd t;
     double scale = scale_of(w.p);
     if (!start_tangent(w, scale, dir, t)) {
-      piece.stopped = "no steady state found beyond " + rpm_text(from);
+      piece.stopped = "no steady state found beyond " + rpm_text(w.speed);
       return piece;
     }
     double ds = step_limit(t);
@@ -121,14 +129,19 @@ class Tracer {
       }
       if ((t(problem_.size()) > 0.0) != (t_next(problem_.size()) > 0.0))
         piece.folds.push_back(fold(w, next, t(problem_.size()) * w.speed, ds, t(problem_.size()) > 0.0));
-      if (dir * (next.speed - from) < 0.0) {
-        piece.stopped = "the response curve turns back past the start of the range at " + rpm_text(next.speed);
+      if (next.speed < lo || next.speed > hi) {
+        piece.stopped = "the response curve turns back out of the range at " + rpm_text(next.speed);
         return piece;
       }
       w = std::move(next);
       scale = next_scale;
       t = t_next;
       piece.points.push_back(point(w));
+      for (std::size_t k = 0; k < others.size(); ++k)
+        if (on_piece(piece.points.back(), others[k])) {
+          piece.joins = static_cast<int>(k);
+          return piece;
+        }
       if (iterations <= kFastNewton) ds *= kStepGrowth;
     }
     std::ostringstream os;
@@ -139,6 +152,28 @@ class Tracer {
          << radius_text(largest_radius(w.p)) << ")";
     piece.stopped = os.str();
     return piece;
+  }
+
+  // Whether the point lies on the piece: between two of its points in speed, with every wheel's whirl radius within
+  // kSamePoint of the straight line between them (of the largest radius). The steps are short enough (1 % in speed,
+  // 20 % in deflection) for the line to stay that close to the curve away from its folds.
+  bool on_piece(const UnbalanceWhirlPoint& p, const UnbalanceWhirlPiece& piece) const {
+    constexpr double kSamePoint = 0.05;
+    double size = 0.0;
+    for (double r : p.disk_radius) size = std::max(size, r);
+    const double tolerance = kSamePoint * std::max(size, kSmallestScale);
+    for (std::size_t i = 0; i + 1 < piece.points.size(); ++i) {
+      const UnbalanceWhirlPoint& a = piece.points[i];
+      const UnbalanceWhirlPoint& b = piece.points[i + 1];
+      if ((p.speed - a.speed) * (p.speed - b.speed) > 0.0 || a.speed == b.speed) continue;
+      const double t = (p.speed - a.speed) / (b.speed - a.speed);
+      bool close = true;
+      for (std::size_t d = 0; d < p.disk_radius.size() && close; ++d)
+        close = std::abs(p.disk_radius[d] - (a.disk_radius[d] + t * (b.disk_radius[d] - a.disk_radius[d]))) <=
+                tolerance;
+      if (close) return true;
+    }
+    return false;
   }
 
  private:
@@ -306,6 +341,7 @@ class Tracer {
     return f;
   }
 
+ public:
   UnbalanceWhirlPoint point(const WhirlState& w) const {
     UnbalanceWhirlPoint pt;
     pt.speed = w.speed;
@@ -338,6 +374,7 @@ class Tracer {
     return pt;
   }
 
+ private:
   const Rotor& rotor_;
   const WhirlProblem& problem_;
   Eigen::VectorXd weights_;
@@ -357,16 +394,48 @@ UnbalanceWhirl nonlinear_unbalance_response(const MachineSpec& machine, const Ro
   UnbalanceWhirl out;
   out.bearings = tracer.bearing_names();
   for (const RigidDisk& d : rotor.disks) out.disks.push_back(d.name);
-  out.pieces.push_back(tracer.trace(options.start_speed, options.end_speed, options.max_points));
-  if (out.pieces[0].stopped.empty()) {
-    out.covers_range = true;
-    return out;
+  const double lo = options.start_speed, hi = options.end_speed;
+  auto from_end = [&](double speed, bool upward) {
+    WhirlState w;
+    if (tracer.start_at(speed, w)) return tracer.trace(w, lo, hi, upward, out.pieces, options.max_points);
+    UnbalanceWhirlPiece piece;
+    piece.upward = upward;
+    piece.start_speed = speed;
+    piece.stopped = "no steady state found at " + rpm_text(speed);
+    return piece;
+  };
+  out.pieces.push_back(from_end(lo, true));
+  if (!out.pieces[0].stopped.empty()) out.pieces.push_back(from_end(hi, false));
+  // Branches that neither end reaches (above a critical whose resonant branch the continuation climbs, say): seeded
+  // at speeds across the range from the centred rotor, where the point found lies on no piece yet. A seed's piece
+  // that joins another within its first steps is that piece again, and is dropped.
+  for (int i = 1; i < kSeeds; ++i) {
+    const double speed = lo + (hi - lo) * i / kSeeds;
+    WhirlState w;
+    if (!tracer.start_at(speed, w)) continue;
+    const UnbalanceWhirlPoint seed = tracer.point(w);
+    if (std::any_of(out.pieces.begin(), out.pieces.end(),
+                    [&](const UnbalanceWhirlPiece& p) { return tracer.on_piece(seed, p); }))
+      continue;
+    const std::vector<UnbalanceWhirlPiece> before = out.pieces;
+    for (bool upward : {true, false}) {
+      UnbalanceWhirlPiece piece = tracer.trace(w, lo, hi, upward, before, options.max_points);
+      if (!(piece.joins >= 0 && piece.points.size() <= kDuplicatePoints)) out.pieces.push_back(std::move(piece));
+    }
   }
-  out.pieces.push_back(tracer.trace(options.end_speed, options.start_speed, options.max_points));
-  double reached_up = options.start_speed, reached_down = options.end_speed;
-  for (const UnbalanceWhirlPoint& p : out.pieces[0].points) reached_up = std::max(reached_up, p.speed);
-  for (const UnbalanceWhirlPoint& p : out.pieces[1].points) reached_down = std::min(reached_down, p.speed);
-  out.covers_range = !out.pieces[0].points.empty() && !out.pieces[1].points.empty() && reached_down <= reached_up;
+  // Covered: the union of the pieces' speed intervals is the range.
+  std::vector<std::pair<double, double>> spans;
+  for (const UnbalanceWhirlPiece& p : out.pieces) {
+    if (p.points.empty()) continue;
+    double a = p.points.front().speed, b = a;
+    for (const UnbalanceWhirlPoint& q : p.points) a = std::min(a, q.speed), b = std::max(b, q.speed);
+    spans.emplace_back(a, b);
+  }
+  std::sort(spans.begin(), spans.end());
+  double reached = lo;
+  for (const auto& [a, b] : spans)
+    if (a <= reached * (1.0 + 1e-12)) reached = std::max(reached, b);
+  out.covers_range = reached >= hi * (1.0 - 1e-12);
   return out;
 }
 

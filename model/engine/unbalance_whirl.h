@@ -10,7 +10,8 @@
 // pseudo-arclength continuation in (q, Omega) (Keller 1977; Seydel, Practical Bifurcation and Stability Analysis,
 // Springer 2010, ch. 4), so it follows a fold instead of stopping at it. At a fold where the speed turns back a slow
 // run-up leaves the branch it is on and jumps to another one (Nayfeh & Mook 1979, §4.1, the jump phenomenon); at
-// one where the speed turns forward again a slow run-down does.
+// one where the speed turns forward again a slow run-down does (each on the branch it arrives on). Branches that
+// neither end of the range reaches are found from seeds across the range.
 #pragma once
 
 #include <string>
@@ -31,27 +32,31 @@ struct UnbalanceWhirlPoint {
   std::vector<double> max_contact_load;  ///< per bearing: a ball bearing's largest contact load (N), 0 if linear
 };
 
-/// A fold of the response curve: the speed turns back (a run-up jumps off here) or forward again (a run-down does).
+/// A fold of the response curve: the speed turns back (a run-up on this branch jumps off here) or forward again (a
+/// run-down on it does).
 struct UnbalanceWhirlFold {
   double speed = 0.0;         ///< rad/s, from a quadratic through the neighbouring points
   double largest_radius = 0.0;  ///< the largest wheel whirl radius there (m)
   bool speed_turns_back = true;  ///< true: the largest speed of a stretch of the curve
 };
 
-/// One stretch of the curve, continued from one end of the speed range.
+/// One stretch of the curve, continued in one direction from its first point.
 struct UnbalanceWhirlPiece {
-  bool upward = true;   ///< continued from the lowest speed (else from the highest)
+  bool upward = true;       ///< continued towards higher speeds
+  double start_speed = 0.0;  ///< rad/s, its first point: an end of the range or a seed
   std::vector<UnbalanceWhirlPoint> points;  ///< in the order of the continuation
   std::vector<UnbalanceWhirlFold> folds;
-  /// Empty if it reached the other end of the range; else why it ended (a contact beyond Hertz theory, no steady
-  /// state found), naming the speed.
+  int joins = -1;  ///< index of an earlier piece it ran into (and ended on), or -1
+  /// Empty if it reached the end of the range it went towards or joined another piece; else why it ended (a
+  /// contact beyond Hertz theory, no steady state found, out of the range at the other end), naming the speed.
   std::string stopped;
 };
 
 struct UnbalanceWhirl {
   std::vector<std::string> bearings;  ///< names, model order (the order of bearing_force)
   std::vector<std::string> disks;     ///< names, Rotor::disks order
-  /// The first continued upwards from the lowest speed; if it ends early, a second downwards from the highest.
+  /// The first continued upwards from the lowest speed. If it ends early, a second downwards from the highest, and
+  /// then pairs (up, down) from seeds across the range that lie on neither: branches no end reaches.
   std::vector<UnbalanceWhirlPiece> pieces;
   /// True if the pieces together give a steady state at every speed of the range.
   bool covers_range = false;

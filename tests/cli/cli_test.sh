@@ -125,6 +125,15 @@ EOF2
     "$exe" modal "$src/examples/reference_linear.toml" --amplitudes "1 um" --amplitude-at bearings.turbine --no-plots \
       -o "$out/backbone_bearing" > "$out/log" 2>&1 || fail "modal --amplitude-at bearings.turbine: $(cat "$out/log")"
     expect_plot_error "order tracks of the disks' displacements only" --backbone "$out/backbone_bearing/modal.json"
+    # The steady states of `turbodyn response --nonlinear` (here the linear rotor's: the same curve) on the order tracks.
+    "$exe" response "$src/examples/reference_linear.toml" --speeds "5000:40000 rpm:8" --nonlinear --no-plots \
+      -o "$out/response" > "$out/log" 2>&1 || fail "response --nonlinear: $(cat "$out/log")"
+    rm "$out/run/order1x_disk.compressor.png"
+    "$exe" plot "$out/run" --response "$out/response/response.json" > "$out/log" 2>&1 \
+      || fail "plot --response: $(cat "$out/log")"
+    [ -s "$out/run/order1x_disk.compressor.png" ] || fail "no order track redrawn with --response"
+    grep -q '"warnings": \[\]' "$out/run/summary.json" || fail "warnings: $(grep -A3 warnings "$out/run/summary.json")"
+    expect_plot_error "not a response.json of turbodyn response --nonlinear" --response "$out/modal/modal.json"
     "$exe" plot "$out/nowhere" > "$out/log" 2>&1
     rc=$?
     [ $rc -eq 2 ] || fail "plot of a missing directory: exit $rc, expected 2"
