@@ -52,9 +52,13 @@ nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
     nlohmann::json& c = p["columns"];
     c["speed_rad_s"] = nlohmann::json::array();
     c["speed_hz"] = nlohmann::json::array();
+    c["stable"] = nlohmann::json::array();
+    c["divergence_rate_1_s"] = nlohmann::json::array();
     for (const UnbalanceWhirlPoint& pt : piece.points) {
       c["speed_rad_s"].push_back(pt.speed);
       c["speed_hz"].push_back(pt.speed / (2 * M_PI));
+      c["stable"].push_back(pt.stable);
+      c["divergence_rate_1_s"].push_back(std::isfinite(pt.divergence_rate) ? nlohmann::json(pt.divergence_rate) : nlohmann::json());
       for (std::size_t d = 0; d < nl.disks.size(); ++d) {
         c["disk." + nl.disks[d] + ".radius_m"].push_back(pt.disk_radius[d]);
         c["disk." + nl.disks[d] + ".phase_rad"].push_back(pt.disk_phase[d]);
@@ -72,13 +76,14 @@ nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
 void write_nonlinear_csv(const UnbalanceWhirl& nl, const std::filesystem::path& path) {
   OutputFile file(path);
   std::ostream& csv = file.stream();
-  csv << std::setprecision(12) << "piece,direction,speed_rad_s,speed_hz";
+  csv << std::setprecision(12) << "piece,direction,speed_rad_s,speed_hz,stable,divergence_rate_1_s";
   for (const std::string& d : nl.disks) csv << ",disk." << d << ".radius_m,disk." << d << ".phase_rad";
   for (const std::string& b : nl.bearings) csv << ",bearing." << b << ".force_n,bearing." << b << ".max_contact_load_n";
   csv << "\n";
   for (std::size_t k = 0; k < nl.pieces.size(); ++k)
     for (const UnbalanceWhirlPoint& pt : nl.pieces[k].points) {
-      csv << k + 1 << "," << (nl.pieces[k].upward ? "up" : "down") << "," << pt.speed << "," << pt.speed / (2 * M_PI);
+      csv << k + 1 << "," << (nl.pieces[k].upward ? "up" : "down") << "," << pt.speed << "," << pt.speed / (2 * M_PI)
+          << "," << (pt.stable ? 1 : 0) << "," << pt.divergence_rate;
       for (std::size_t d = 0; d < nl.disks.size(); ++d) csv << "," << pt.disk_radius[d] << "," << pt.disk_phase[d];
       for (std::size_t b = 0; b < nl.bearings.size(); ++b)
         csv << "," << pt.bearing_force[b] << "," << pt.max_contact_load[b];
@@ -208,14 +213,25 @@ int run_response_command(const ResponseCommandOptions& options) {
       } else {
         chart.series.push_back({"disk " + d.name + ", linearised", cols[1], um, plot::Series::Style::Dashed, colour,
                                 1.0});
-        for (std::size_t p = 0; p < nl.pieces.size(); ++p) {
-          std::vector<double> hz, r;
-          for (const UnbalanceWhirlPoint& pt : nl.pieces[p].points) {
-            hz.push_back(pt.speed / (2 * M_PI));
-            r.push_back(pt.disk_radius[k] * 1e6);
+        // Each piece in runs of equal stability: stable steady states bold, unstable ones (between two folds)
+        // thin; neighbouring runs share their end point.
+        bool labelled[2] = {false, false};
+        for (const UnbalanceWhirlPiece& piece : nl.pieces) {
+          const std::vector<UnbalanceWhirlPoint>& pts = piece.points;
+          for (std::size_t i = 0; i < pts.size();) {
+            std::size_t j = i;
+            while (j + 1 < pts.size() && pts[j + 1].stable == pts[i].stable) ++j;
+            std::vector<double> hz, r;
+            for (std::size_t m = i; m <= std::min(j + 1, pts.size() - 1); ++m) {
+              hz.push_back(pts[m].speed / (2 * M_PI));
+              r.push_back(pts[m].disk_radius[k] * 1e6);
+            }
+            const int u = pts[i].stable ? 0 : 1;
+            chart.series.push_back({labelled[u] ? "" : "disk " + d.name + (u ? ", nonlinear, unstable" : ", nonlinear"),
+                                    hz, r, plot::Series::Style::Lines, colour, u ? 0.5 : 1.5});
+            labelled[u] = true;
+            i = j + 1;
           }
-          chart.series.push_back({p == 0 ? "disk " + d.name + ", nonlinear" : "", hz, r,
-                                  plot::Series::Style::Lines, colour, 1.5});
         }
       }
       c += 4;

@@ -70,6 +70,7 @@ WhirlProblem::WhirlProblem(const MachineSpec& machine, const Rotor& rotor, Plane
     }
   m_omega_ = rotor.spin_softening();
   j_ = rotor.quarter_turn();
+  g_r_ = rotor.rotating_frame_gyroscopic();
   unbalance_ = Eigen::VectorXd::Zero(size());
   if (planes == Planes::Both)
     for (const RigidDisk& d : rotor.disks) {
@@ -106,6 +107,26 @@ Eigen::MatrixXd WhirlProblem::linear_part(double speed) const {
 }
 
 Eigen::VectorXd WhirlProblem::unbalance(double speed) const { return speed * speed * unbalance_; }
+
+Eigen::MatrixXd WhirlProblem::velocity_part(double speed) const {
+  if (planes_ != Planes::Both) throw std::logic_error("the whirl's small motions need both planes");
+  Eigen::MatrixXd K = rotor_.K, D = rotor_.D;
+  rotor_.add_bearings(speed, K, D);
+  const Eigen::MatrixXd V = D + speed * g_r_;
+  const int n = size();
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = V(dofs_[i], dofs_[j]);
+  return A;
+}
+
+Eigen::MatrixXd WhirlProblem::mass() const {
+  const int n = size();
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = rotor_.M(dofs_[i], dofs_[j]);
+  return A;
+}
 
 // Each linear bearing's 4 x 4 block at `speed` must commute with the quarter turn (the same in every direction);
 // with one plane it must also leave the x-z plane (x, theta_y) uncoupled from the y-z plane (y, theta_x).

@@ -75,6 +75,12 @@ class WhirlProblem {
   /// d residual / dp at a state whose bearings are in equilibrium: the linear part plus each ball bearing's tangent
   /// by central differences. False if a ball bearing finds no equilibrium.
   bool jacobian_p(const WhirlState& w, Eigen::MatrixXd& Jp) const;
+  /// The velocity matrix of the whirl's small motions in the turning frame at `speed`: D + C_b + speed G_r (the
+  /// non-rotating damping and the gyroscopic matrix of paper Eq. 9 in the body frame), in the reduced DOFs; with both
+  /// planes only.
+  Eigen::MatrixXd velocity_part(double speed) const;
+  /// The rotor's mass matrix in the reduced DOFs.
+  Eigen::MatrixXd mass() const;
   /// d residual / d speed by central differences of the whole residual.
   bool jacobian_speed(const WhirlState& w, Eigen::VectorXd& Js) const;
 
@@ -99,7 +105,7 @@ class WhirlProblem {
   std::vector<bool> tilt_;
   std::vector<int> index_;  // rotor DOF -> reduced index or -1
   std::vector<std::unique_ptr<BallSupport>> balls_;
-  Eigen::MatrixXd m_omega_, j_;
+  Eigen::MatrixXd m_omega_, j_, g_r_;
   Eigen::VectorXd unbalance_;  // per rad^2/s^2
 };
 

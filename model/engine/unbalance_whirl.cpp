@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include <Eigen/Dense>
 
 #include "model/engine/synchronous_whirl.h"
+#include "model/rotor/modal.h"
 #include "model/spec/constants.h"
 
 namespace turbodyn {
@@ -32,6 +35,9 @@ constexpr double kStepGrowth = 1.5;
 constexpr double kSmallestStep = 1e-7;         // scaled arclength
 constexpr int kSeeds = 16;                     // intervals of the seeds' speeds across the range
 constexpr std::size_t kDuplicatePoints = 3;
+// A real eigenvalue above this fraction of the largest |eigenvalue| (the rotor's stiffest element modes, some 1e7
+// 1/s) is a divergence, below it round-off.
+constexpr double kDivergenceRoundOff = 1e-9;
 
 std::string radius_text(double m) {
   std::ostringstream os;
@@ -43,7 +49,7 @@ std::string radius_text(double m) {
 class Tracer {
  public:
   Tracer(const MachineSpec& machine, const Rotor& rotor, const WhirlProblem& problem)
-      : rotor_(rotor), problem_(problem), weights_(problem.size()) {
+      : rotor_(rotor), problem_(problem), weights_(problem.size()), mass_(problem.mass()) {
     for (int i = 0; i < problem.size(); ++i) weights_(i) = problem.is_tilt(i) ? kTiltLength : 1.0;
     for (const BearingSpec& b : machine.bearings) {
       Support s;
@@ -371,13 +377,46 @@ class Tracer {
         pt.max_contact_load.push_back(0.0);
       }
     }
+    classify(w, pt);
     return pt;
+  }
+
+  // The steady state's stability against a jump: the small motions about it in the turning frame,
+  //   M dq'' + (D + C_b + Omega G_r) dq' + J dq = 0,
+  // J the residual's tangent (the ball bearings' quasi-static tangent stiffness in it), have a real positive
+  // eigenvalue on the branch between two folds (a saddle: the whirl drifts off to another branch). Oscillatory
+  // eigenvalues are left out: with the contacts undamped and the quasi-static reaction not quite conservative (the
+  // gyroscopic moment carried by the outer contact's traction) their real parts are a few 1/s either way, below what
+  // this model can tell.
+  void classify(const WhirlState& w, UnbalanceWhirlPoint& pt) const {
+    const int n = problem_.size();
+    Eigen::MatrixXd Jp;
+    if (!problem_.jacobian_p(w, Jp)) {
+      pt.divergence_rate = std::numeric_limits<double>::quiet_NaN();
+      pt.stable = false;
+      return;
+    }
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    A.topRightCorner(n, n).setIdentity();
+    A.bottomLeftCorner(n, n) = -mass_.solve(Jp);
+    A.bottomRightCorner(n, n) = -mass_.solve(problem_.velocity_part(w.speed));
+    balance_for_eigenvalues(A);
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(A, false);
+    double rate = 0.0, size = 0.0;
+    for (int i = 0; i < 2 * n; ++i) {
+      const std::complex<double> l = es.eigenvalues()(i);
+      size = std::max(size, std::abs(l));
+      if (l.imag() == 0.0) rate = std::max(rate, l.real());
+    }
+    pt.divergence_rate = rate;
+    pt.stable = !(rate > kDivergenceRoundOff * size);
   }
 
  private:
   const Rotor& rotor_;
   const WhirlProblem& problem_;
   Eigen::VectorXd weights_;
+  Eigen::LLT<Eigen::MatrixXd> mass_;
   std::vector<Support> supports_;
 };
 

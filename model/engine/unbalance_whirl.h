@@ -30,6 +30,11 @@ struct UnbalanceWhirlPoint {
   std::vector<double> disk_phase;
   std::vector<double> bearing_force;     ///< per bearing (model order): amplitude of the force on the housing (N)
   std::vector<double> max_contact_load;  ///< per bearing: a ball bearing's largest contact load (N), 0 if linear
+  /// The largest real positive eigenvalue of the whirl's small motions about it in the turning frame (1/s; 0 if
+  /// none), and whether it is round-off (< 1e-9 of the largest |eigenvalue|): a steady state with one drifts off to
+  /// another branch (the middle branch between two folds). Oscillatory growth is not judged (contacts undamped).
+  double divergence_rate = 0.0;
+  bool stable = true;
 };
 
 /// A fold of the response curve: the speed turns back (a run-up on this branch jumps off here) or forward again (a

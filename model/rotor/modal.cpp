@@ -51,12 +51,7 @@ Whirl classify_whirl(const Rotor& rotor, const Eigen::VectorXcd& shape, std::vec
   return Whirl::Mixed;
 }
 
-namespace {
-
-// Diagonal similarity scaling A <- S^-1 A S with powers of two so that each row and column have similar norms
-// (Parlett & Reinsch 1969, "Balancing a matrix for calculation of eigenvalues and eigenvectors", Numer. Math. 13;
-// the scaling part of LAPACK's xGEBAL). Returns the diagonal of S; eigenvectors of the original A are S v.
-Eigen::VectorXd balance(Eigen::MatrixXd& A) {
+Eigen::VectorXd balance_for_eigenvalues(Eigen::MatrixXd& A) {
   const Eigen::Index n = A.rows();
   Eigen::VectorXd s = Eigen::VectorXd::Ones(n);
   constexpr double kRadix = 2.0, kConverged = 0.95;
@@ -93,6 +88,8 @@ Eigen::VectorXd balance(Eigen::MatrixXd& A) {
   }
   return s;
 }
+
+namespace {
 
 ModalResult modes_at(const Rotor& rotor, double speed, const ModalOptions& options) {
   const int n = rotor.n_dof;
@@ -154,7 +151,7 @@ ModalResult modes_at(const Rotor& rotor, double speed, const ModalOptions& optio
   if (!A.allFinite()) throw std::runtime_error("the rotor's matrices are not finite (check masses and stiffnesses)");
   // Rotations, displacements and velocities differ by many orders of magnitude in A; without balancing the
   // low eigenvalues lose all accuracy (errors ~ eps * ||A||).
-  const Eigen::VectorXd scale = balance(A);
+  const Eigen::VectorXd scale = balance_for_eigenvalues(A);
   Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
   if (es.info() != Eigen::Success) throw std::runtime_error("the eigenvalue solver did not converge");
 

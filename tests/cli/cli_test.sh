@@ -44,7 +44,7 @@ case $case in
     expect_files "$out" response.csv response.json response_nonlinear.csv response.png report.html
     grep -q "fold at 2978[0-9] rpm (496.[0-9] Hz), largest wheel whirl 13.[0-9]* um: the speed turns back" "$out/log" \
       || fail "first fold: $(cat "$out/log")"
-    head -1 "$out/response_nonlinear.csv" | grep -q "^piece,direction,speed_rad_s,speed_hz,disk.compressor.radius_m" \
+    head -1 "$out/response_nonlinear.csv" | grep -q "^piece,direction,speed_rad_s,speed_hz,stable,divergence_rate_1_s,disk.compressor.radius_m" \
       || fail "csv: $(head -1 "$out/response_nonlinear.csv")"
     grep -q 'data-table="nonlinear_folds"' "$out/report.html" || fail "report without the folds"
     python3 - "$out/response.json" <<'EOF2' || fail "response.json nonlinear"
@@ -56,6 +56,8 @@ assert up["direction"] == "up" and [f["kind"] for f in up["folds"]][:2] == ["tur
 assert 455 < up["folds"][1]["speed_hz"] < 465, up["folds"][1]
 c = up["columns"]
 assert len(c["speed_hz"]) == len(c["disk.turbine.radius_m"]) == len(c["bearing.turbine.force_n"]) > 50
+# Between the two folds the branch is unstable (a real eigenvalue), before the first it is stable.
+assert c["stable"][0] and not all(c["stable"]), c["stable"]
 EOF2
     # A hundred times the paper's unbalance: the curves from both ends climb their resonances beyond Hertz theory,
     # which leaves the speeds between them without a steady state: written so far, exit code 3.

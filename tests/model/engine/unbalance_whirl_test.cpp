@@ -67,6 +67,7 @@ TEST(UnbalanceWhirl, OnLinearBearingsItIsTheLinearResponse) {
   EXPECT_NEAR(nl.pieces[0].points.back().speed / o.end_speed, 1.0, 1e-12);
   double worst = 0.0;
   expect_linear_response(nl, rotor, 1e-6, &worst);
+  for (const UnbalanceWhirlPoint& p : nl.pieces[0].points) EXPECT_TRUE(p.stable) << p.speed / kRpm << " rpm";
   std::printf("[ linear ] %zu points, largest difference %.2e\n", nl.pieces[0].points.size(), worst);
 }
 
@@ -184,6 +185,19 @@ TEST(UnbalanceWhirl, VariantTwosFirstCriticalFoldsIntoAHysteresisLoop) {
   EXPECT_LT(f_up, 548.3);
   EXPECT_LT(f_down, f_up);
   EXPECT_GT(jump_down->largest_radius, jump_up.largest_radius);
+  // Stable up to the run-up's fold, unstable (a saddle: a real eigenvalue) from there to the next fold, stable again
+  // on the resonant branch after it.
+  std::size_t k = 0;
+  while (k < up.points.size() && up.points[k].speed < jump_up.speed * (1.0 - 1e-3)) EXPECT_TRUE(up.points[k++].stable);
+  while (k < up.points.size() && up.points[k].speed > up.folds.at(1).speed * (1.0 + 1e-3)) {
+    if (up.points[k].speed < jump_up.speed * (1.0 - 1e-3)) {
+      EXPECT_FALSE(up.points[k].stable) << up.points[k].speed / (2 * M_PI) << " Hz";
+      EXPECT_GT(up.points[k].divergence_rate, 1.0);
+    }
+    ++k;
+  }
+  ASSERT_LT(k, up.points.size());
+  for (++k; k < up.points.size(); ++k) EXPECT_TRUE(up.points[k].stable) << up.points[k].speed / (2 * M_PI) << " Hz";
   EXPECT_NEAR(f_down / 477.3, 1.0, 0.01);
   EXPECT_NEAR(f_up / 517.4, 1.0, 0.05);
   EXPECT_LT(f_up, 517.4);
