@@ -58,7 +58,8 @@ nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
       c["speed_rad_s"].push_back(pt.speed);
       c["speed_hz"].push_back(pt.speed / (2 * M_PI));
       c["stable"].push_back(pt.stable);
-      c["divergence_rate_1_s"].push_back(std::isfinite(pt.divergence_rate) ? nlohmann::json(pt.divergence_rate) : nlohmann::json());
+      c["divergence_rate_1_s"].push_back(std::isfinite(pt.divergence_rate) ? nlohmann::json(pt.divergence_rate)
+                                                                           : nlohmann::json());
       for (std::size_t d = 0; d < nl.disks.size(); ++d) {
         c["disk." + nl.disks[d] + ".radius_m"].push_back(pt.disk_radius[d]);
         c["disk." + nl.disks[d] + ".phase_rad"].push_back(pt.disk_phase[d]);
@@ -183,7 +184,8 @@ int run_response_command(const ResponseCommandOptions& options) {
     no.start_speed = speeds.front() > 0.0 ? speeds.front() : std::max(speeds.size() > 1 ? speeds[1] : 0.0,
                                                                        0.01 * speeds.back());
     if (!(no.end_speed > no.start_speed))
-      throw ModelError("--nonlinear needs a range of speeds above zero (--speeds START:END:COUNT)");
+      throw ModelError("--speeds '" + options.speeds + "': --nonlinear needs a range of speeds above zero "
+                       "(--speeds START:END:COUNT)");
     try {
       nl = nonlinear_unbalance_response(spec, bare, no);
     } catch (const QuasiStaticError& e) {

@@ -68,6 +68,11 @@ EOF2
     grep -q "leaves part of the speed range without a steady state" "$out/gap.log" || fail "$(cat "$out/gap.log")"
     python3 -c "import json,sys; n=json.load(open(sys.argv[1]))['nonlinear']; assert not n['covers_range'] and not n['pieces'][0]['complete']" \
       "$out/gap/response.json" || fail "gap not marked"
+    # No range of speeds to follow.
+    "$exe" response "$src/examples/reference_ball.toml" --speeds "0" --nonlinear --no-plots -o "$out/one" \
+      > "$out/one.log" 2>&1
+    [ $? -eq 2 ] && grep -q -- "--speeds '0': --nonlinear needs a range of speeds above zero" "$out/one.log" \
+      || fail "single speed: $(cat "$out/one.log")"
     # What it cannot take: a ball bearing in a squeeze-film damper.
     "$exe" response "$src/examples/reference_ball_sfd.toml" --speeds "10000 rpm:30000 rpm:5" --nonlinear --no-plots \
       -o "$out/sfd" > "$out/sfd.log" 2>&1
