@@ -99,10 +99,14 @@ Eigen::MatrixXd WhirlProblem::linear_part(double speed) const {
   rotor_.add_bearings(speed, K, D);
   K += speed * speed * m_omega_;
   if (planes_ == Planes::Both) K += speed * D * j_;
+  return reduce(K);
+}
+
+Eigen::MatrixXd WhirlProblem::reduce(const Eigen::MatrixXd& full) const {
   const int n = size();
   Eigen::MatrixXd A(n, n);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) A(i, j) = K(dofs_[i], dofs_[j]);
+    for (int j = 0; j < n; ++j) A(i, j) = full(dofs_[i], dofs_[j]);
   return A;
 }
 
@@ -112,21 +116,10 @@ Eigen::MatrixXd WhirlProblem::velocity_part(double speed) const {
   if (planes_ != Planes::Both) throw std::logic_error("the whirl's small motions need both planes");
   Eigen::MatrixXd K = rotor_.K, D = rotor_.D;
   rotor_.add_bearings(speed, K, D);
-  const Eigen::MatrixXd V = D + speed * g_r_;
-  const int n = size();
-  Eigen::MatrixXd A(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) A(i, j) = V(dofs_[i], dofs_[j]);
-  return A;
+  return reduce(D + speed * g_r_);
 }
 
-Eigen::MatrixXd WhirlProblem::mass() const {
-  const int n = size();
-  Eigen::MatrixXd A(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) A(i, j) = rotor_.M(dofs_[i], dofs_[j]);
-  return A;
-}
+Eigen::MatrixXd WhirlProblem::mass() const { return reduce(rotor_.M); }
 
 // Each linear bearing's 4 x 4 block at `speed` must commute with the quarter turn (the same in every direction);
 // with one plane it must also leave the x-z plane (x, theta_y) uncoupled from the y-z plane (y, theta_x).

@@ -94,6 +94,7 @@ class WhirlProblem {
 
  private:
   void check_linear_bearings(double speed) const;
+  Eigen::MatrixXd reduce(const Eigen::MatrixXd& full) const;  // a rotor matrix on the reduced DOFs
   bool ball_reaction(int b, double speed, const Vector5d& q, BallBearingEquilibrium& state, Vector5d& f) const;
 
   struct BallSupport;
