@@ -82,6 +82,13 @@ nlohmann::json read_json(const std::filesystem::path& file, const std::string& k
   return j;
 }
 
+// The overlay of the 1x order track `stem` in `out`, added if there is none yet.
+post::OrderOverlay& overlay_of(std::vector<post::OrderOverlay>& out, const std::string& stem) {
+  auto it = std::find_if(out.begin(), out.end(), [&](const post::OrderOverlay& o) { return o.stem == stem; });
+  if (it == out.end()) it = out.insert(out.end(), post::OrderOverlay{stem, {}});
+  return *it;
+}
+
 // The critical speeds at an amplitude of `turbodyn modal --amplitudes` (its modal.json) as lines of amplitude against
 // rotor speed in Hz, one overlay per disk the branches were measured at, for that disk's 1x order track.
 std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::path& file) {
@@ -105,10 +112,7 @@ std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::pa
         s.y.push_back(p.at("amplitude_m").get<double>());
       }
       if (s.x.empty()) continue;
-      const std::string stem = "disk." + at.substr(6);
-      auto it = std::find_if(out.begin(), out.end(), [&](const post::OrderOverlay& o) { return o.stem == stem; });
-      if (it == out.end()) it = out.insert(out.end(), post::OrderOverlay{stem, {}});
-      it->series.push_back(std::move(s));
+      overlay_of(out, "disk." + at.substr(6)).series.push_back(std::move(s));
     }
   } catch (const nlohmann::json::exception& e) {
     throw ModelError(file.string() + ": backbones: " + e.what());
@@ -118,17 +122,12 @@ std::vector<post::OrderOverlay> read_backbone_overlays(const std::filesystem::pa
 }
 
 // The nonlinear steady states of `turbodyn response --nonlinear` as overlays of the disks' 1x order tracks: one line
-// per piece of the curve and disk, the folds (jump speeds) as points.
+// per piece of the curve and disk.
 std::vector<post::OrderOverlay> read_response_overlays(const std::filesystem::path& file) {
   const nlohmann::json j = read_json(file, "response.json", "");
   if (!j.contains("nonlinear") || !j["nonlinear"].contains("pieces"))
     throw ModelError(file.string() + ": not a response.json of turbodyn response --nonlinear (no \"nonlinear\")");
   std::vector<post::OrderOverlay> out;
-  auto overlay = [&](const std::string& stem) -> post::OrderOverlay& {
-    auto it = std::find_if(out.begin(), out.end(), [&](const post::OrderOverlay& o) { return o.stem == stem; });
-    if (it == out.end()) it = out.insert(out.end(), post::OrderOverlay{stem, {}});
-    return *it;
-  };
   constexpr const char* kColor = "#444444";
   const std::string suffix = ".radius_m";
   try {
@@ -148,7 +147,7 @@ std::vector<post::OrderOverlay> read_response_overlays(const std::filesystem::pa
         if (s.y.size() != s.x.size())
           throw ModelError(file.string() + ": nonlinear piece " + std::to_string(k + 1) + ": " + name +
                            " and speed_hz differ in length");
-        if (!s.x.empty()) overlay(stem).series.push_back(std::move(s));
+        if (!s.x.empty()) overlay_of(out, stem).series.push_back(std::move(s));
       }
     }
   } catch (const nlohmann::json::exception& e) {
