@@ -21,6 +21,23 @@ constexpr double kRelativeSpeedStep = 1e-6;
 // Index of a rotor DOF in the ball bearing's 5-vector (x, y, z, theta_x, theta_y).
 int five(Dof d) { return d == kX ? 0 : d == kY ? 1 : d == kThetaX ? 3 : 4; }
 
+// The direction of the ring's displacement in q (cosine, sine; along x at the centre).
+void direction(const Vector5d& q, double& c, double& s) {
+  const double r = std::hypot(q(0), q(1));
+  c = r > 0.0 ? q(0) / r : 1.0;
+  s = r > 0.0 ? q(1) / r : 0.0;
+}
+
+// v turned about the bearing axis by the angle of cosine c and sine s: the (x, y) and (theta_x, theta_y) pairs.
+Vector5d turned(const Vector5d& v, double c, double s) {
+  Vector5d t = v;
+  t(0) = c * v(0) - s * v(1);
+  t(1) = s * v(0) + c * v(1);
+  t(3) = c * v(3) - s * v(4);
+  t(4) = s * v(3) + c * v(4);
+  return t;
+}
+
 }  // namespace
 
 std::string rpm_text(double speed) {
@@ -161,34 +178,20 @@ Vector5d WhirlProblem::ring_deflection(const Eigen::VectorXd& p, int b) const {
 // the whirl's direction (no ball-pass variation), as the planar backbone's.
 bool WhirlProblem::ball_reaction(int b, double speed, const Vector5d& q, BallBearingEquilibrium& state,
                                  Vector5d& f) const {
-  const double r = std::hypot(q(0), q(1));
-  const double c = r > 0.0 ? q(0) / r : 1.0, s = r > 0.0 ? q(1) / r : 0.0;
-  Vector5d t = q;
-  t(0) = r;
+  double c, s;
+  direction(q, c, s);
+  Vector5d t = turned(q, c, -s);
+  t(0) = std::hypot(q(0), q(1));  // exactly on x
   t(1) = 0.0;
-  t(3) = c * q(3) + s * q(4);
-  t(4) = -s * q(3) + c * q(4);
   if (!balls_[b]->qs->equilibrate(speed, t, state)) return false;
-  const Vector5d& g = state.shaft_force;
-  f = g;
-  f(0) = c * g(0) - s * g(1);
-  f(1) = s * g(0) + c * g(1);
-  f(3) = c * g(3) - s * g(4);
-  f(4) = s * g(3) + c * g(4);
+  f = turned(state.shaft_force, c, s);
   return true;
 }
 
 Vector5d WhirlProblem::ball_force(const WhirlState& w, int b) const {
-  const Vector5d q = ring_deflection(w.p, b);
-  const double r = std::hypot(q(0), q(1));
-  const double c = r > 0.0 ? q(0) / r : 1.0, s = r > 0.0 ? q(1) / r : 0.0;
-  const Vector5d& g = w.bearings[b].shaft_force;
-  Vector5d f = g;
-  f(0) = c * g(0) - s * g(1);
-  f(1) = s * g(0) + c * g(1);
-  f(3) = c * g(3) - s * g(4);
-  f(4) = s * g(3) + c * g(4);
-  return f;
+  double c, s;
+  direction(ring_deflection(w.p, b), c, s);
+  return turned(w.bearings[b].shaft_force, c, s);
 }
 
 bool WhirlProblem::residual(const Eigen::VectorXd& p, double speed, std::vector<BallBearingEquilibrium>& states,
