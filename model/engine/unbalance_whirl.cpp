@@ -87,10 +87,12 @@ class Tracer {
     const double dir = upward ? 1.0 : -1.0;
     const double to = upward ? hi : lo;
     if (stop_beyond_hertz(w, piece)) return piece;
-    piece.points.push_back(point(w));
     Eigen::VectorXd t;
+    Eigen::MatrixXd Jp;
     double scale = scale_of(w.p);
-    if (!start_tangent(w, scale, dir, t)) {
+    const bool started = start_tangent(w, scale, dir, t, &Jp);
+    piece.points.push_back(started ? point(w, &Jp) : point(w));
+    if (!started) {
       piece.stopped = "no steady state found beyond " + rpm_text(w.speed);
       return piece;
     }
@@ -128,7 +130,7 @@ class Tracer {
       previous.head(problem_.size()) *= scale / next_scale;
       previous(problem_.size()) *= w.speed / next.speed;
       Eigen::VectorXd t_next;
-      if (!tangent(next, next_scale, previous, t_next)) {
+      if (!tangent(next, next_scale, previous, t_next, &Jp)) {
         ds *= 0.5;
         if (ds < kSmallestStep) break;
         continue;
@@ -142,7 +144,7 @@ class Tracer {
       w = std::move(next);
       scale = next_scale;
       t = t_next;
-      piece.points.push_back(point(w));
+      piece.points.push_back(point(w, &Jp));  // the tangent's Jacobian at w
       for (std::size_t k = 0; k < others.size(); ++k)
         if (on_piece(piece.points.back(), others[k])) {
           piece.joins = static_cast<int>(k);
@@ -251,22 +253,25 @@ class Tracer {
     return true;
   }
 
-  // The scaled Jacobian [dr/dp diag(scale / w), dr/dOmega Omega] at a state in equilibrium.
-  bool scaled_jacobian(const WhirlState& w, double scale, Eigen::MatrixXd& J) const {
+  // The scaled Jacobian [dr/dp diag(scale / w), dr/dOmega speed_scale] at a state in equilibrium; dr/dp also in
+  // `Jp` if given.
+  bool scaled_jacobian(const WhirlState& w, double scale, double speed_scale, Eigen::MatrixXd& J,
+                       Eigen::MatrixXd* Jp = nullptr) const {
     const int n = problem_.size();
-    Eigen::MatrixXd Jp;
+    Eigen::MatrixXd jp;
     Eigen::VectorXd Js;
-    if (!problem_.jacobian_p(w, Jp) || !problem_.jacobian_speed(w, Js)) return false;
+    if (!problem_.jacobian_p(w, jp) || !problem_.jacobian_speed(w, Js)) return false;
     J.resize(n, n + 1);
-    for (int j = 0; j < n; ++j) J.col(j) = Jp.col(j) * (scale / weights_(j));
-    J.col(n) = Js * w.speed;
+    for (int j = 0; j < n; ++j) J.col(j) = jp.col(j) * (scale / weights_(j));
+    J.col(n) = Js * speed_scale;
+    if (Jp) *Jp = std::move(jp);
     return true;
   }
 
-  bool start_tangent(const WhirlState& w, double scale, double dir, Eigen::VectorXd& t) const {
+  bool start_tangent(const WhirlState& w, double scale, double dir, Eigen::VectorXd& t, Eigen::MatrixXd* Jp) const {
     const int n = problem_.size();
     Eigen::MatrixXd J;
-    if (!scaled_jacobian(w, scale, J)) return false;
+    if (!scaled_jacobian(w, scale, w.speed, J, Jp)) return false;
     t.resize(n + 1);
     t.head(n) = J.leftCols(n).partialPivLu().solve(-J.col(n));
     t(n) = 1.0;
@@ -275,11 +280,12 @@ class Tracer {
     return true;
   }
 
-  // The unit tangent at w (scaled), oriented like `previous`.
-  bool tangent(const WhirlState& w, double scale, const Eigen::VectorXd& previous, Eigen::VectorXd& t) const {
+  // The unit tangent at w (scaled), oriented like `previous`; dr/dp at w in `Jp`.
+  bool tangent(const WhirlState& w, double scale, const Eigen::VectorXd& previous, Eigen::VectorXd& t,
+               Eigen::MatrixXd* Jp) const {
     const int n = problem_.size();
     Eigen::MatrixXd J;
-    if (!scaled_jacobian(w, scale, J)) return false;
+    if (!scaled_jacobian(w, scale, w.speed, J, Jp)) return false;
     Eigen::MatrixXd A(n + 1, n + 1);
     A.topRows(n) = J;
     A.row(n) = previous.transpose();
@@ -310,11 +316,8 @@ class Tracer {
     Eigen::MatrixXd J, A(n + 1, n + 1);
     for (iterations = 1; iterations <= kMaxNewton; ++iterations) {
       if (!(next.speed > 0.0) || !problem_.residual(next.p, next.speed, next.bearings, r)) return false;
-      if (!problem_.jacobian_p(next, J)) return false;
-      Eigen::VectorXd Js;
-      if (!problem_.jacobian_speed(next, Js)) return false;
-      for (int j = 0; j < n; ++j) A.block(0, j, n, 1) = J.col(j) * (scale / weights_(j));
-      A.block(0, n, n, 1) = Js * w.speed;
+      if (!scaled_jacobian(next, scale, w.speed, J)) return false;  // scaled at w, as the unknowns
+      A.topRows(n) = J;
       A.row(n) = t.transpose();
       Eigen::VectorXd rhs(n + 1);
       rhs.head(n) = -r;
@@ -348,7 +351,15 @@ class Tracer {
   }
 
  public:
-  UnbalanceWhirlPoint point(const WhirlState& w) const {
+  // The point with its stability; `Jp`, dr/dp at w, if the caller has it.
+  UnbalanceWhirlPoint point(const WhirlState& w, const Eigen::MatrixXd* Jp = nullptr) const {
+    UnbalanceWhirlPoint pt = measure(w);
+    classify(w, Jp, pt);
+    return pt;
+  }
+
+  // The point without its stability: speed, wheels, bearings.
+  UnbalanceWhirlPoint measure(const WhirlState& w) const {
     UnbalanceWhirlPoint pt;
     pt.speed = w.speed;
     for (const RigidDisk& d : rotor_.disks) {
@@ -377,7 +388,6 @@ class Tracer {
         pt.max_contact_load.push_back(0.0);
       }
     }
-    classify(w, pt);
     return pt;
   }
 
@@ -388,14 +398,15 @@ class Tracer {
   // eigenvalues are left out: with the contacts undamped and the quasi-static reaction not quite conservative (the
   // gyroscopic moment carried by the outer contact's traction) their real parts are a few 1/s either way, below what
   // this model can tell.
-  void classify(const WhirlState& w, UnbalanceWhirlPoint& pt) const {
+  void classify(const WhirlState& w, const Eigen::MatrixXd* given, UnbalanceWhirlPoint& pt) const {
     const int n = problem_.size();
-    Eigen::MatrixXd Jp;
-    if (!problem_.jacobian_p(w, Jp)) {
+    Eigen::MatrixXd computed;
+    if (!given && !problem_.jacobian_p(w, computed)) {
       pt.divergence_rate = std::numeric_limits<double>::quiet_NaN();
       pt.stable = false;
       return;
     }
+    const Eigen::MatrixXd& Jp = given ? *given : computed;
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     A.topRightCorner(n, n).setIdentity();
     A.bottomLeftCorner(n, n) = -mass_.solve(Jp);
@@ -452,15 +463,15 @@ UnbalanceWhirl nonlinear_unbalance_response(const MachineSpec& machine, const Ro
     const double speed = lo + (hi - lo) * i / kSeeds;
     WhirlState w;
     if (!tracer.start_at(speed, w)) continue;
-    const UnbalanceWhirlPoint seed = tracer.point(w);
+    const UnbalanceWhirlPoint seed = tracer.measure(w);
     if (std::any_of(out.pieces.begin(), out.pieces.end(),
                     [&](const UnbalanceWhirlPiece& p) { return tracer.on_piece(seed, p); }))
       continue;
-    const std::vector<UnbalanceWhirlPiece> before = out.pieces;
-    for (bool upward : {true, false}) {
-      UnbalanceWhirlPiece piece = tracer.trace(w, lo, hi, upward, before, options.max_points);
+    // Both traced against the pieces before the seed.
+    UnbalanceWhirlPiece pair[2] = {tracer.trace(w, lo, hi, true, out.pieces, options.max_points),
+                                   tracer.trace(w, lo, hi, false, out.pieces, options.max_points)};
+    for (UnbalanceWhirlPiece& piece : pair)
       if (!(piece.joins >= 0 && piece.points.size() <= kDuplicatePoints)) out.pieces.push_back(std::move(piece));
-    }
   }
   // Covered: the union of the pieces' speed intervals is the range.
   std::vector<std::pair<double, double>> spans;
