@@ -283,14 +283,14 @@ void write_backbone_table(const std::vector<Backbone>& backbones, const std::map
                           const std::filesystem::path& path) {
   OutputFile file(path);
   std::ostream& csv = file.stream();
-  csv << "branch,amplitude_at,amplitude_m,speed_rad_s,speed_rpm,frequency_hz,bearing,displacement_m,tilt_rad,force_n,moment_nm,"
-         "max_contact_load_n\n"
+  csv << "branch,amplitude_at,amplitude_m,speed_rad_s,speed_rpm,frequency_hz,bearing,displacement_m,tilt_rad,"
+         "force_n,moment_nm,max_contact_load_n\n"
       << std::setprecision(10);
   for (const Backbone& b : backbones)
     for (const BackbonePoint& p : b.points)
       for (const BackboneBearing& x : p.bearings)
-        csv << b.branch + 1 << ',' << place.at(b.reference_node) << ',' << p.amplitude << ',' << p.speed << ',' << p.speed * kRadPerSToRpm << ','
-            << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ',' << x.tilt << ',' << x.force
+        csv << b.branch + 1 << ',' << place.at(b.reference_node) << ',' << p.amplitude << ',' << p.speed << ','
+            << p.speed * kRadPerSToRpm << ',' << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ',' << x.tilt << ',' << x.force
             << ',' << x.moment << ',' << x.max_contact_load << '\n';
   file.commit();
   std::cout << "Forward 1x critical speeds at a whirl amplitude:\n";
