@@ -11,6 +11,7 @@
 #include "model/io/toml_reader.h"
 #include "studies/channels.h"
 #include "studies/metrics.h"
+#include "studies/stability_metrics.h"
 #include "studies/study_keys.h"
 #include "studies/table.h"
 #include "model/spec/constants.h"
@@ -93,13 +94,13 @@ Metric read_metric(Reader& r, double window_min, double window_max) {
   studies::MetricSpec& s = m.spec;
   const std::vector<std::string> kinds = {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed",
                                           "subsync_max", "subsync_ratio", "subsync_onset_speed", "subsync_jump_speed",
-                                          "subsync_frequency", "summary", "response_peak", "response_peak_speed"};
+                                          "subsync_frequency", "summary", "response_peak", "response_peak_speed",
+                                          "stability_growth", "stability_growth_speed", "stability_frequency",
+                                          "stability_damping", "stability_onset_speed"};
   s.kind = r.choice("kind", kinds, "");
-  if (s.kind.empty()) r.fail_missing("kind", "max, max_radius, peak_1x, ..., response_peak");
-  s.probe = r.text_or("probe", "");
-  if (s.probe.empty()) r.fail_missing("probe", "a probe name such as \"disk.compressor.x\" or \"bearing.turbine\"");
-  s.name = r.text_or("name", s.kind + "(" + s.probe + ")");
+  if (s.kind.empty()) r.fail_missing("kind", "max, max_radius, peak_1x, ..., response_peak, stability_growth, ...");
   studies::read_metric_window(r, s, "51 um");
+  studies::read_metric_subject(r, s, window_min, window_max);
   m.points = static_cast<int>(r.integer_or("points", 200, 3, 1000000));
   if (m.response() && s.speed_max <= 0.0) {
     if (window_max <= 0.0)
@@ -161,9 +162,16 @@ void resolve_metrics(OptimizationSpec& s) {
   const nlohmann::json summary = studies::summary_template(machine, *model);
   if (std::any_of(s.metrics.begin(), s.metrics.end(), [](const Metric& m) { return !m.response(); }))
     studies::check_speed_window(s, machine.speed);
+  std::vector<studies::MetricSpec> specs;
+  for (const Metric& m : s.metrics) specs.push_back(m.spec);
+  studies::check_stability_metrics(s, specs, machine);
   for (std::size_t i = 0; i < s.metrics.size(); ++i) {
     Metric& m = s.metrics[i];
     const std::string where = s.source.string() + ": metrics[" + std::to_string(i) + "].probe: ";
+    if (studies::is_stability_metric(m.spec.kind)) {
+      m.unit = studies::metric_unit(m.spec, channels);
+      continue;
+    }
     if (m.response()) {
       for (const BearingSpec& b : machine.bearings)
         if (b.type != BearingType::Linear || b.damper.enabled || b.pedestal_mass > 0.0)

@@ -6,6 +6,7 @@
 #include "model/io/run_summary.h"
 #include "post/signal.h"
 #include "studies/channels.h"
+#include "studies/stability_metrics.h"
 
 namespace turbodyn::studies {
 namespace {
@@ -54,9 +55,12 @@ SubsyncTrack subsync_track(const std::vector<double>& signal, const std::vector<
 }  // namespace
 
 std::string metric_unit(const MetricSpec& m, const std::vector<ProbeChannel>& channels) {
-  if (m.kind == "peak_1x_speed" || m.kind == "subsync_onset_speed" || m.kind == "subsync_jump_speed") return "rpm";
-  if (m.kind == "subsync_frequency") return "Hz";
-  if (m.kind == "subsync_ratio") return "1";
+  if (m.kind == "peak_1x_speed" || m.kind == "subsync_onset_speed" || m.kind == "subsync_jump_speed" ||
+      m.kind == "stability_growth_speed" || m.kind == "stability_onset_speed")
+    return "rpm";
+  if (m.kind == "subsync_frequency" || m.kind == "stability_frequency") return "Hz";
+  if (m.kind == "subsync_ratio" || m.kind == "stability_damping") return "1";
+  if (m.kind == "stability_growth") return "1/s";
   if (m.kind == "summary") return "";
   if (m.kind == "max_radius") {
     const auto [a, b] = pair_channels(channels, m.probe);
@@ -115,6 +119,7 @@ void check_metrics(const StudySpec& study, const std::vector<ProbeChannel>& chan
   for (std::size_t i = 0; i < study.metrics.size(); ++i) {
     const MetricSpec& m = study.metrics[i];
     const std::string where = study.source.string() + ": metrics[" + std::to_string(i) + "]";
+    if (is_stability_metric(m.kind)) continue;  // no probe (checked by check_stability_supported)
     if (m.kind == "summary") {
       const nlohmann::json* node = summary_node(summary, m.probe);
       if (node && (node->is_number() || node->is_boolean())) continue;

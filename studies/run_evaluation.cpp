@@ -7,6 +7,7 @@
 #include "model/engine/speed_profile.h"
 #include "model/io/run_summary.h"
 #include "studies/metrics.h"
+#include "studies/stability_metrics.h"
 
 namespace turbodyn::studies {
 
@@ -28,14 +29,33 @@ RunRecord evaluate_run(const StudyCommon& study, const std::vector<MetricSpec>& 
   const auto t0 = std::chrono::steady_clock::now();
   RunRecord rec;
   rec.metrics.assign(metrics.size(), NAN);
+  const bool any_runup = std::any_of(metrics.begin(), metrics.end(),
+                                     [](const MetricSpec& m) { return !is_stability_metric(m.kind); });
+  const bool any_stability = std::any_of(metrics.begin(), metrics.end(),
+                                         [](const MetricSpec& m) { return is_stability_metric(m.kind); });
   try {
-    const RunupRun run = run_runup(study, overrides, cancel);
-    const RunupResult& r = run.result;
-    const nlohmann::json summary = run_summary(run.spec, *run.model, run.options, r, overrides);
-    for (std::size_t m = 0; m < metrics.size(); ++m)
-      rec.metrics[m] = evaluate_metric(metrics[m], r, summary, run.options.sample_rate);
-    rec.status = r.complete ? "ok" : (cancel && cancel->load()) ? "cancelled" : "incomplete";
-    rec.error = r.message;
+    rec.status = "ok";
+    if (any_runup) {
+      const RunupRun run = run_runup(study, overrides, cancel);
+      const RunupResult& r = run.result;
+      const nlohmann::json summary = run_summary(run.spec, *run.model, run.options, r, overrides);
+      for (std::size_t m = 0; m < metrics.size(); ++m)
+        if (!is_stability_metric(metrics[m].kind))
+          rec.metrics[m] = evaluate_metric(metrics[m], r, summary, run.options.sample_rate);
+      rec.status = r.complete ? "ok" : (cancel && cancel->load()) ? "cancelled" : "incomplete";
+      rec.error = r.message;
+    }
+    // The stability metrics analyse the model itself (no run-up): after a complete run, or alone.
+    if (any_stability && rec.status == "ok") {
+      std::string error;
+      const std::vector<double> v = evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel);
+      for (std::size_t m = 0; m < metrics.size(); ++m)
+        if (is_stability_metric(metrics[m].kind)) rec.metrics[m] = v[m];
+      if (!error.empty()) {
+        rec.status = (cancel && cancel->load()) ? "cancelled" : "incomplete";
+        rec.error = error;
+      }
+    }
   } catch (const std::exception& e) {
     rec.status = "failed";
     rec.error = e.what();

@@ -71,17 +71,16 @@ Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit, std::vec
   return p;
 }
 
-MetricSpec read_metric(Reader& r) {
+MetricSpec read_metric(Reader& r, const StudySpec& s) {
   MetricSpec m;
   m.kind = r.choice("kind",
                     {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed", "subsync_max", "subsync_ratio",
-                     "subsync_onset_speed", "subsync_jump_speed", "subsync_frequency", "summary"},
+                     "subsync_onset_speed", "subsync_jump_speed", "subsync_frequency", "summary", "stability_growth",
+                     "stability_growth_speed", "stability_frequency", "stability_damping", "stability_onset_speed"},
                     "");
   if (m.kind.empty()) r.fail("kind", "missing required key (max, max_radius, rms, mean, peak_1x, ...)");
-  m.probe = r.text_or("probe", "");
-  if (m.probe.empty()) r.fail("probe", "missing required key (a probe name such as \"disk.compressor.x\")");
-  m.name = r.text_or("name", m.kind + "(" + m.probe + ")");
   read_metric_window(r, m, "580 mg*mm");
+  read_metric_subject(r, m, s.speed_window_min, s.speed_window_max);
   r.finish();
   return m;
 }
@@ -249,7 +248,7 @@ StudySpec load_study(const std::filesystem::path& file) {
     s.parameter_also.push_back(also);
   });
   top.required_tables("metrics", "at least one [[metrics]] entry (kind, probe)", [&](Reader& r, std::size_t i) {
-    s.metrics.push_back(read_metric(r));
+    s.metrics.push_back(read_metric(r, s));
     for (std::size_t k = 0; k < i; ++k)
       if (s.metrics[k].name == s.metrics[i].name)
         r.fail("name", "metrics[" + std::to_string(k) + "] has the name '" + s.metrics[i].name +

@@ -29,15 +29,21 @@ struct UnitValue {
 struct MetricSpec {
   std::string name;   ///< column name in the results
   std::string kind;   ///< max, max_radius, rms, mean, peak_1x, peak_1x_speed, subsync_max, subsync_ratio,
-                      ///< subsync_onset_speed, subsync_jump_speed, subsync_frequency, summary
+                      ///< subsync_onset_speed, subsync_jump_speed, subsync_frequency, summary, stability_growth,
+                      ///< stability_growth_speed, stability_frequency, stability_damping, stability_onset_speed
   std::string probe;  ///< channel name ("disk.compressor.x"), a pair stem for max_radius ("disk.compressor"), or
-                      ///< for kind = summary a dotted path into summary-like values ("stats.steps")
+                      ///< for kind = summary a dotted path into summary-like values ("stats.steps"); "" for the
+                      ///< stability_* kinds, which analyse the model rather than read a run
   double speed_min = 0.0, speed_max = 0.0;  ///< rad/s window; speed_max = 0 means no upper limit
   double threshold = 0.0;                   ///< subsync_onset/jump_speed: amplitude in the probe's SI unit
   /// subsync_* metrics: the band searched for the sub-synchronous line, as fractions of the rotor speed f_d
   /// (order_band = [low, high]; never below 5 Hz). Narrowing it picks one whirl, e.g. a floating ring's outer-film
   /// whirl near half the ring speed ([0.05, 0.3]) apart from the inner-film whirl near 0.5-0.6 f_d.
   double order_min = 0.05, order_max = 0.9;
+  /// stability_* metrics (studies/stability_metrics.h): speed_count speeds evenly over the speed window are analysed,
+  /// and a mode counts if at least min_rotor_share of its motion is in the rotor (StabilityMode::rotor_share).
+  int speed_count = 15;
+  double min_rotor_share = 0.01;
 };
 
 /// What every kind of study ([study], [optimize], [identify]) says about its runs: the keys name, model (relative to

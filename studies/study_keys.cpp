@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "studies/stability_metrics.h"
+
 namespace turbodyn::studies {
 
 using input::Bound;
@@ -72,6 +74,29 @@ void read_metric_window(Reader& r, MetricSpec& m, const std::string& example) {
   }
   if ((m.kind == "subsync_onset_speed" || m.kind == "subsync_jump_speed") && !(m.threshold > 0.0))
     r.fail("threshold", m.kind + " needs a positive threshold (amplitude in the probe's unit)");
+}
+
+void read_metric_subject(Reader& r, MetricSpec& m, double window_min, double window_max) {
+  if (!is_stability_metric(m.kind)) {
+    m.probe = r.text_or("probe", "");
+    if (m.probe.empty()) r.fail_missing("probe", "a probe name such as \"disk.compressor.x\" or \"bearing.turbine\"");
+    m.name = r.text_or("name", m.kind + "(" + m.probe + ")");
+    return;
+  }
+  if (r.has("probe"))
+    r.fail("probe", "kind = \"" + m.kind + "\" reads no probe: it analyses the model's linearised stability over "
+                    "the metric's speed_window (docs/studies.md, \"Stability metrics\")");
+  if (r.has("threshold")) r.fail("threshold", "applies to amplitudes of a run, not to kind = \"" + m.kind + "\"");
+  m.name = r.text_or("name", m.kind);
+  m.speed_count = static_cast<int>(r.integer_or("speed_count", m.speed_count, 2, 1000));
+  m.min_rotor_share = r.quantity_or("min_rotor_share", dim::dimensionless, m.min_rotor_share, Bound::NonNegative);
+  if (!(m.min_rotor_share <= 1.0)) r.fail("min_rotor_share", "must lie in [0, 1]: the fraction of a mode's motion in the rotor");
+  if (m.speed_max <= 0.0) {
+    if (window_max <= 0.0)
+      r.fail_missing("speed_window", "the speeds a stability metric analyses, [low, high] (here or in the study's table)");
+    m.speed_min = window_min;
+    m.speed_max = window_max;
+  }
 }
 
 }  // namespace turbodyn::studies

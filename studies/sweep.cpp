@@ -18,6 +18,7 @@
 #include "model/io/output_file.h"
 #include "model/io/result_header.h"
 #include "studies/metrics.h"
+#include "studies/stability_metrics.h"
 #include "studies/parallel.h"
 #include "studies/run_log.h"
 #include "studies/sweep_pictures.h"
@@ -120,6 +121,7 @@ SweepResult run_sweep(const StudySpec& study, const SweepOptions& options) {
     check_speed_window(study, spec.speed);
     const std::unique_ptr<RunupModel> model = make_runup_model(spec);
     check_metrics(study, model->channels(), summary_template(spec, *model));
+    check_stability_metrics(study, study.metrics, spec);
   }
 
   std::filesystem::create_directories(options.output_dir);

@@ -245,6 +245,13 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
   return x;
 }
 
+[[noreturn]] void throw_unsupported(const ForceElement& e) {
+  throw std::invalid_argument("bearing '" + e.name() + "': its element has no steady state about a centred "
+                              "rotor that the stability analysis knows (it covers ball bearings with a fixed or "
+                              "spring-mounted outer ring or in a squeeze-film damper without feed hole and supply "
+                              "pressure, and linear bearings, all acting the same in every direction)");
+}
+
 }  // namespace
 
 MachineSpec stability_machine(const MachineSpec& spec_in, double speed) {
@@ -258,6 +265,13 @@ MachineSpec stability_machine(const MachineSpec& spec_in, double speed) {
   spec.speed.duration = 1.0;
   spec.solver.reduction_cutoff = 0.0;  // physical DOFs: the rotor's (x, y) pairs are explicit
   return spec;
+}
+
+void check_stability_supported(const MachineSpec& spec_in) {
+  const std::unique_ptr<RunupModel> model = make_runup_model(stability_machine(spec_in, 0.0));
+  Layout layout;
+  for (const auto& e : model->elements())
+    if (!e->steady_rotation_layout(&layout)) throw_unsupported(*e);
 }
 
 StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const StabilityOptions& options) {
@@ -275,11 +289,7 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
   for (std::size_t k = 0; k < model->elements().size(); ++k) {
     const ForceElement& e = *model->elements()[k];
     out.elements.push_back(e.name());
-    if (!e.steady_rotation_layout(&layouts[k]))
-      throw std::invalid_argument("bearing '" + e.name() + "': its element has no steady state about a centred "
-                                  "rotor that the stability analysis knows (it covers ball bearings with a fixed or "
-                                  "spring-mounted outer ring or in a squeeze-film damper without feed hole and supply "
-                                  "pressure, and linear bearings, all acting the same in every direction)");
+    if (!e.steady_rotation_layout(&layouts[k])) throw_unsupported(e);
     if (e.n_states() == 0) continue;
     double frame = 0.0, residual = 0.0;
     const Eigen::VectorXd z = element_steady_state(e, layouts[k], speed, &frame, &residual);

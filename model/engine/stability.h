@@ -82,6 +82,10 @@ struct StabilityPoint {
 /// unbalance, the shaft in its physical DOFs (no reduction).
 MachineSpec stability_machine(const MachineSpec& spec, double speed);
 
+/// Throws std::invalid_argument, naming the bearing, if an element of `spec` has no steady rotating state that the
+/// analysis knows (the same check analyse_stability makes first): what a study checks before its runs.
+void check_stability_supported(const MachineSpec& spec);
+
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
 /// (ForceElement::steady_rotation_layout: floating rings, journal bearings, anisotropic linear bearings, linear

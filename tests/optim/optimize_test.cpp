@@ -292,6 +292,28 @@ TEST(Optimizer, ConstraintOnTheJeffcottSupportForceIsRespected) {
   EXPECT_GT(b.assessment.objective, free.history[*free.best].assessment.objective);
 }
 
+TEST(Optimizer, LeastDampingForStabilityAgainstTheClosedForm) {
+  // Stability metrics (docs/studies.md) as objective and constraint: the least bearing damping c that keeps the rigid
+  // rotor on cross-coupled bearings (q = q1 W) stable to W = 110,000 rpm. Its cylindrical forward whirl,
+  // M s^2 + 2c s + 2(k - i q) = 0, is marginal where c = q / w_n = q1 W sqrt(M / 2k) (the Jeffcott rotor's
+  // destabilising cross-coupled stiffness, q < c w_n: Vance, Rotordynamics of Turbomachinery, 1988). The shaft's
+  // bending (1e14 Pa, 30 mm) lowers w_n by about 1e-4.
+  const OptimizationSpec s = load_optimization(testing::source_dir() + "/tests/data/stability/rigid_cross_coupled_study.toml");
+  EXPECT_EQ(s.metrics[0].unit, "1");
+  EXPECT_EQ(s.metrics[1].unit, "1/s");
+  constexpr double kMass = 2 * 0.119 + 7850 * M_PI / 4 * 0.03 * 0.03 * 0.14, kK = 3e7, kQ1 = 100.0;
+  const double W = 110000 * M_PI / 30, c_closed = kQ1 * W * std::sqrt(kMass / (2 * kK));
+  const OptimizationResult r = optimize(s, model_evaluator(s), {});
+  ASSERT_TRUE(r.best_feasible) << r.reason;
+  const HistoryEntry& best = r.history[*r.best];
+  std::cout << "[ least damping ] c = " << best.evaluation.design[0] << " N s/m (closed form " << c_closed
+            << "), largest growth " << best.evaluation.cases[0].metrics[1] << " 1/s, " << r.history.size()
+            << " evaluations\n";
+  EXPECT_NEAR(best.evaluation.design[0] / c_closed, 1.0, 1e-3);
+  EXPECT_LE(best.evaluation.cases[0].metrics[1], 0.0);
+  EXPECT_NEAR(best.evaluation.cases[0].metrics[0], 0.0, 1e-5);  // marginal: the least damping ratio is 0
+}
+
 TEST(Optimizer, RestartReusesTheLoggedEvaluations) {
   const OptimizationSpec s = load_optimization(kJeffcottStudy);
   std::atomic<int> runs{0};

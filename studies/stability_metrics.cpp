@@ -1,0 +1,163 @@
+#include "studies/stability_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+#include "model/engine/stability.h"
+#include "model/spec/errors.h"
+
+namespace turbodyn::studies {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kRadPerSToRpm = 30.0 / M_PI;
+
+// What one analysed speed says, reduced to the modes that count (rotor share at least the metric's).
+struct SpeedSummary {
+  double speed = 0.0;            // rad/s
+  double growth = kNaN;          // largest growth rate (1/s) of a counted mode
+  double frequency = kNaN;       // Hz of that mode (signed: > 0 forward)
+  double damping = kNaN;         // least damping ratio of a counted mode
+  bool grows = false;            // a counted mode grows beyond round-off (StabilityMode::grows)
+};
+
+std::string rpm_text(double speed) {
+  std::ostringstream os;
+  os.precision(6);
+  os << speed * kRadPerSToRpm << " rpm";
+  return os.str();
+}
+
+// Analyses at speeds, with the results kept, for one rotor share. A failure is remembered and every speed from the
+// failed one up is refused (each analysis continues its steady state up from rest: one that cannot reach a speed
+// does not reach a higher one); speeds below it are still analysed (the onset's halvings).
+class Analyses {
+ public:
+  Analyses(const MachineSpec& spec, double share, const std::atomic<bool>* cancel)
+      : spec_(spec), cancel_(cancel) {
+    options_.min_rotor_share = share;
+  }
+  // The summary at `speed`, or false (and error() says why) if the analysis failed or was cancelled.
+  bool at(double speed, SpeedSummary* out) {
+    if (const auto it = done_.find(speed); it != done_.end()) return *out = it->second, true;
+    if (speed >= failed_at_) return false;
+    if (cancel_ && cancel_->load()) return error_ = "cancelled", failed_at_ = 0.0, false;
+    StabilityPoint p;
+    try {
+      p = analyse_stability(spec_, speed, options_);
+    } catch (const std::invalid_argument&) {
+      throw;
+    } catch (const std::exception& e) {
+      error_ = "stability analysis at " + rpm_text(speed) + ": " + e.what();
+      failed_at_ = speed;
+      return false;
+    }
+    SpeedSummary s;
+    s.speed = speed;
+    for (const StabilityMode& m : p.modes) {
+      if (m.rotor_share < options_.min_rotor_share) continue;  // the analysis keeps growing modes of any share
+      if (std::isnan(s.growth) || m.growth_rate > s.growth) s.growth = m.growth_rate, s.frequency = m.frequency;
+      if (std::isnan(s.damping) || m.damping_ratio < s.damping) s.damping = m.damping_ratio;
+      s.grows = s.grows || m.grows();
+    }
+    done_[speed] = s;
+    *out = s;
+    return true;
+  }
+  const std::string& error() const { return error_; }
+
+ private:
+  const MachineSpec& spec_;
+  const std::atomic<bool>* cancel_;
+  StabilityOptions options_;
+  std::map<double, SpeedSummary> done_;
+  std::string error_;
+  double failed_at_ = std::numeric_limits<double>::infinity();
+};
+
+double metric_value(const MetricSpec& m, Analyses& a) {
+  const std::vector<double> speeds = stability_speeds(m);
+  std::vector<SpeedSummary> grid;
+  for (double s : speeds) {
+    SpeedSummary sum;
+    if (!a.at(s, &sum)) break;
+    grid.push_back(sum);
+  }
+  if (m.kind == "stability_onset_speed") {
+    std::size_t k = 0;
+    while (k < grid.size() && !grid[k].grows) ++k;
+    if (k == grid.size()) return kNaN;
+    if (k == 0) return grid[0].speed * kRadPerSToRpm;  // grows at the window's start already
+    double lo = grid[k - 1].speed, hi = grid[k].speed;
+    for (int i = 0; i < kOnsetBisections; ++i) {
+      SpeedSummary mid;
+      if (!a.at(0.5 * (lo + hi), &mid)) break;
+      (mid.grows ? hi : lo) = mid.speed;
+    }
+    return hi * kRadPerSToRpm;
+  }
+  const SpeedSummary* top = nullptr;
+  double damping = kNaN;
+  for (const SpeedSummary& s : grid) {
+    if (!std::isnan(s.growth) && (!top || s.growth > top->growth)) top = &s;
+    if (!std::isnan(s.damping) && (std::isnan(damping) || s.damping < damping)) damping = s.damping;
+  }
+  if (m.kind == "stability_damping") return damping;
+  if (!top) return kNaN;
+  if (m.kind == "stability_growth") return top->growth;
+  if (m.kind == "stability_growth_speed") return top->speed * kRadPerSToRpm;
+  return top->frequency;  // stability_frequency
+}
+
+}  // namespace
+
+bool is_stability_metric(const std::string& kind) {
+  return kind == "stability_growth" || kind == "stability_growth_speed" || kind == "stability_frequency" ||
+         kind == "stability_damping" || kind == "stability_onset_speed";
+}
+
+void check_stability_metrics(const StudyCommon& study, const std::vector<MetricSpec>& metrics, const MachineSpec& spec) {
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    if (!is_stability_metric(metrics[i].kind)) continue;
+    try {
+      check_stability_supported(spec);
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(study.source.string() + ": metrics[" + std::to_string(i) + "].kind: " + metrics[i].kind +
+                       ": the linearised stability analysis cannot take this model: " + e.what());
+    }
+    return;
+  }
+}
+
+std::vector<double> stability_speeds(const MetricSpec& m) {
+  std::vector<double> s;
+  const int n = std::max(m.speed_count, 1);
+  for (int i = 0; i < n; ++i)
+    s.push_back(n == 1 ? m.speed_max : m.speed_min + (m.speed_max - m.speed_min) * i / (n - 1));
+  return s;
+}
+
+std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const std::vector<MetricSpec>& metrics,
+                                               std::string* error, const std::atomic<bool>* cancel) {
+  std::vector<double> out(metrics.size(), kNaN);
+  std::map<double, Analyses> by_share;  // the analyses of one rotor share serve every metric that uses it
+  error->clear();
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const MetricSpec& m = metrics[i];
+    if (!is_stability_metric(m.kind)) continue;
+    auto it = by_share.find(m.min_rotor_share);
+    if (it == by_share.end())
+      it = by_share.emplace(std::piecewise_construct, std::forward_as_tuple(m.min_rotor_share),
+                            std::forward_as_tuple(spec, m.min_rotor_share, cancel)).first;
+    out[i] = metric_value(m, it->second);
+    if (error->empty()) *error = it->second.error();
+  }
+  return out;
+}
+
+}  // namespace turbodyn::studies

@@ -1,0 +1,38 @@
+// Metrics of a design that the linearised stability analysis gives (model/engine/stability.h; `turbodyn
+// stability`), without a run-up: how fast the fastest mode grows over a speed range, at what speed a growing mode
+// first appears, its whirl frequency, the least damping ratio. docs/studies.md, "Stability metrics".
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "model/spec/model_spec.h"
+#include "studies/study.h"
+
+namespace turbodyn::studies {
+
+/// stability_growth, stability_growth_speed, stability_frequency, stability_damping, stability_onset_speed.
+bool is_stability_metric(const std::string& kind);
+
+/// Halvings of the grid step that place stability_onset_speed between the last grid speed without a growing mode
+/// and the first with one: the onset is found to 1/64 of the grid step.
+inline constexpr int kOnsetBisections = 6;
+
+/// Throws ModelError ("STUDY: metrics[I].kind: ...") if `metrics` hold a stability metric and the base model `spec`
+/// has an element the analysis does not cover (floating rings, journal bearings, ...): checked before any run.
+void check_stability_metrics(const StudyCommon& study, const std::vector<MetricSpec>& metrics, const MachineSpec& spec);
+
+/// The speeds a stability metric analyses: speed_count speeds evenly over [speed_min, speed_max] (rad/s).
+std::vector<double> stability_speeds(const MetricSpec& m);
+
+/// The stability metrics among `metrics` for the machine `spec` (NaN in every other place, and where a metric is
+/// undefined: no growing mode for stability_onset_speed). Metrics with the same speeds and rotor share share their
+/// analyses. An analysis that fails (no steady state found at a speed) ends that metric's speeds there: the metric
+/// is taken over the speeds analysed, and *error says at which speed and why ("" if none failed). A set `cancel`
+/// stops before the next analysis (*error "cancelled"). Throws nothing for a failing analysis; throws
+/// std::invalid_argument if the model has an element the analysis does not cover (check_stability_supported).
+std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const std::vector<MetricSpec>& metrics,
+                                               std::string* error, const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace turbodyn::studies

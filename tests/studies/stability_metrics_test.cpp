@@ -1,0 +1,211 @@
+// The stability metrics of a study (studies/stability_metrics.h) against the closed form of a rigid rotor whose
+// bearings' cross-coupled stiffness grows with speed, and what a study with them refuses.
+#include "studies/stability_metrics.h"
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "model/io/model_file.h"
+#include "model/io/overrides.h"
+#include "model/spec/constants.h"
+#include "model/spec/errors.h"
+#include "studies/run_evaluation.h"
+#include "studies/sweep.h"
+#include "tests/support/test_support.h"
+
+namespace turbodyn::studies {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kRpm = kRpmToRadPerS;
+
+// tests/data/stability/rigid_cross_coupled.toml: a rigid rotor symmetric about its middle on two equal bearings of
+// stiffness k, damping c and a cross-coupled stiffness q = q1 * speed (kxy = q, kyx = -q, linear in the speed
+// between the table's entries at 0 and 20,000 rad/s).
+struct RigidRotor {
+  MachineSpec spec;
+  double mass = 0.0;  // kg, the whole rotor
+  double k = 3e7, c = 100.0, q1 = 100.0;
+};
+
+RigidRotor rigid_rotor() {
+  RigidRotor r;
+  r.spec = load_model(testing::source_dir() + "/tests/data/stability/rigid_cross_coupled.toml");
+  const ShaftSection& shaft = r.spec.shaft.at(0);
+  r.mass = 2 * 0.119 + r.spec.materials.at(shaft.material).density * M_PI / 4 * shaft.outer_diameter *
+                           shaft.outer_diameter * shaft.length;
+  for (const BearingSpec& b : r.spec.bearings) {  // the constants above are the file's
+    EXPECT_EQ(b.linear.k[0].at(0), r.k);
+    EXPECT_EQ(b.linear.c[0].at(0), r.c);
+    EXPECT_DOUBLE_EQ(b.linear.k[1].at(1) / b.linear.speeds.at(1), r.q1);
+  }
+  return r;
+}
+
+// The cylindrical whirl z = x + i y of the rigid rotor: M z'' + 2c z' + 2(k - i q) z = 0; its forward root.
+std::complex<double> forward_root(const RigidRotor& r, double speed) {
+  const std::complex<double> b = 2 * r.c, c0 = 2.0 * std::complex<double>(r.k, -r.q1 * speed);
+  const std::complex<double> d = std::sqrt(b * b - 4.0 * r.mass * c0);
+  const std::complex<double> s1 = (-b + d) / (2 * r.mass), s2 = (-b - d) / (2 * r.mass);
+  return s1.imag() > 0 ? s1 : s2;
+}
+
+MetricSpec metric(const std::string& kind, double low_rpm, double high_rpm, int count) {
+  MetricSpec m;
+  m.name = m.kind = kind;
+  m.speed_min = low_rpm * kRpm;
+  m.speed_max = high_rpm * kRpm;
+  m.speed_count = count;
+  return m;
+}
+
+TEST(StabilityMetrics, ARigidRotorOnCrossCoupledBearingsLosesStabilityWhereTheClosedFormSays) {
+  // Marginal stability of the cylindrical forward whirl: s = i w with M w^2 = 2k and 2c w = 2q, so the onset speed is
+  // c sqrt(2k/M) / q1, 73,426 rpm here (the Jeffcott rotor's destabilising cross-coupled stiffness, q < c w_n:
+  // Vance, Rotordynamics of Turbomachinery, 1988). The window's top (110,000 rpm) stays below the conical modes'
+  // onset (their frequency sqrt(2 k a^2 / I_d) is 1.6 times higher). The onset is bracketed by the grid and halved
+  // six times: found to 1/64 of the grid's step, the last speed found growing returned, so the marginal speed lies
+  // within [value - step/64, value], up to 1e-3: the criterion of growth (a damping ratio below -1e-5,
+  // StabilityMode::grows) lies some 60 rpm (8e-4) above it, the bending less. Growth rate, frequency and damping
+  // ratio of the fastest mode at the window's top: the forward root.
+  const RigidRotor r = rigid_rotor();
+  constexpr double kLow = 10000, kHigh = 110000, kTolerance = 1e-3;
+  constexpr int kCount = 11;
+  const std::vector<MetricSpec> metrics = {
+      metric("stability_onset_speed", kLow, kHigh, kCount), metric("stability_growth", kLow, kHigh, kCount),
+      metric("stability_growth_speed", kLow, kHigh, kCount), metric("stability_frequency", kLow, kHigh, kCount),
+      metric("stability_damping", kLow, kHigh, kCount)};
+  std::string error;
+  const std::vector<double> v = evaluate_stability_metrics(r.spec, metrics, &error);
+  EXPECT_EQ(error, "");
+  const double onset = r.c * std::sqrt(2 * r.k / r.mass) / r.q1 / kRpm;
+  const double step = (kHigh - kLow) / (kCount - 1) / 64;
+  const std::complex<double> top = forward_root(r, kHigh * kRpm);
+  std::printf("[ rigid rotor ] onset %.1f rpm (closed form %.1f, resolution %.1f rpm); at %.0f rpm growth %.3f 1/s "
+              "(%.3f), %.2f Hz (%.2f), damping ratio %.5f (%.5f)\n",
+              v[0], onset, step, kHigh, v[1], top.real(), v[3], top.imag() / (2 * M_PI), v[4],
+              -top.real() / std::abs(top));
+  EXPECT_GE(v[0], onset * (1 - kTolerance));
+  EXPECT_LE(v[0] - step, onset * (1 + kTolerance));
+  EXPECT_NEAR(v[1] / top.real(), 1.0, 1e-2);  // the growth is a small difference of large terms
+  EXPECT_EQ(v[2], kHigh);
+  EXPECT_NEAR(v[3] / (top.imag() / (2 * M_PI)), 1.0, kTolerance);
+  EXPECT_NEAR(v[4] / (-top.real() / std::abs(top)), 1.0, 1e-2);
+}
+
+TEST(StabilityMetrics, WithoutAGrowingModeTheOnsetIsUndefinedAndTheGrowthNegative) {
+  // Below the onset every mode decays: no onset speed (NaN, an empty cell in the results), the largest growth rate
+  // negative and, on this rotor, the cylindrical forward mode's (the least damped).
+  const RigidRotor r = rigid_rotor();
+  std::string error;
+  const std::vector<double> v = evaluate_stability_metrics(
+      r.spec, {metric("stability_onset_speed", 10000, 60000, 3), metric("stability_growth", 10000, 60000, 3)}, &error);
+  EXPECT_EQ(error, "");
+  EXPECT_TRUE(std::isnan(v[0]));
+  EXPECT_NEAR(v[1] / forward_root(r, 60000 * kRpm).real(), 1.0, 1e-2);
+}
+
+TEST(StabilityMetrics, AStudysRunOfStabilityMetricsIsTheAnalysisOfItsModel) {
+  // A study's run (evaluate_run) with only a stability metric: the value evaluate_stability_metrics gives for the
+  // same model file, status ok. On examples/reference_ball.toml the ball set's one-lobed wave grows from about
+  // 55,000 rpm (docs/ball-bearing.md, "Linearised stability").
+  StudyCommon s;
+  s.model = testing::source_dir() + "/examples/reference_ball.toml";
+  const MetricSpec m = metric("stability_onset_speed", 50000, 60000, 2);
+  const RunRecord rec = evaluate_run(s, {m}, {});
+  EXPECT_EQ(rec.status, "ok") << rec.error;
+  std::string error;
+  const std::vector<double> v = evaluate_stability_metrics(load_model(s.model), {m}, &error);
+  EXPECT_EQ(rec.metrics.at(0), v.at(0));
+  std::printf("[ reference_ball ] onset %.0f rpm\n", v[0]);
+  EXPECT_GT(v[0], 50000);
+  EXPECT_LT(v[0], 60000);
+}
+
+TEST(StabilityMetrics, AnAnalysisThatFailsEndsTheSpeedsThereAndTheOnsetIsStillHalvedBelow) {
+  // With 300 N of preload and a free contact angle of 20 deg, Eq. 23's rolling state folds back between 80,000 and
+  // 90,000 rpm (docs/ball-bearing.md): the analysis at 90,000 rpm finds no steady state. The metrics are taken over
+  // the speeds below; the onset, bracketed by 50,000 and 70,000 rpm, is still halved there; the error names the
+  // speed that failed.
+  StudyCommon s;
+  s.model = testing::source_dir() + "/examples/reference_ball.toml";
+  const MachineSpec spec = load_model(s.model, {parse_override("bearings.compressor.preload=300 N"),
+                                                parse_override("bearings.turbine.preload=300 N"),
+                                                parse_override("bearings.compressor.contact_angle=20 deg"),
+                                                parse_override("bearings.turbine.contact_angle=20 deg")});
+  std::string error;
+  const std::vector<double> v = evaluate_stability_metrics(
+      spec, {metric("stability_onset_speed", 50000, 90000, 3), metric("stability_growth_speed", 50000, 90000, 3)},
+      &error);
+  std::printf("[ 300 N, 20 deg ] onset %.1f rpm, fastest at %.0f rpm; %s\n", v[0], v[1], error.c_str());
+  EXPECT_THAT(error, HasSubstr("stability analysis at 90000 rpm: element 'compressor': no steady state found"));
+  EXPECT_GT(v[0], 50000);
+  EXPECT_LT(v[0], 70000);  // not the grid's 70,000 rpm: halved
+  EXPECT_LE(v[1], 70000);
+}
+
+std::filesystem::path write_study(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path file = dir / name;
+  std::ofstream(file) << text;
+  return file;
+}
+
+std::string load_error(const std::filesystem::path& file) {
+  try {
+    (void)load_study(file);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
+  const std::string head = "[study]\nmodel = \"" + testing::source_dir() + "/examples/MODEL\"\n" +
+                           "[design]\nkind = \"full-factorial\"\n[[parameters]]\npath = \"disks.turbine.unbalance\"\n"
+                           "levels = [\"580 mg*mm\"]\n[[metrics]]\nkind = \"stability_growth\"\n";
+  const auto with = [&](const std::string& model, const std::string& keys) {
+    std::string t = head;
+    t.replace(t.find("MODEL"), 5, model);
+    return t + keys;
+  };
+  // No speeds: neither the metric nor the study has a speed window.
+  EXPECT_THAT(load_error(write_study("a.toml", with("reference_ball.toml", ""))),
+              HasSubstr("metrics[0].speed_window: missing"));
+  // A probe, a threshold, a share outside [0, 1], a single speed.
+  const std::string window = "speed_window = [\"10000 rpm\", \"20000 rpm\"]\n";
+  EXPECT_THAT(load_error(write_study("b.toml", with("reference_ball.toml", window + "probe = \"disk.turbine.x\"\n"))),
+              HasSubstr("metrics[0].probe: kind = \"stability_growth\" reads no probe"));
+  EXPECT_THAT(load_error(write_study("c.toml", with("reference_ball.toml", window + "threshold = \"1 um\"\n"))),
+              HasSubstr("metrics[0].threshold"));
+  EXPECT_THAT(load_error(write_study("d.toml", with("reference_ball.toml", window + "min_rotor_share = 2\n"))),
+              HasSubstr("metrics[0].min_rotor_share: must lie in [0, 1]"));
+  EXPECT_THAT(load_error(write_study("e.toml", with("reference_ball.toml", window + "speed_count = 1\n"))),
+              HasSubstr("metrics[0].speed_count"));
+  // A model the analysis does not cover: refused before any run, naming the study, the metric and the bearing.
+  const std::filesystem::path ring = write_study("f.toml", with("reference_floating_ring.toml", window));
+  const StudySpec study = load_study(ring);
+  SweepOptions o;
+  o.output_dir = ring.parent_path() / "out_f";
+  try {
+    (void)run_sweep(study, o);
+    ADD_FAILURE() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("f.toml: metrics[0].kind: stability_growth: the linearised stability analysis "
+                                    "cannot take this model: bearing 'compressor'"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.output_dir / "runs.jsonl"));
+}
+
+}  // namespace
+}  // namespace turbodyn::studies
