@@ -7,10 +7,13 @@
 #   the outer-film whirl (docs/studies.md, ~13 min on 2 cores, 2026-12-04),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
 #   2 cores since a run-up takes 1.7-2.9 min; 34 min on 2026-12-04, 2 h before),
+#   the 20-design map of where variant II's ball-set whirl starts over preload and contact angle, stability analyses
+#   without run-ups (docs/studies.md, ~1.5 min on 2 cores),
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~1.5 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~12 min on 2 cores).
-# Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [floating_ring] [ball] [ball_sfd]
+# Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [floating_ring] [ball]
+#   [ball_stability] [ball_sfd]
 #   (default: all).
 # Build first (scripts/build.sh).
 # Results in out/validation_studies/; an interrupted optimisation resumes from its cache when run again.
@@ -19,7 +22,7 @@ cd "$(dirname "$0")/.."
 exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "validation_studies: build first (scripts/build.sh)" >&2; exit 1; }
 which=("$@")
-((${#which[@]})) || which=(identify identify_floating_ring optimize floating_ring ball ball_sfd)
+((${#which[@]})) || which=(identify identify_floating_ring optimize floating_ring ball ball_stability ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
 # Runs examples/study_reference_NAME.toml afresh into $out/study_NAME and logs its wall time to $out/NAME.log.
@@ -79,11 +82,15 @@ for w in "${which[@]}"; do
       cp "$out/study_ball/map_force_at_window_end.png" docs/images/study_ball_map_force_at_window_end.png
       cp "$out/study_ball/map_force_at_top_speed_compressor.png" docs/images/study_ball_map_force_at_top_speed.png
       ;;
+    ball_stability)
+      run_study ball_stability
+      cp "$out/study_ball_stability/map_onset_speed.png" docs/images/study_ball_stability_map_onset_speed.png
+      ;;
     ball_sfd)
       run_study ball_sfd
       cp "$out/study_ball_sfd/map_force_1x_compressor.png" docs/images/study_ball_sfd_map_force_1x_compressor.png
       cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
       ;;
-    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, floating_ring, ball, ball_sfd)" >&2; exit 2 ;;
+    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, floating_ring, ball, ball_stability, ball_sfd)" >&2; exit 2 ;;
   esac
 done
