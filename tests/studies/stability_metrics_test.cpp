@@ -153,6 +153,20 @@ TEST(StabilityMetrics, AnAnalysisThatFailsEndsTheSpeedsThereAndTheOnsetIsStillHa
   EXPECT_LE(v[1], 70000);
 }
 
+TEST(StabilityMetrics, TheExampleStudyReadsAndItsModelIsOneTheAnalysisTakes) {
+  // examples/study_reference_ball_stability.toml (docs/studies.md): four stability metrics over the study's window
+  // at 15 speeds, a model the analysis covers; its designs are run by bench/validation_studies.sh ball_stability.
+  const StudySpec s = load_study(testing::source_dir() + "/examples/study_reference_ball_stability.toml");
+  ASSERT_EQ(s.metrics.size(), 4u);
+  for (const MetricSpec& m : s.metrics) {
+    EXPECT_TRUE(is_stability_metric(m.kind)) << m.name;
+    EXPECT_EQ(m.speed_count, 15);
+    EXPECT_DOUBLE_EQ(m.speed_min, 10000 * kRpm);
+    EXPECT_DOUBLE_EQ(m.speed_max, 150000 * kRpm);
+  }
+  EXPECT_NO_THROW(check_stability_metrics(s, s.metrics, load_study_model(s, run_overrides(s, make_design(s.design), 0))));
+}
+
 std::filesystem::path write_study(const std::string& name, const std::string& text) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test";
   std::filesystem::create_directories(dir);
