@@ -181,57 +181,52 @@ class ElementSteadyState {
   double speed_ = 0.0, rate_scale_ = 1.0;
 };
 
-// The element's steady state at `speed` by continuation from rest, each step started from the secant through the
-// last two solutions (angles excepted). A step that finds no steady state is retried at half the length, down to
-// kMaxSpeedStep / 2^kMaxStepHalvings, and the step grows back after a success. Returns the states and the frame
-// speed in *frame.
-Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout, double speed, double* frame,
-                                     double* residual) {
-  ElementSteadyState solver(e, layout);
+// Continuation of the element's steady state x (at speed `from`) to speed `to`, each step started from the secant
+// through the last two solutions (angles excepted). A step that finds no steady state is retried at half the length,
+// down to kMaxSpeedStep / 2^kMaxStepHalvings, and the step grows back after a success. From rest (from = 0) the
+// first step starts from the no-slip state. Returns false (x at the last speed reached, *failed_at and *norm of the
+// step that failed) if the smallest step fails.
+bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, const Layout& layout, double from,
+                           double to, Eigen::VectorXd& x, double* norm, double* failed_at, double* smallest_step) {
   const int m = e.n_states();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
-  e.initial_states(x.data());
-  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(speed) / kMaxSpeedStep)));
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(to - from) / kMaxSpeedStep)));
   // Positions along the continuation in units of the smallest step: an undisturbed continuation lands on
-  // speed * k / steps exactly (the power-of-two units cancel), whatever steps were halved elsewhere.
+  // from + (to - from) * k / steps exactly (the power-of-two units cancel), whatever steps were halved elsewhere.
   constexpr long kUnits = 1L << kMaxStepHalvings;
   const long end = static_cast<long>(steps) * kUnits;
   long at = 0, step = kUnits;
   const auto speed_at = [&](long position) {
-    return speed * static_cast<double>(position) / static_cast<double>(end);
+    return from + (to - from) * static_cast<double>(position) / static_cast<double>(end);
   };
+  *smallest_step = std::abs(to - from) / static_cast<double>(end);
   Eigen::VectorXd prev = x;
-  double prev_speed = 0.0, last_speed = 0.0, norm = 0.0;
+  double prev_speed = from, last_speed = from;
+  bool first = true;
   while (at < end) {
     const long next = std::min(end, at + step);
     const double s = speed_at(next);
     Eigen::VectorXd guess(m);
-    if (at == 0) {
+    if (first) {
       guess = x;
-      e.initial_states_at_speed(s, guess.data());
+      if (from == 0.0) e.initial_states_at_speed(s, guess.data());
     } else {
       guess = x + (x - prev) * ((s - last_speed) / (last_speed - prev_speed));
       // Angles are not extrapolated: a ball's place in its pocket is neutral and may have moved in the last solve.
       for (const auto& a : layout.turning_angles) guess(a.first) = x(a.first);
     }
     const Eigen::VectorXd start = guess;
-    norm = solver.newton(s, guess);
-    if (!(norm <= kAccepted)) {
+    *norm = solver.newton(s, guess);
+    if (!(*norm <= kAccepted)) {
       guess = start;
-      norm = solver.solve(s, guess);
+      *norm = solver.solve(s, guess);
     }
-    if (!(norm <= kAccepted)) {
+    if (!(*norm <= kAccepted)) {
       if (step > 1) {
         step /= 2;
         continue;
       }
-      throw std::runtime_error("element '" + e.name() + "': no steady state found at " + rpm_text(s) +
-                               " (the iteration stopped at a scaled rate of " + number_text(norm) +
-                               " with continuation steps of " +
-                               number_text(speed / static_cast<double>(end) * kRadPerSToRpm) +
-                               " rpm; where friction saturates, e.g. the balls' gyroscopic moment above what the "
-                               "traction carries, it finds no slope, and where the rolling state folds back on a "
-                               "falling friction law, friction_sliding < friction_static, it ends)");
+      *failed_at = s;
+      return false;
     }
     prev = x;
     prev_speed = last_speed;
@@ -239,7 +234,57 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
     last_speed = s;
     at = next;
     step = std::min(kUnits, 2 * step);
+    first = false;
   }
+  return true;
+}
+
+// The element's steady state at `speed`: by continuation from rest (the preload equilibrium). If that fails within
+// the first regular step from rest (kMaxSpeedStep: a lubricated (EHL) contact's traction is stiffest at the smallest
+// entrainment speeds, where its film is thinnest; with 200 N of preload the iteration stops at 31 rpm), the steady
+// state is sought directly from the balls' and cage's no-slip state, as a run started mid-ramp starts them: at
+// `speed`, else at 2, 1/2, 4, 1/4 and 8 times it (not below kMaxSpeedStep), continued from there to `speed`. A
+// failure farther from rest (a rolling state that folds back) stays a failure. Returns the states and the frame
+// speed in *frame.
+Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout, double speed, double* frame,
+                                     double* residual) {
+  ElementSteadyState solver(e, layout);
+  const int m = e.n_states();
+  Eigen::VectorXd rest = Eigen::VectorXd::Zero(m);
+  e.initial_states(rest.data());
+  Eigen::VectorXd x = rest;
+  double norm = 0.0, failed_at = 0.0, smallest = 0.0;
+  bool found = continue_steady_state(solver, e, layout, 0.0, speed, x, &norm, &failed_at, &smallest);
+  const double first_failure = failed_at, first_norm = norm, first_smallest = smallest;
+  std::string direct_note;
+  if (!found && failed_at <= kMaxSpeedStep && speed > 0.0) {
+    for (const double factor : {1.0, 2.0, 0.5, 4.0, 0.25, 8.0}) {
+      const double anchor = speed * factor;
+      if (found || (factor < 1.0 && anchor < kMaxSpeedStep)) continue;
+      Eigen::VectorXd z = rest;
+      e.initial_states_at_speed(anchor, z.data());
+      const Eigen::VectorXd no_slip = z;
+      double n = solver.newton(anchor, z);
+      if (!(n <= kAccepted)) {
+        z = no_slip;
+        n = solver.solve(anchor, z);
+      }
+      if (!(n <= kAccepted)) continue;
+      norm = n;
+      found = anchor == speed || continue_steady_state(solver, e, layout, anchor, speed, z, &norm, &failed_at,
+                                                       &smallest);
+      if (found) x = z;
+    }
+    if (!found) direct_note = ", nor from the no-slip state at 1/4 to 8 times the speed";
+  }
+  if (!found)
+    throw std::runtime_error("element '" + e.name() + "': no steady state found at " + rpm_text(first_failure) +
+                             " (the iteration stopped at a scaled rate of " + number_text(first_norm) +
+                             " with continuation steps of " + number_text(first_smallest * kRadPerSToRpm) +
+                             " rpm" + direct_note +
+                             "; where friction saturates, e.g. the balls' gyroscopic moment above what the "
+                             "traction carries, it finds no slope, and where the rolling state folds back on a "
+                             "falling friction law, friction_sliding < friction_static, it ends)");
   *frame = solver.frame_speed(x);
   *residual = norm;
   return x;

@@ -14,6 +14,7 @@
 #include "model/elements/ball/ball_bearing.h"
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "model/io/model_file.h"
+#include "model/io/overrides.h"
 #include "model/rotor/modal.h"
 #include "model/spec/constants.h"
 #include "tests/support/test_support.h"
@@ -41,6 +42,26 @@ TEST(Stability, SteadyStateTurnsAtTheQuasiStaticCageSpeed) {
   EXPECT_NEAR(p.frame_speed / eq.back().cage_speed, 1.0, kTolerance);
   EXPECT_LT(p.residual, 1e-6);
   EXPECT_EQ(p.elements, (std::vector<std::string>{"compressor", "turbine"}));
+}
+
+TEST(Stability, ALubricatedBearingThatTheContinuationCannotStartIsFoundDirectlyAtSpeed) {
+  // The lubricated traction (Eyring, the model file's default law) with 200 N of preload: its traction is so stiff at
+  // the smallest entrainment speeds that not even the continuation's first step from rest (31 rpm) converges. The
+  // steady state is then sought at the speed itself from the no-slip state; it is the rolling state: the cage turns
+  // at the quasi-static cage speed (as in SteadyStateTurnsAtTheQuasiStaticCageSpeed, 0.3 % for the traction's slip).
+  constexpr double kSpeed = 100000 * kRpm, kTolerance = 0.003;
+  const MachineSpec spec = load_model(
+      testing::source_dir() + "/examples/reference_ball.toml",
+      {parse_override("bearings.compressor.traction_law=eyring"), parse_override("bearings.turbine.traction_law=eyring"),
+       parse_override("bearings.compressor.preload=200 N"), parse_override("bearings.turbine.preload=200 N")});
+  const StabilityPoint p = analyse_stability(spec, kSpeed);
+  const BallBearingElement element("compressor", spec.bearings[0].ball, 0, 0.0);
+  const BallBearingQuasiStatic qs(element);
+  const std::vector<BallBearingEquilibrium> eq = qs.sweep({kSpeed}, Eigen::Vector3d::Zero());
+  std::printf("[ eyring, 200 N ] cage %.2f rad/s (quasi-static %.2f), residual %.2e\n", p.frame_speed,
+              eq.back().cage_speed, p.residual);
+  EXPECT_NEAR(p.frame_speed / eq.back().cage_speed, 1.0, kTolerance);
+  EXPECT_LT(p.residual, 1e-6);
 }
 
 TEST(Stability, OnIsotropicLinearBearingsTheModesAreTheModalAnalysisOnes) {
