@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "studies/stability_metrics.h"
 #include "studies/table.h"
 
 namespace turbodyn::optim {
@@ -34,6 +35,10 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     // The band only where set, so that a cache written before it existed still resumes.
     if (m.spec.order_min != plain.order_min || m.spec.order_max != plain.order_max)
       metrics.back()["order_band"] = nlohmann::json::array({m.spec.order_min, m.spec.order_max});
+    if (studies::is_stability_metric(m.spec.kind)) {
+      metrics.back()["speed_count"] = m.spec.speed_count;
+      metrics.back()["min_rotor_share"] = m.spec.min_rotor_share;
+    }
   }
   return {{"model", s.model.filename().string()}, {"model_digest", studies::base_model_digest(s)},
           {"fixed", overrides_json(s.fixed)},

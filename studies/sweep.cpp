@@ -35,8 +35,8 @@ constexpr const char* kOtherStudy =
 // Identifies the study a runs.jsonl belongs to: same model file (name and content), parameters, design and metrics.
 nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
   nlohmann::json metrics = nlohmann::json::array();
-  // A metric's window, threshold and band are part of it (only where set, so that a log of a study without them
-  // still resumes).
+  // A metric's window, threshold, band and a stability metric's speeds and rotor share are part of it (the first three
+  // only where set, so that a log of a study without them still resumes).
   const MetricSpec plain;
   for (const MetricSpec& m : s.metrics) {
     std::ostringstream id;
@@ -47,6 +47,7 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
     if (m.threshold != plain.threshold) id << ":threshold=" << m.threshold;
     if (m.order_min != plain.order_min || m.order_max != plain.order_max)
       id << ":order_band=" << m.order_min << "," << m.order_max;
+    if (is_stability_metric(m.kind)) id << ":speed_count=" << m.speed_count << ":min_rotor_share=" << m.min_rotor_share;
     metrics.push_back(id.str());
   }
   return {{"study", s.name}, {"model", s.model.filename().string()}, {"model_digest", base_model_digest(s)},

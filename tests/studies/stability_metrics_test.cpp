@@ -184,6 +184,28 @@ std::string load_error(const std::filesystem::path& file) {
   return "";
 }
 
+TEST(StabilityMetrics, AStudyOfOtherSpeedsOrRotorShareDoesNotResumeTheRuns) {
+  // The speeds and the rotor share make the metric's numbers: a study that changes them is another study, and its
+  // output directory's finished runs are not taken for its own (one file name: the study's name is its stem). On the
+  // rigid rotor (milliseconds per design).
+  const std::string body = "[study]\nmodel = \"" + testing::source_dir() +
+                           "/tests/data/stability/rigid_cross_coupled.toml\"\n"
+                           "speed_window = [\"10000 rpm\", \"110000 rpm\"]\n[design]\nkind = \"full-factorial\"\n"
+                           "[[parameters]]\npath = \"bearings.left.c\"\nalso = [\"bearings.right.c\"]\n"
+                           "levels = [\"100 N*s/m\", \"200 N*s/m\"]\n[[metrics]]\nkind = \"stability_growth\"\n";
+  SweepOptions o;
+  o.output_dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test" / "resume";
+  std::filesystem::remove_all(o.output_dir);
+  const SweepResult first = run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), o);
+  ASSERT_TRUE(first.complete);
+  EXPECT_GT(first.runs.at(0).metrics.at(0), 0.0);  // 100 N s/m: unstable at the top (onset 73,426 rpm)
+  EXPECT_LT(first.runs.at(1).metrics.at(0), 0.0);  // 200 N s/m: stable to 110,000 rpm (149.8 N s/m suffice)
+  EXPECT_EQ(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), o).resumed, 2u);
+  EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 4\n")), o), ModelError);
+  EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\nmin_rotor_share = 0.5\n")), o),
+               ModelError);
+}
+
 TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
   const std::string head = "[study]\nmodel = \"" + testing::source_dir() + "/examples/MODEL\"\n" +
                            "[design]\nkind = \"full-factorial\"\n[[parameters]]\npath = \"disks.turbine.unbalance\"\n"
