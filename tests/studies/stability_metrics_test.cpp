@@ -153,18 +153,23 @@ TEST(StabilityMetrics, AnAnalysisThatFailsEndsTheSpeedsThereAndTheOnsetIsStillHa
   EXPECT_LE(v[1], 70000);
 }
 
-TEST(StabilityMetrics, TheExampleStudyReadsAndItsModelIsOneTheAnalysisTakes) {
-  // examples/study_reference_ball_stability.toml (docs/studies.md): four stability metrics over the study's window
-  // at 15 speeds, a model the analysis covers; its designs are run by bench/validation_studies.sh ball_stability.
-  const StudySpec s = load_study(testing::source_dir() + "/examples/study_reference_ball_stability.toml");
-  ASSERT_EQ(s.metrics.size(), 4u);
-  for (const MetricSpec& m : s.metrics) {
-    EXPECT_TRUE(is_stability_metric(m.kind)) << m.name;
-    EXPECT_EQ(m.speed_count, 15);
-    EXPECT_DOUBLE_EQ(m.speed_min, 10000 * kRpm);
-    EXPECT_DOUBLE_EQ(m.speed_max, 150000 * kRpm);
+TEST(StabilityMetrics, TheExampleStudiesReadAndTheirModelsAreOnesTheAnalysisTakes) {
+  // examples/study_reference_ball_stability*.toml (docs/studies.md): stability metrics only, over the study's window,
+  // on models the analysis covers; their designs are run by bench/validation_studies.sh ball_stability.
+  for (const auto& [file, count] : {std::pair<std::string, int>{"study_reference_ball_stability.toml", 15},
+                                    std::pair<std::string, int>{"study_reference_ball_stability_global.toml", 8}}) {
+    SCOPED_TRACE(file);
+    const StudySpec s = load_study(testing::source_dir() + "/examples/" + file);
+    ASSERT_GE(s.metrics.size(), 3u);
+    for (const MetricSpec& m : s.metrics) {
+      EXPECT_TRUE(is_stability_metric(m.kind)) << m.name;
+      EXPECT_EQ(m.speed_count, count);
+      EXPECT_DOUBLE_EQ(m.speed_min, 10000 * kRpm);
+      EXPECT_DOUBLE_EQ(m.speed_max, 150000 * kRpm);
+    }
+    EXPECT_NO_THROW(
+        check_stability_metrics(s, s.metrics, load_study_model(s, run_overrides(s, make_design(s.design), 0))));
   }
-  EXPECT_NO_THROW(check_stability_metrics(s, s.metrics, load_study_model(s, run_overrides(s, make_design(s.design), 0))));
 }
 
 std::filesystem::path write_study(const std::string& name, const std::string& text) {
