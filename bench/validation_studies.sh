@@ -7,8 +7,9 @@
 #   the outer-film whirl (docs/studies.md, ~13 min on 2 cores, 2026-12-04),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
 #   2 cores since a run-up takes 1.7-2.9 min; 34 min on 2026-12-04, 2 h before),
-#   the 20-design map of where variant II's ball-set whirl starts over preload and contact angle, and 48 designs of
-#   eight bearing parameters, stability analyses without run-ups (docs/studies.md, ~1.5 and ~3 min on 2 cores),
+#   the 20-design map of where variant II's ball-set whirl starts over preload and contact angle, 48 designs of
+#   eight bearing parameters and 30 outer-ring mounts, stability analyses without run-ups (docs/studies.md, ~1.5,
+#   ~3 and ~1.5 min on 2 cores),
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~1.5 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~12 min on 2 cores).
@@ -86,6 +87,7 @@ for w in "${which[@]}"; do
       run_study ball_stability
       cp "$out/study_ball_stability/map_onset_speed.png" docs/images/study_ball_stability_map_onset_speed.png
       run_study ball_stability_global
+      run_study ball_stability_mount
       ;;
     ball_sfd)
       run_study ball_sfd

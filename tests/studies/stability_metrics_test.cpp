@@ -157,7 +157,8 @@ TEST(StabilityMetrics, TheExampleStudiesReadAndTheirModelsAreOnesTheAnalysisTake
   // examples/study_reference_ball_stability*.toml (docs/studies.md): stability metrics only, over the study's window,
   // on models the analysis covers; their designs are run by bench/validation_studies.sh ball_stability.
   for (const auto& [file, count] : {std::pair<std::string, int>{"study_reference_ball_stability.toml", 15},
-                                    std::pair<std::string, int>{"study_reference_ball_stability_global.toml", 8}}) {
+                                    std::pair<std::string, int>{"study_reference_ball_stability_global.toml", 8},
+                                    std::pair<std::string, int>{"study_reference_ball_stability_mount.toml", 8}}) {
     SCOPED_TRACE(file);
     const StudySpec s = load_study(testing::source_dir() + "/examples/" + file);
     ASSERT_GE(s.metrics.size(), 3u);
