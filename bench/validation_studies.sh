@@ -94,6 +94,7 @@ for w in "${which[@]}"; do
       cp "$out/study_ball_sfd/map_force_1x_compressor.png" docs/images/study_ball_sfd_map_force_1x_compressor.png
       cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
       ;;
-    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, floating_ring, ball, ball_stability, ball_sfd)" >&2; exit 2 ;;
+    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, floating_ring, ball," \
+            "ball_stability, ball_sfd)" >&2; exit 2 ;;
   esac
 done

@@ -48,7 +48,8 @@ RunRecord evaluate_run(const StudyCommon& study, const std::vector<MetricSpec>& 
     // The stability metrics analyse the model itself (no run-up): after a complete run, or alone.
     if (any_stability && rec.status == "ok") {
       std::string error;
-      const std::vector<double> v = evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel);
+      const std::vector<double> v =
+          evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel);
       for (std::size_t m = 0; m < metrics.size(); ++m)
         if (is_stability_metric(metrics[m].kind)) rec.metrics[m] = v[m];
       if (!error.empty()) {

@@ -9,13 +9,13 @@
 #include <tuple>
 
 #include "model/engine/stability.h"
+#include "model/spec/constants.h"
 #include "model/spec/errors.h"
 
 namespace turbodyn::studies {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kRadPerSToRpm = 30.0 / M_PI;
 
 // What one analysed speed says, reduced to the modes that count (rotor share at least the metric's).
 struct SpeedSummary {
@@ -121,7 +121,8 @@ bool is_stability_metric(const std::string& kind) {
          kind == "stability_damping" || kind == "stability_onset_speed";
 }
 
-void check_stability_metrics(const StudyCommon& study, const std::vector<MetricSpec>& metrics, const MachineSpec& spec) {
+void check_stability_metrics(const StudyCommon& study, const std::vector<MetricSpec>& metrics,
+                             const MachineSpec& spec) {
   for (std::size_t i = 0; i < metrics.size(); ++i) {
     if (!is_stability_metric(metrics[i].kind)) continue;
     try {

@@ -90,10 +90,12 @@ void read_metric_subject(Reader& r, MetricSpec& m, double window_min, double win
   m.name = r.text_or("name", m.kind);
   m.speed_count = static_cast<int>(r.integer_or("speed_count", m.speed_count, 2, 1000));
   m.min_rotor_share = r.quantity_or("min_rotor_share", dim::dimensionless, m.min_rotor_share, Bound::NonNegative);
-  if (!(m.min_rotor_share <= 1.0)) r.fail("min_rotor_share", "must lie in [0, 1]: the fraction of a mode's motion in the rotor");
+  if (!(m.min_rotor_share <= 1.0))
+    r.fail("min_rotor_share", "must lie in [0, 1]: the fraction of a mode's motion in the rotor");
   if (m.speed_max <= 0.0) {
     if (window_max <= 0.0)
-      r.fail_missing("speed_window", "the speeds a stability metric analyses, [low, high] (here or in the study's table)");
+      r.fail_missing("speed_window",
+                     "the speeds a stability metric analyses, [low, high] (here or in the study's table)");
     m.speed_min = window_min;
     m.speed_max = window_max;
   }

@@ -298,7 +298,8 @@ TEST(Optimizer, LeastDampingForStabilityAgainstTheClosedForm) {
   // M s^2 + 2c s + 2(k - i q) = 0, is marginal where c = q / w_n = q1 W sqrt(M / 2k) (the Jeffcott rotor's
   // destabilising cross-coupled stiffness, q < c w_n: Vance, Rotordynamics of Turbomachinery, 1988). The shaft's
   // bending (1e14 Pa, 30 mm) lowers w_n by about 1e-4.
-  const OptimizationSpec s = load_optimization(testing::source_dir() + "/tests/data/stability/rigid_cross_coupled_study.toml");
+  const OptimizationSpec s =
+      load_optimization(testing::source_dir() + "/tests/data/stability/rigid_cross_coupled_study.toml");
   EXPECT_EQ(s.metrics[0].unit, "1");
   EXPECT_EQ(s.metrics[1].unit, "1/s");
   constexpr double kMass = 2 * 0.119 + 7850 * M_PI / 4 * 0.03 * 0.03 * 0.14, kK = 3e7, kQ1 = 100.0;

@@ -97,7 +97,7 @@ TEST(StabilityMetrics, ARigidRotorOnCrossCoupledBearingsLosesStabilityWhereTheCl
   EXPECT_GE(v[0], onset * (1 - kTolerance));
   EXPECT_LE(v[0] - step, onset * (1 + kTolerance));
   EXPECT_NEAR(v[1] / top.real(), 1.0, 1e-2);  // the growth is a small difference of large terms
-  EXPECT_EQ(v[2], kHigh);
+  EXPECT_DOUBLE_EQ(v[2], kHigh);
   EXPECT_NEAR(v[3] / (top.imag() / (2 * M_PI)), 1.0, kTolerance);
   EXPECT_NEAR(v[4] / (-top.real() / std::abs(top)), 1.0, 1e-2);
 }

@@ -52,8 +52,9 @@ TEST(Stability, ALubricatedBearingThatTheContinuationCannotStartIsFoundDirectlyA
   constexpr double kSpeed = 100000 * kRpm, kTolerance = 0.003;
   const MachineSpec spec = load_model(
       testing::source_dir() + "/examples/reference_ball.toml",
-      {parse_override("bearings.compressor.traction_law=eyring"), parse_override("bearings.turbine.traction_law=eyring"),
-       parse_override("bearings.compressor.preload=200 N"), parse_override("bearings.turbine.preload=200 N")});
+      {parse_override("bearings.compressor.traction_law=eyring"),
+       parse_override("bearings.turbine.traction_law=eyring"), parse_override("bearings.compressor.preload=200 N"),
+       parse_override("bearings.turbine.preload=200 N")});
   const StabilityPoint p = analyse_stability(spec, kSpeed);
   const BallBearingElement element("compressor", spec.bearings[0].ball, 0, 0.0);
   const BallBearingQuasiStatic qs(element);
