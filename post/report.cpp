@@ -406,8 +406,9 @@ void write_study_report(const std::filesystem::path& dir, const nlohmann::json& 
     page.alert("INCOMPLETE STUDY: " + std::to_string(recorded) + " of " + std::to_string(total) +
                " runs recorded (interrupted, or shards not merged yet).");
   if (incomplete + failed > 0)
-    page.alert(std::to_string(incomplete) + " run(s) incomplete (the integrator gave up; metrics of the part that "
-               "ran) and " + std::to_string(failed) + " failed (no metrics); marked in the table and the pictures.");
+    page.alert(std::to_string(incomplete) + " run(s) incomplete (the integrator gave up, or a stability analysis "
+               "found no steady state at a speed: the error column says which; metrics of the part that ran) and " +
+               std::to_string(failed) + " failed (no metrics); marked in the table and the pictures.");
   page.heading("Runs");
   page.key_values("counts", {{"runs in the design", HtmlPage::number(F, j, "/runs_total", 1.0, "", 7)},
                              {"runs recorded", HtmlPage::number(F, j, "/runs_recorded", 1.0, "", 7)},

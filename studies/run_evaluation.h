@@ -18,7 +18,8 @@ struct RunRecord {
   std::size_t index = 0;             ///< row of the design
   std::vector<double> parameters;    ///< in the units of the study file
   std::vector<double> metrics;       ///< NaN where undefined
-  std::string status;                ///< "ok", "incomplete" (integrator gave up; metrics from the partial run), "failed"
+  std::string status;                ///< "ok", "incomplete" (integrator gave up, or a stability analysis found no
+                                     ///< steady state at a speed; metrics from the partial run), "failed"
   std::string error;                 ///< why, for incomplete and failed runs
   double wall_time = 0.0;            ///< s
 };

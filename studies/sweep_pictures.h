@@ -21,8 +21,8 @@ void draw_tornado(const StudySpec& study, const Design& design, std::size_t metr
                   const std::filesystem::path& png);
 
 /// Metric `metric` (SI unit `unit`) against parameter `parameter`: complete runs as dots, incomplete runs (the
-/// integrator gave up; the metric covers the part that ran) as triangles, failed runs (no value) as crosses on the
-/// lower edge of the data. Returns false when no run has a value (nothing drawn).
+/// integrator gave up or a stability analysis stopped; the metric covers the part that ran) as triangles, failed
+/// runs (no value) as crosses on the lower edge of the data. Returns false when no run has a value (nothing drawn).
 bool draw_metric_scatter(const StudySpec& study, const Design& design, const std::vector<RunRecord>& runs,
                          std::size_t metric, std::size_t parameter, const std::string& unit,
                          const std::filesystem::path& png);
