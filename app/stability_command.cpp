@@ -72,7 +72,9 @@ int run_stability_command(const StabilityCommandOptions& options) {
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, 11);
   if (!(options.min_rotor_share >= 0.0 && options.min_rotor_share <= 1.0))
     throw ModelError("--min-rotor-share must lie in [0, 1]");
+  // A speed without a steady state ends the analysis there: the speeds before it are written, marked incomplete.
   std::vector<StabilityPoint> points;
+  std::string stopped;
   for (double s : speeds) {
     try {
       points.push_back(analyse_stability(spec, s));
@@ -81,13 +83,36 @@ int run_stability_command(const StabilityCommandOptions& options) {
     } catch (const std::runtime_error& e) {
       std::ostringstream at;
       at << std::fixed << std::setprecision(0) << s * kRadPerSToRpm;
-      throw ModelError(spec.source.string() + " at " + at.str() + " rpm: " + e.what());
+      stopped = spec.source.string() + " at " + at.str() + " rpm: " + e.what();
+      break;
     }
+  }
+  // The onset of instability: the first analysed speed at which a mode with at least min_rotor_share of its motion
+  // in the rotor grows, the interval from the speed before it halved kStabilityOnsetBisections times.
+  nlohmann::json onset = nullptr;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!grows_with_rotor_share(points[i], options.min_rotor_share)) continue;
+    if (i == 0) {
+      onset = {{"speed_rpm", points[0].speed * kRadPerSToRpm}, {"at_first_speed", true}};
+    } else {
+      std::string error;
+      const double s = refine_stability_onset(spec, points[i - 1].speed, points[i].speed, options.min_rotor_share,
+                                              &error);
+      onset = {{"speed_rpm", s * kRadPerSToRpm},
+               {"resolution_rpm", (points[i].speed - points[i - 1].speed) * kRadPerSToRpm /
+                                      (1 << kStabilityOnsetBisections)},
+               {"at_first_speed", false}};
+      if (!error.empty()) onset["halving_stopped"] = error;
+    }
+    break;
   }
 
   std::filesystem::create_directories(options.output_dir);
   nlohmann::json j = result_header(spec, options.overrides);
   j["min_rotor_share"] = options.min_rotor_share;
+  j["complete"] = stopped.empty();
+  if (!stopped.empty()) j["stopped"] = stopped;
+  j["onset"] = onset;
   j["assumptions"] = {
       "steady state at constant speed without gravity and unbalance, rotor centred: balls and cages orbit as a "
       "rigid pattern at the cage speed (a relative equilibrium), found by Newton's method",
@@ -128,7 +153,8 @@ int run_stability_command(const StabilityCommandOptions& options) {
     std::ostream& csv = file.stream();
     csv << "speed_rpm,cage_speed_rad_s,frequency_hz,frame_frequency_hz,growth_rate_per_s,damping_ratio,"
            "forward_share,rotor_share,ball_set_share,ball_set_lobes";
-    for (const std::string& e : points.front().elements) csv << ",share_" << e;
+    if (!points.empty())
+      for (const std::string& e : points.front().elements) csv << ",share_" << e;
     csv << '\n' << std::setprecision(10);
     for (const StabilityPoint& p : points)
       for (const StabilityMode& m : p.modes) {
@@ -164,17 +190,34 @@ int run_stability_command(const StabilityCommandOptions& options) {
     }
   }
   std::cout << std::defaultfloat;
-  if (options.plots) write_pictures(spec.name, points, options.min_rotor_share, options.output_dir);
+  if (onset.is_null())
+    std::cout << "No mode with at least " << options.min_rotor_share << " of its motion in the rotor grows at the "
+              << "speeds analysed.\n";
+  else if (onset.at("at_first_speed").get<bool>())
+    std::cout << "Onset of instability: at or below the first speed, " << std::fixed << std::setprecision(0)
+              << onset.at("speed_rpm").get<double>() << " rpm.\n" << std::defaultfloat;
+  else
+    std::cout << "Onset of instability: " << std::fixed << std::setprecision(0) << onset.at("speed_rpm").get<double>()
+              << " rpm (the speed before it halved " << kStabilityOnsetBisections << " times: within "
+              << onset.at("resolution_rpm").get<double>() << " rpm below)"
+              << (onset.contains("halving_stopped") ? "; halving stopped: " + onset.at("halving_stopped").get<std::string>()
+                                                    : std::string())
+              << ".\n" << std::defaultfloat;
+  const bool plots = options.plots && !points.empty();
+  if (plots) write_pictures(spec.name, points, options.min_rotor_share, options.output_dir);
   post::write_stability_report(options.output_dir, j,
                                {command_line(),
-                                options.plots ? std::vector<std::string>{"stability_frequencies.png",
-                                                                         "stability_damping.png"}
-                                              : std::vector<std::string>{},
+                                plots ? std::vector<std::string>{"stability_frequencies.png", "stability_damping.png"}
+                                      : std::vector<std::string>{},
                                 {"stability.json", "stability.csv"}, {}});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "Wrote " << (options.output_dir / "stability.json").string() << ", stability.csv, report.html"
-            << (options.plots ? ", stability_frequencies.png, stability_damping.png" : "") << " ("
+            << (plots ? ", stability_frequencies.png, stability_damping.png" : "") << " ("
             << std::setprecision(3) << wall << " s)\n";
+  if (!stopped.empty()) {
+    std::cerr << "turbodyn stability: incomplete, the speeds from here on are not analysed: " << stopped << "\n";
+    return 3;
+  }
   return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "post/html_page.h"
 #include "post/run_pictures.h"
@@ -208,6 +209,26 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
 void write_stability_report(const std::filesystem::path& dir, const nlohmann::json& j, const ReportInputs& in) {
   const std::string F = "stability.json";
   HtmlPage page = model_page("Linearised stability", "stability", j, in.command);
+  if (!j.value("complete", true))
+    page.alert("INCOMPLETE: no steady state, the analysis ends there and the speeds before it are shown: " +
+               j.value("stopped", std::string("?")));
+  if (const auto o = j.find("onset"); o != j.end() && o->is_object()) {
+    std::ostringstream os;
+    os.precision(6);
+    os << "Onset of instability (a mode with at least " << j.value("min_rotor_share", 0.0)
+       << " of its motion in the rotor grows): ";
+    if (o->value("at_first_speed", false))
+      os << "at or below the first speed, " << o->at("speed_rpm").get<double>() << " rpm.";
+    else
+      os << o->at("speed_rpm").get<double>() << " rpm, within " << o->at("resolution_rpm").get<double>()
+         << " rpm below (the interval from the speed before halved six times)"
+         << (o->contains("halving_stopped") ? "; halving stopped: " + o->at("halving_stopped").get<std::string>()
+                                            : std::string())
+         << ".";
+    page.paragraph(os.str());
+  } else if (o != j.end()) {
+    page.paragraph("No mode with rotor motion grows at the speeds analysed.");
+  }
   page.heading("Assumptions");
   for (const nlohmann::json& a : j.at("assumptions")) page.paragraph(a.get<std::string>());
   // Per speed the fastest-growing (least damped) mode among those that move the rotor (modes are stored by

@@ -63,11 +63,18 @@ class Analyses {
       if (m.rotor_share < options_.min_rotor_share) continue;  // the analysis keeps growing modes of any share
       if (std::isnan(s.growth) || m.growth_rate > s.growth) s.growth = m.growth_rate, s.frequency = m.frequency;
       if (std::isnan(s.damping) || m.damping_ratio < s.damping) s.damping = m.damping_ratio;
-      s.grows = s.grows || m.grows();
     }
+    s.grows = grows_with_rotor_share(p, options_.min_rotor_share);
     done_[speed] = s;
     *out = s;
     return true;
+  }
+  // The onset between two analysed speeds (refine_stability_onset); a failing analysis is remembered as in at().
+  double onset(double stable, double unstable) {
+    std::string error;
+    const double onset = refine_stability_onset(spec_, stable, unstable, options_.min_rotor_share, &error);
+    if (!error.empty() && error_.empty()) error_ = error;
+    return onset;
   }
   const std::string& error() const { return error_; }
 
@@ -93,13 +100,7 @@ double metric_value(const MetricSpec& m, Analyses& a) {
     while (k < grid.size() && !grid[k].grows) ++k;
     if (k == grid.size()) return kNaN;
     if (k == 0) return grid[0].speed * kRadPerSToRpm;  // grows at the window's start already
-    double lo = grid[k - 1].speed, hi = grid[k].speed;
-    for (int i = 0; i < kOnsetBisections; ++i) {
-      SpeedSummary mid;
-      if (!a.at(0.5 * (lo + hi), &mid)) break;
-      (mid.grows ? hi : lo) = mid.speed;
-    }
-    return hi * kRadPerSToRpm;
+    return a.onset(grid[k - 1].speed, grid[k].speed) * kRadPerSToRpm;
   }
   const SpeedSummary* top = nullptr;
   double damping = kNaN;

@@ -15,10 +15,6 @@ namespace turbodyn::studies {
 /// stability_growth, stability_growth_speed, stability_frequency, stability_damping, stability_onset_speed.
 bool is_stability_metric(const std::string& kind);
 
-/// Halvings of the grid step that place stability_onset_speed between the last grid speed without a growing mode
-/// and the first with one: the onset is found to 1/64 of the grid step.
-inline constexpr int kOnsetBisections = 6;
-
 /// Throws ModelError ("STUDY: metrics[I].kind: ...") if `metrics` hold a stability metric and the base model `spec`
 /// has an element the analysis does not cover (floating rings, journal bearings, ...): checked before any run.
 void check_stability_metrics(const StudyCommon& study, const std::vector<MetricSpec>& metrics, const MachineSpec& spec);

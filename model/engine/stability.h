@@ -86,6 +86,21 @@ MachineSpec stability_machine(const MachineSpec& spec, double speed);
 /// analysis knows (the same check analyse_stability makes first): what a study checks before its runs.
 void check_stability_supported(const MachineSpec& spec);
 
+/// Halvings of the interval between a speed without a growing mode and one with: the onset of instability to 1/64
+/// of the interval (refine_stability_onset).
+inline constexpr int kStabilityOnsetBisections = 6;
+
+/// True if a mode of `p` with at least `min_rotor_share` of its motion in the rotor grows (StabilityMode::grows).
+bool grows_with_rotor_share(const StabilityPoint& p, double min_rotor_share);
+
+/// The onset of instability between `stable` (rad/s: no mode with at least `min_rotor_share` of its motion in the
+/// rotor grows there) and `unstable` (one does): the interval halved kStabilityOnsetBisections times by analyses at
+/// its middle; returns the lowest speed found growing, so the onset lies within [returned - interval/64, returned].
+/// An analysis that fails (no steady state) ends the halving: *error says at which speed and why ("" if none did),
+/// and the lowest speed found growing so far is returned.
+double refine_stability_onset(const MachineSpec& spec, double stable, double unstable, double min_rotor_share,
+                              std::string* error);
+
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
 /// (ForceElement::steady_rotation_layout: floating rings, journal bearings, anisotropic linear bearings, linear

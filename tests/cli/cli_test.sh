@@ -426,19 +426,30 @@ EOF2
     grep -q "UNSTABLE: at 1 of the speeds analysed a mode with at least" "$out/report.html" \
       || fail "report: rotor modes: $(grep -o 'UNSTABLE[^<]*' "$out/report.html")"
     grep -q "At 1 of the speeds analysed a mode of the elements" "$out/report.html" || fail "report: elements only"
+    # The onset between the two speeds, halved six times (about 54,000 rpm: docs/ball-bearing.md), in the listing,
+    # the JSON and the report.
+    onset=$(sed -n 's/^Onset of instability: \([0-9]*\) rpm (the speed before it halved 6 times.*/\1/p' "$out/log")
+    [ -n "$onset" ] && [ "$onset" -gt 50000 ] && [ "$onset" -lt 60000 ] || fail "onset '$onset': $(cat "$out/log")"
+    python3 -c "import json,sys; o=json.load(open(sys.argv[1]))['onset']; assert abs(o['speed_rpm']-$onset)<1 and \
+abs(o['resolution_rpm']-65000/64)<1e-6, o" "$out/stability.json" || fail "stability.json onset"
+    grep -q "Onset of instability (a mode with at least" "$out/report.html" || fail "report: onset"
     "$exe" stability "$src/examples/reference_floating_ring.toml" --speeds "50000 rpm" -o "$out/fr" > "$out/fr.log" 2>&1
     [ $? -eq 2 ] || fail "floating rings accepted: $(cat "$out/fr.log")"
     grep -q "bearing '.*': its element has no steady state" "$out/fr.log" || fail "message: $(cat "$out/fr.log")"
     # A steady state the iteration cannot find (with mu_0 = 0.01, mu_r = 0.005 the traction cannot carry the balls'
-    # gyroscopic moment from about 23,000 rpm; docs/ball-bearing.md) is an error naming the element and the speed,
-    # exit 2.
-    "$exe" stability "$src/examples/reference_ball.toml" --speeds "40000 rpm" -o "$out/planar" --no-plots \
+    # gyroscopic moment from about 23,000 rpm; docs/ball-bearing.md) ends the analysis there: the message names the
+    # element and the speed, the speed before it is written, marked incomplete, exit 3.
+    "$exe" stability "$src/examples/reference_ball.toml" --speeds "20000, 40000 rpm" -o "$out/planar" --no-plots \
       --set bearings.compressor.friction_static=0.01 --set bearings.compressor.friction_sliding=0.005 \
       --set bearings.turbine.friction_static=0.01 --set bearings.turbine.friction_sliding=0.005 \
       > "$out/planar.log" 2>&1
-    [ $? -eq 2 ] || fail "no error without a steady state: $(cat "$out/planar.log")"
-    grep -q "element 'compressor': no steady state found at [0-9]* rpm" "$out/planar.log" \
+    [ $? -eq 3 ] || fail "no exit 3 without a steady state: $(cat "$out/planar.log")"
+    grep -q "incomplete, .* at 40000 rpm: element 'compressor': no steady state found at [0-9]* rpm" "$out/planar.log" \
       || fail "message: $(cat "$out/planar.log")"
+    python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert not j['complete'] and \
+len(j['results'])==1 and j['results'][0]['speed_rpm']==20000 and 'at 40000 rpm' in j['stopped'], j['stopped']" \
+      "$out/planar/stability.json" || fail "partial stability.json"
+    grep -q "INCOMPLETE: no steady state" "$out/planar/report.html" || fail "report: incomplete"
     ;;
   failed_write)
     # Issue 20: a result file that cannot be written (here a directory is in its place) is an error naming it,
