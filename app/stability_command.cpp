@@ -91,13 +91,13 @@ int run_stability_command(const StabilityCommandOptions& options) {
   // in the rotor grows, the interval from the speed before it halved kStabilityOnsetBisections times.
   nlohmann::json onset = nullptr;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!grows_with_rotor_share(points[i], options.min_rotor_share)) continue;
+    const StabilityModeFilter filter{options.min_rotor_share, 0.0};
+    if (!grows_counted(points[i], filter)) continue;
     if (i == 0) {
       onset = {{"speed_rpm", points[0].speed * kRadPerSToRpm}, {"at_first_speed", true}};
     } else {
       std::string error;
-      const double s = refine_stability_onset(spec, points[i - 1].speed, points[i].speed, options.min_rotor_share,
-                                              &error);
+      const double s = refine_stability_onset(spec, points[i - 1].speed, points[i].speed, filter, &error);
       onset = {{"speed_rpm", s * kRadPerSToRpm},
                {"resolution_rpm", (points[i].speed - points[i - 1].speed) * kRadPerSToRpm /
                                       (1 << kStabilityOnsetBisections)},

@@ -38,6 +38,7 @@ nlohmann::json fingerprint(const OptimizationSpec& s) {
     if (studies::is_stability_metric(m.spec.kind)) {
       metrics.back()["speed_count"] = m.spec.speed_count;
       metrics.back()["min_rotor_share"] = m.spec.min_rotor_share;
+      if (m.spec.frequency_max > 0.0) metrics.back()["frequency_max"] = m.spec.frequency_max;
     }
   }
   return {{"model", s.model.filename().string()}, {"model_digest", studies::base_model_digest(s)},

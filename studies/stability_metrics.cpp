@@ -33,46 +33,49 @@ std::string rpm_text(double speed) {
   return os.str();
 }
 
-// Analyses at speeds, with the results kept, for one rotor share. A failure is remembered and every speed from the
-// failed one up is refused (each analysis continues its steady state up from rest: one that cannot reach a speed
-// does not reach a higher one); speeds below it are still analysed (the onset's halvings).
+// Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by). A failure is
+// remembered and every speed from the failed one up is refused (each analysis continues its steady state up from
+// rest: one that cannot reach a speed does not reach a higher one); speeds below it are still analysed (the onset's
+// halvings).
 class Analyses {
  public:
-  Analyses(const MachineSpec& spec, double share, const std::atomic<bool>* cancel)
+  Analyses(const MachineSpec& spec, double min_rotor_share, const std::atomic<bool>* cancel)
       : spec_(spec), cancel_(cancel) {
-    options_.min_rotor_share = share;
+    options_.min_rotor_share = min_rotor_share;
   }
-  // The summary at `speed`, or false (and error() says why) if the analysis failed or was cancelled.
-  bool at(double speed, SpeedSummary* out) {
-    if (const auto it = done_.find(speed); it != done_.end()) return *out = it->second, true;
-    if (speed >= failed_at_) return false;
-    if (cancel_ && cancel_->load()) return error_ = "cancelled", failed_at_ = 0.0, false;
-    StabilityPoint p;
-    try {
-      p = analyse_stability(spec_, speed, options_);
-    } catch (const std::invalid_argument&) {
-      throw;
-    } catch (const std::exception& e) {
-      error_ = "stability analysis at " + rpm_text(speed) + ": " + e.what();
-      failed_at_ = speed;
-      return false;
+  // The summary at `speed` of the modes `filter` counts, or false (and error() says why) if the analysis failed or
+  // was cancelled.
+  bool at(double speed, const StabilityModeFilter& filter, SpeedSummary* out) {
+    auto it = done_.find(speed);
+    if (it == done_.end()) {
+      if (speed >= failed_at_) return false;
+      if (cancel_ && cancel_->load()) return error_ = "cancelled", failed_at_ = 0.0, false;
+      try {
+        it = done_.emplace(speed, analyse_stability(spec_, speed, options_)).first;
+      } catch (const std::invalid_argument&) {
+        throw;
+      } catch (const std::exception& e) {
+        error_ = "stability analysis at " + rpm_text(speed) + ": " + e.what();
+        failed_at_ = speed;
+        return false;
+      }
     }
+    const StabilityPoint& p = it->second;
     SpeedSummary s;
     s.speed = speed;
     for (const StabilityMode& m : p.modes) {
-      if (m.rotor_share < options_.min_rotor_share) continue;  // the analysis keeps growing modes of any share
+      if (!filter.counts(m)) continue;  // the analysis keeps growing modes of any share
       if (std::isnan(s.growth) || m.growth_rate > s.growth) s.growth = m.growth_rate, s.frequency = m.frequency;
       if (std::isnan(s.damping) || m.damping_ratio < s.damping) s.damping = m.damping_ratio;
     }
-    s.grows = grows_with_rotor_share(p, options_.min_rotor_share);
-    done_[speed] = s;
+    s.grows = grows_counted(p, filter);
     *out = s;
     return true;
   }
   // The onset between two analysed speeds (refine_stability_onset); a failing analysis is remembered as in at().
-  double onset(double stable, double unstable) {
+  double onset(double stable, double unstable, const StabilityModeFilter& filter) {
     std::string error;
-    const double onset = refine_stability_onset(spec_, stable, unstable, options_.min_rotor_share, &error);
+    const double onset = refine_stability_onset(spec_, stable, unstable, filter, &error);
     if (!error.empty() && error_.empty()) error_ = error;
     return onset;
   }
@@ -82,17 +85,18 @@ class Analyses {
   const MachineSpec& spec_;
   const std::atomic<bool>* cancel_;
   StabilityOptions options_;
-  std::map<double, SpeedSummary> done_;
+  std::map<double, StabilityPoint> done_;
   std::string error_;
   double failed_at_ = std::numeric_limits<double>::infinity();
 };
 
 double metric_value(const MetricSpec& m, Analyses& a) {
   const std::vector<double> speeds = stability_speeds(m);
+  const StabilityModeFilter filter{m.min_rotor_share, m.frequency_max};
   std::vector<SpeedSummary> grid;
   for (double s : speeds) {
     SpeedSummary sum;
-    if (!a.at(s, &sum)) break;
+    if (!a.at(s, filter, &sum)) break;
     grid.push_back(sum);
   }
   if (m.kind == "stability_onset_speed") {
@@ -100,7 +104,7 @@ double metric_value(const MetricSpec& m, Analyses& a) {
     while (k < grid.size() && !grid[k].grows) ++k;
     if (k == grid.size()) return kNaN;
     if (k == 0) return grid[0].speed * kRadPerSToRpm;  // grows at the window's start already
-    return a.onset(grid[k - 1].speed, grid[k].speed) * kRadPerSToRpm;
+    return a.onset(grid[k - 1].speed, grid[k].speed, filter) * kRadPerSToRpm;
   }
   const SpeedSummary* top = nullptr;
   double damping = kNaN;

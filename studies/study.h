@@ -41,9 +41,11 @@ struct MetricSpec {
   /// whirl near half the ring speed ([0.05, 0.3]) apart from the inner-film whirl near 0.5-0.6 f_d.
   double order_min = 0.05, order_max = 0.9;
   /// stability_* metrics (studies/stability_metrics.h): speed_count speeds evenly over the speed window are analysed,
-  /// and a mode counts if at least min_rotor_share of its motion is in the rotor (StabilityMode::rotor_share).
+  /// and a mode counts if at least min_rotor_share of its motion is in the rotor (StabilityMode::rotor_share) and
+  /// its frequency is at most frequency_max.
   int speed_count = 15;
   double min_rotor_share = 0.01;
+  double frequency_max = 0.0;  ///< Hz: only modes whose |housing-frame frequency| is at most this count; 0 = any
 };
 
 /// What every kind of study ([study], [optimize], [identify]) says about its runs: the keys name, model (relative to

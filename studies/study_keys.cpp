@@ -92,6 +92,7 @@ void read_metric_subject(Reader& r, MetricSpec& m, double window_min, double win
   m.min_rotor_share = r.quantity_or("min_rotor_share", dim::dimensionless, m.min_rotor_share, Bound::NonNegative);
   if (!(m.min_rotor_share <= 1.0))
     r.fail("min_rotor_share", "must lie in [0, 1]: the fraction of a mode's motion in the rotor");
+  m.frequency_max = r.quantity_or("frequency_max", dim::frequency, 0.0, Bound::Positive);
   if (m.speed_max <= 0.0) {
     if (window_max <= 0.0)
       r.fail_missing("speed_window",

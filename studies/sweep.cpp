@@ -47,7 +47,10 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
     if (m.threshold != plain.threshold) id << ":threshold=" << m.threshold;
     if (m.order_min != plain.order_min || m.order_max != plain.order_max)
       id << ":order_band=" << m.order_min << "," << m.order_max;
-    if (is_stability_metric(m.kind)) id << ":speed_count=" << m.speed_count << ":min_rotor_share=" << m.min_rotor_share;
+    if (is_stability_metric(m.kind)) {
+      id << ":speed_count=" << m.speed_count << ":min_rotor_share=" << m.min_rotor_share;
+      if (m.frequency_max != plain.frequency_max) id << ":frequency_max=" << m.frequency_max;
+    }
     metrics.push_back(id.str());
   }
   return {{"study", s.name}, {"model", s.model.filename().string()}, {"model_digest", base_model_digest(s)},

@@ -469,22 +469,22 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
   return out;
 }
 
-bool grows_with_rotor_share(const StabilityPoint& p, double min_rotor_share) {
+bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter) {
   for (const StabilityMode& m : p.modes)
-    if (m.rotor_share >= min_rotor_share && m.grows()) return true;
+    if (filter.counts(m) && m.grows()) return true;
   return false;
 }
 
-double refine_stability_onset(const MachineSpec& spec, double stable, double unstable, double min_rotor_share,
-                              std::string* error) {
+double refine_stability_onset(const MachineSpec& spec, double stable, double unstable,
+                              const StabilityModeFilter& filter, std::string* error) {
   error->clear();
   StabilityOptions options;
-  options.min_rotor_share = min_rotor_share;
+  options.min_rotor_share = filter.min_rotor_share;
   double lo = stable, hi = unstable;
   for (int i = 0; i < kStabilityOnsetBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     try {
-      (grows_with_rotor_share(analyse_stability(spec, mid, options), min_rotor_share) ? hi : lo) = mid;
+      (grows_counted(analyse_stability(spec, mid, options), filter) ? hi : lo) = mid;
     } catch (const std::invalid_argument&) {
       throw;
     } catch (const std::exception& e) {

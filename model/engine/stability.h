@@ -15,6 +15,7 @@
 // growth rate s (> 0: the state is unstable) and damping ratio -s / |lambda| in the housing frame.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -90,16 +91,27 @@ void check_stability_supported(const MachineSpec& spec);
 /// of the interval (refine_stability_onset).
 inline constexpr int kStabilityOnsetBisections = 6;
 
-/// True if a mode of `p` with at least `min_rotor_share` of its motion in the rotor grows (StabilityMode::grows).
-bool grows_with_rotor_share(const StabilityPoint& p, double min_rotor_share);
+/// Which modes an onset or a study's stability metric counts: at least `min_rotor_share` of their motion in the rotor,
+/// and a housing-frame frequency |f| of at most `frequency_max` (Hz; 0 = any), e.g. to leave out a rotor's bending
+/// modes at kHz that a stiff traction's creep destabilises from the whirl of the ball set.
+struct StabilityModeFilter {
+  double min_rotor_share = 0.0;
+  double frequency_max = 0.0;
+  bool counts(const StabilityMode& m) const {
+    return m.rotor_share >= min_rotor_share && (frequency_max <= 0.0 || std::abs(m.frequency) <= frequency_max);
+  }
+};
 
-/// The onset of instability between `stable` (rad/s: no mode with at least `min_rotor_share` of its motion in the
-/// rotor grows there) and `unstable` (one does): the interval halved kStabilityOnsetBisections times by analyses at
-/// its middle; returns the lowest speed found growing, so the onset lies within [returned - interval/64, returned].
-/// An analysis that fails (no steady state) ends the halving: *error says at which speed and why ("" if none did),
-/// and the lowest speed found growing so far is returned.
-double refine_stability_onset(const MachineSpec& spec, double stable, double unstable, double min_rotor_share,
-                              std::string* error);
+/// True if a mode of `p` that `filter` counts grows (StabilityMode::grows).
+bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter);
+
+/// The onset of instability between `stable` (rad/s: no counted mode grows there) and `unstable` (one does): the
+/// interval halved kStabilityOnsetBisections times by analyses at its middle; returns the lowest speed found growing,
+/// so the onset lies within [returned - interval/64, returned]. An analysis that fails (no steady state) ends the
+/// halving: *error says at which speed and why ("" if none did), and the lowest speed found growing so far is
+/// returned.
+double refine_stability_onset(const MachineSpec& spec, double stable, double unstable,
+                              const StabilityModeFilter& filter, std::string* error);
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state

@@ -114,6 +114,25 @@ TEST(StabilityMetrics, WithoutAGrowingModeTheOnsetIsUndefinedAndTheGrowthNegativ
   EXPECT_NEAR(v[1] / forward_root(r, 60000 * kRpm).real(), 1.0, 1e-2);
 }
 
+TEST(StabilityMetrics, AFrequencyLimitCountsOnlyTheModesBelowIt) {
+  // The rigid rotor's cylindrical forward whirl (1,224 Hz) is its only growing mode: with frequency_max above it the
+  // onset is the one without a limit; below it no mode counts (onset and growth undefined).
+  const RigidRotor r = rigid_rotor();
+  MetricSpec onset = metric("stability_onset_speed", 10000, 110000, 11);
+  MetricSpec growth = metric("stability_growth", 10000, 110000, 11);
+  std::string error;
+  const double free_onset = evaluate_stability_metrics(r.spec, {onset}, &error).at(0);
+  onset.frequency_max = growth.frequency_max = 1500.0;
+  std::vector<double> v = evaluate_stability_metrics(r.spec, {onset, growth}, &error);
+  EXPECT_EQ(v[0], free_onset);
+  EXPECT_GT(v[1], 0.0);
+  onset.frequency_max = growth.frequency_max = 1000.0;
+  v = evaluate_stability_metrics(r.spec, {onset, growth}, &error);
+  EXPECT_TRUE(std::isnan(v[0]));
+  EXPECT_TRUE(std::isnan(v[1]));
+  EXPECT_EQ(error, "");
+}
+
 TEST(StabilityMetrics, AStudysRunOfStabilityMetricsIsTheAnalysisOfItsModel) {
   // A study's run (evaluate_run) with only a stability metric: the value evaluate_stability_metrics gives for the
   // same model file, status ok. On examples/reference_ball.toml the ball set's one-lobed wave grows from about
@@ -234,6 +253,8 @@ TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
               HasSubstr("metrics[0].min_rotor_share: must lie in [0, 1]"));
   EXPECT_THAT(load_error(write_study("e.toml", with("reference_ball.toml", window + "speed_count = 1\n"))),
               HasSubstr("metrics[0].speed_count"));
+  EXPECT_THAT(load_error(write_study("g.toml", with("reference_ball.toml", window + "frequency_max = \"0 Hz\"\n"))),
+              HasSubstr("metrics[0].frequency_max"));
   // A model the analysis does not cover: refused before any run, naming the study, the metric and the bearing.
   const std::filesystem::path ring = write_study("f.toml", with("reference_floating_ring.toml", window));
   const StudySpec study = load_study(ring);
