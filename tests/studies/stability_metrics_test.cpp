@@ -209,7 +209,7 @@ std::string load_error(const std::filesystem::path& file) {
   return "";
 }
 
-TEST(StabilityMetrics, AStudyOfOtherSpeedsOrRotorShareDoesNotResumeTheRuns) {
+TEST(StabilityMetrics, AStudyOfOtherSpeedsDoesNotResumeTheRunsAndAnyThreadCountGivesTheSameNumbers) {
   // The speeds and the rotor share make the metric's numbers: a study that changes them is another study, and its
   // output directory's finished runs are not taken for its own (one file name: the study's name is its stem). On the
   // rigid rotor (milliseconds per design).
@@ -227,6 +227,13 @@ TEST(StabilityMetrics, AStudyOfOtherSpeedsOrRotorShareDoesNotResumeTheRuns) {
   EXPECT_LT(first.runs.at(1).metrics.at(0), 0.0);  // 200 N s/m: stable to 110,000 rpm (149.8 N s/m suffice)
   EXPECT_EQ(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), o).resumed, 2u);
   EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 4\n")), o), ModelError);
+  // One thread or two: the same numbers (each design is its own analysis).
+  SweepOptions one = o;
+  one.output_dir = o.output_dir.parent_path() / "resume_one_thread";
+  one.threads = 1;
+  std::filesystem::remove_all(one.output_dir);
+  const SweepResult serial = run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), one);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(serial.runs.at(i).metrics.at(0), first.runs.at(i).metrics.at(0));
   EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\nmin_rotor_share = 0.5\n")), o),
                ModelError);
 }
