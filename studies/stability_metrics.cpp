@@ -17,7 +17,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// What one analysed speed says, reduced to the modes that count (rotor share at least the metric's).
+// What one analysed speed says, reduced to the modes that count (the metric's rotor share and frequency limit).
 struct SpeedSummary {
   double speed = 0.0;            // rad/s
   double growth = kNaN;          // largest growth rate (1/s) of a counted mode
