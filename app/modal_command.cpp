@@ -290,8 +290,8 @@ void write_backbone_table(const std::vector<Backbone>& backbones, const std::map
     for (const BackbonePoint& p : b.points)
       for (const BackboneBearing& x : p.bearings)
         csv << b.branch + 1 << ',' << place.at(b.reference_node) << ',' << p.amplitude << ',' << p.speed << ','
-            << p.speed * kRadPerSToRpm << ',' << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ',' << x.tilt << ',' << x.force
-            << ',' << x.moment << ',' << x.max_contact_load << '\n';
+            << p.speed * kRadPerSToRpm << ',' << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ','
+            << x.tilt << ',' << x.force << ',' << x.moment << ',' << x.max_contact_load << '\n';
   file.commit();
   std::cout << "Forward 1x critical speeds at a whirl amplitude:\n";
   for (const Backbone& b : backbones) {

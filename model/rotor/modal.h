@@ -46,14 +46,14 @@ struct ModalOptions {
 /// forward/backward pair are given as their limit at a small speed (shape and whirl; frequency and damping at 0), so
 /// each pair has one forward and one backward member. Throws std::runtime_error when the rotor cannot be analysed
 /// (e.g. the rotating frame with anisotropic bearings, or matrices that are not finite).
+ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options = {});
+
 /// Diagonal similarity scaling A <- S^-1 A S with powers of two so that each row and column have similar norms
 /// (Parlett & Reinsch 1969, "Balancing a matrix for calculation of eigenvalues and eigenvectors", Numer. Math. 13;
 /// the scaling part of LAPACK's xGEBAL); returns the diagonal of S (eigenvectors of the original A are S v). A rotor's
 /// first-order matrix mixes rotations, displacements and velocities over many orders of magnitude: without it the
 /// low eigenvalues lose all accuracy (errors ~ eps ||A||).
 Eigen::VectorXd balance_for_eigenvalues(Eigen::MatrixXd& A);
-
-ModalResult modal_analysis(const Rotor& rotor, double speed, const ModalOptions& options = {});
 
 /// Whirl direction of a mode shape at each node and overall.
 Whirl classify_whirl(const Rotor& rotor, const Eigen::VectorXcd& shape, std::vector<int>* node_whirl = nullptr);
