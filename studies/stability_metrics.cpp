@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
+#include "model/engine/speed_text.h"
 #include "model/engine/stability.h"
 #include "model/spec/constants.h"
 #include "model/spec/errors.h"
@@ -25,13 +25,6 @@ struct SpeedSummary {
   double damping = kNaN;         // least damping ratio of a counted mode
   bool grows = false;            // a counted mode grows beyond round-off (StabilityMode::grows)
 };
-
-std::string rpm_text(double speed) {
-  std::ostringstream os;
-  os.precision(6);
-  os << speed * kRadPerSToRpm << " rpm";
-  return os.str();
-}
 
 // Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by). A failure is
 // remembered and every speed from the failed one up is refused (each analysis continues its steady state up from

@@ -13,18 +13,13 @@
 #include "model/elements/force_element.h"
 #include "model/engine/runup.h"
 #include "model/engine/runup_workspace.h"
+#include "model/engine/speed_text.h"
 #include "model/spec/constants.h"
 
 namespace turbodyn {
 namespace {
 
 using Layout = ForceElement::SteadyRotationLayout;
-
-std::string rpm_text(double speed) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(0) << speed * kRadPerSToRpm << " rpm";
-  return os.str();
-}
 
 std::string number_text(double x) {
   std::ostringstream os;

@@ -40,12 +40,6 @@ Vector5d turned(const Vector5d& v, double c, double s) {
 
 }  // namespace
 
-std::string rpm_text(double speed) {
-  std::ostringstream os;
-  os << std::llround(speed * kRadPerSToRpm) << " rpm";
-  return os.str();
-}
-
 struct WhirlProblem::BallSupport {
   std::string name;
   int node = 0;

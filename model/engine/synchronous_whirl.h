@@ -22,6 +22,7 @@
 #include <Eigen/Dense>
 
 #include "model/elements/ball/ball_bearing_quasistatic.h"
+#include "model/engine/speed_text.h"  // rpm_text, which the whirl analyses' messages use
 #include "model/rotor/rotor.h"
 #include "model/spec/model_spec.h"
 
@@ -109,8 +110,5 @@ class WhirlProblem {
   Eigen::MatrixXd m_omega_, j_, g_r_;
   Eigen::VectorXd unbalance_;  // per rad^2/s^2
 };
-
-/// "123456 rpm" for a speed in rad/s.
-std::string rpm_text(double speed);
 
 }  // namespace turbodyn
