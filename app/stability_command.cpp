@@ -90,21 +90,23 @@ int run_stability_command(const StabilityCommandOptions& options) {
   // The onset of instability: the first analysed speed at which a mode with at least min_rotor_share of its motion
   // in the rotor grows, the interval from the speed before it halved kStabilityOnsetBisections times.
   nlohmann::json onset = nullptr;
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  {
     const StabilityModeFilter filter{options.min_rotor_share, 0.0};
-    if (!grows_counted(points[i], filter)) continue;
-    if (i == 0) {
-      onset = {{"speed_rpm", points[0].speed * kRadPerSToRpm}, {"at_first_speed", true}};
-    } else {
-      std::string error;
-      const double s = refine_stability_onset(spec, points[i - 1].speed, points[i].speed, filter, &error);
-      onset = {{"speed_rpm", s * kRadPerSToRpm},
-               {"resolution_rpm", (points[i].speed - points[i - 1].speed) * kRadPerSToRpm /
-                                      (1 << kStabilityOnsetBisections)},
-               {"at_first_speed", false}};
-      if (!error.empty()) onset["halving_stopped"] = error;
+    std::vector<double> analysed;
+    std::vector<bool> grows;
+    for (const StabilityPoint& p : points) {
+      analysed.push_back(p.speed);
+      grows.push_back(grows_counted(p, filter));
     }
-    break;
+    const StabilityOnset o = find_stability_onset(spec, analysed, grows, filter);
+    if (o.at_first_speed) {
+      onset = {{"speed_rpm", o.speed * kRadPerSToRpm}, {"at_first_speed", true}};
+    } else if (o.found) {
+      onset = {{"speed_rpm", o.speed * kRadPerSToRpm},
+               {"resolution_rpm", o.resolution * kRadPerSToRpm},
+               {"at_first_speed", false}};
+      if (!o.error.empty()) onset["halving_stopped"] = o.error;
+    }
   }
 
   std::filesystem::create_directories(options.output_dir);

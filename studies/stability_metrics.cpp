@@ -65,12 +65,17 @@ class Analyses {
     *out = s;
     return true;
   }
-  // The onset between two analysed speeds (refine_stability_onset); a failing analysis is remembered as in at().
-  double onset(double stable, double unstable, const StabilityModeFilter& filter) {
-    std::string error;
-    const double onset = refine_stability_onset(spec_, stable, unstable, filter, &error);
-    if (!error.empty() && error_.empty()) error_ = error;
-    return onset;
+  // The onset over the grid (find_stability_onset); a failing analysis is remembered as in at().
+  StabilityOnset onset(const std::vector<SpeedSummary>& grid, const StabilityModeFilter& filter) {
+    std::vector<double> speeds;
+    std::vector<bool> grows;
+    for (const SpeedSummary& s : grid) {
+      speeds.push_back(s.speed);
+      grows.push_back(s.grows);
+    }
+    StabilityOnset o = find_stability_onset(spec_, speeds, grows, filter);
+    if (!o.error.empty() && error_.empty()) error_ = o.error;
+    return o;
   }
   const std::string& error() const { return error_; }
 
@@ -93,11 +98,8 @@ double metric_value(const MetricSpec& m, Analyses& a) {
     grid.push_back(sum);
   }
   if (m.kind == "stability_onset_speed") {
-    std::size_t k = 0;
-    while (k < grid.size() && !grid[k].grows) ++k;
-    if (k == grid.size()) return kNaN;
-    if (k == 0) return grid[0].speed * kRadPerSToRpm;  // grows at the window's start already
-    return a.onset(grid[k - 1].speed, grid[k].speed, filter) * kRadPerSToRpm;
+    const StabilityOnset o = a.onset(grid, filter);
+    return o.found ? o.speed * kRadPerSToRpm : kNaN;  // at the window's start if it grows there already
   }
   const SpeedSummary* top = nullptr;
   double damping = kNaN;

@@ -490,4 +490,21 @@ double refine_stability_onset(const MachineSpec& spec, double stable, double uns
   return hi;
 }
 
+StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<double>& speeds,
+                                    const std::vector<bool>& grows, const StabilityModeFilter& filter) {
+  StabilityOnset o;
+  const std::size_t k =
+      static_cast<std::size_t>(std::find(grows.begin(), grows.end(), true) - grows.begin());
+  if (k >= speeds.size()) return o;
+  o.found = true;
+  o.at_first_speed = k == 0;
+  if (o.at_first_speed) {
+    o.speed = speeds[0];
+    return o;
+  }
+  o.speed = refine_stability_onset(spec, speeds[k - 1], speeds[k], filter, &o.error);
+  o.resolution = (speeds[k] - speeds[k - 1]) / (1 << kStabilityOnsetBisections);
+  return o;
+}
+
 }  // namespace turbodyn

@@ -113,6 +113,20 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter);
 double refine_stability_onset(const MachineSpec& spec, double stable, double unstable,
                               const StabilityModeFilter& filter, std::string* error);
 
+/// Where a counted mode first grows over speeds analysed in ascending order.
+struct StabilityOnset {
+  bool found = false;           ///< some counted mode grows at one of the speeds
+  double speed = 0.0;           ///< rad/s: the lowest speed found growing
+  bool at_first_speed = false;  ///< it grows at the first speed already (no interval below to halve)
+  double resolution = 0.0;      ///< rad/s: the onset lies within [speed - resolution, speed]
+  std::string error;            ///< an analysis inside the halved interval failed ("" if none)
+};
+
+/// The onset over `speeds` (rad/s, ascending), `grows[i]` whether a counted mode grows at speeds[i]: the first speed
+/// that grows, the interval from the speed before it halved by refine_stability_onset.
+StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<double>& speeds,
+                                    const std::vector<bool>& grows, const StabilityModeFilter& filter);
+
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
 /// (ForceElement::steady_rotation_layout: floating rings, journal bearings, anisotropic linear bearings, linear
