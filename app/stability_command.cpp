@@ -77,7 +77,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
   std::string stopped;
   for (double s : speeds) {
     try {
-      points.push_back(analyse_stability(spec, s));
+      points.push_back(analyse_stability(spec, s, {}, points.empty() ? nullptr : &points.back()));
     } catch (const std::invalid_argument& e) {
       throw ModelError(spec.source.string() + ": " + e.what());
     } catch (const std::runtime_error& e) {
@@ -92,13 +92,9 @@ int run_stability_command(const StabilityCommandOptions& options) {
   nlohmann::json onset = nullptr;
   {
     const StabilityModeFilter filter{options.min_rotor_share, 0.0};
-    std::vector<double> analysed;
-    std::vector<bool> grows;
-    for (const StabilityPoint& p : points) {
-      analysed.push_back(p.speed);
-      grows.push_back(grows_counted(p, filter));
-    }
-    const StabilityOnset o = find_stability_onset(spec, analysed, grows, filter);
+    std::vector<const StabilityPoint*> analysed;
+    for (const StabilityPoint& p : points) analysed.push_back(&p);
+    const StabilityOnset o = find_stability_onset(spec, analysed, filter);
     if (o.at_first_speed) {
       onset = {{"speed_rpm", o.speed * kRadPerSToRpm}, {"at_first_speed", true}};
     } else if (o.found) {

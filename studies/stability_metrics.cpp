@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -26,10 +27,10 @@ struct SpeedSummary {
   bool grows = false;            // a counted mode grows beyond round-off (StabilityMode::grows)
 };
 
-// Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by). A failure is
-// remembered and every speed from the failed one up is refused (each analysis continues its steady state up from
-// rest: one that cannot reach a speed does not reach a higher one); speeds below it are still analysed (the onset's
-// halvings).
+// Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by). Each continues
+// its steady state up from the highest speed below it analysed so far. A failure is remembered and every speed from
+// the failed one up is refused (one that cannot reach a speed does not reach a higher one); speeds below it are
+// still analysed (the onset's halvings).
 class Analyses {
  public:
   Analyses(const MachineSpec& spec, double min_rotor_share, const std::atomic<bool>* cancel)
@@ -44,7 +45,9 @@ class Analyses {
       if (speed >= failed_at_) return false;
       if (cancel_ && cancel_->load()) return error_ = "cancelled", failed_at_ = 0.0, false;
       try {
-        it = done_.emplace(speed, analyse_stability(spec_, speed, options_)).first;
+        auto below = done_.lower_bound(speed);  // the first at or above: the one before it is below
+        const StabilityPoint* from = below == done_.begin() ? nullptr : &std::prev(below)->second;
+        it = done_.emplace(speed, analyse_stability(spec_, speed, options_, from)).first;
       } catch (const std::invalid_argument&) {
         throw;
       } catch (const std::exception& e) {
@@ -67,13 +70,9 @@ class Analyses {
   }
   // The onset over the grid (find_stability_onset); a failing analysis is remembered as in at().
   StabilityOnset onset(const std::vector<SpeedSummary>& grid, const StabilityModeFilter& filter) {
-    std::vector<double> speeds;
-    std::vector<bool> grows;
-    for (const SpeedSummary& s : grid) {
-      speeds.push_back(s.speed);
-      grows.push_back(s.grows);
-    }
-    StabilityOnset o = find_stability_onset(spec_, speeds, grows, filter);
+    std::vector<const StabilityPoint*> points;
+    for (const SpeedSummary& s : grid) points.push_back(&done_.at(s.speed));
+    StabilityOnset o = find_stability_onset(spec_, points, filter);
     if (!o.error.empty() && error_.empty()) error_ = o.error;
     return o;
   }

@@ -133,6 +133,27 @@ class ElementSteadyState {
     return norm;
   }
 
+  /// dz/dspeed along the steady states through z (a steady state at `speed`): the tangent -J^+ dG/dspeed of the
+  /// implicit function G(z, speed) = 0, least-norm (a ball's neutral place in its pocket does not move), turning
+  /// angles held.
+  Eigen::VectorXd tangent(double speed, const Eigen::VectorXd& z) {
+    speed_ = speed;
+    rate_scale_ = std::max(std::abs(speed), 100.0);  // held while the speed is varied: G's scale is not G
+    Eigen::MatrixXd J(m_, m_);
+    jacobian(z, J);
+    const double h = kRelativeStep * rate_scale_;
+    Eigen::VectorXd gp(m_), gm(m_);
+    speed_ = speed + h;
+    rates(z, gp);
+    speed_ = speed - h;
+    rates(z, gm);
+    speed_ = speed;
+    Eigen::VectorXd t = J.completeOrthogonalDecomposition().solve(-(gp - gm) / (2.0 * h));
+    t = t.cwiseProduct(scale_);
+    for (const auto& a : layout_.turning_angles) t(a.first) = 0.0;
+    return t;
+  }
+
   /// The frame's speed W at z: the phase angle's rate, or 0 if the element has no turning angles.
   double frame_speed(const Eigen::VectorXd& z) const {
     if (layout_.turning_angles.empty()) return 0.0;
@@ -179,8 +200,9 @@ class ElementSteadyState {
 // Continuation of the element's steady state x (at speed `from`) to speed `to`, each step started from the secant
 // through the last two solutions (angles excepted). A step that finds no steady state is retried at half the length,
 // down to kMaxSpeedStep / 2^kMaxStepHalvings, and the step grows back after a success. From rest (from = 0) the
-// first step starts from the no-slip state. Returns false (x at the last speed reached, *failed_at and *norm of the
-// step that failed) if the smallest step fails.
+// first step starts from the no-slip state; from a steady state at speed, along the steady states' tangent there.
+// Returns false (x at the last speed reached, *failed_at and *norm of the step that failed) if the smallest step
+// fails.
 bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, const Layout& layout, double from,
                            double to, Eigen::VectorXd& x, double* norm, double* failed_at, double* smallest_step) {
   const int m = e.n_states();
@@ -194,7 +216,7 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
     return from + (to - from) * static_cast<double>(position) / static_cast<double>(end);
   };
   *smallest_step = std::abs(to - from) / static_cast<double>(end);
-  Eigen::VectorXd prev = x;
+  Eigen::VectorXd prev = x, tangent;
   double prev_speed = from, last_speed = from;
   bool first = true;
   while (at < end) {
@@ -203,7 +225,15 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
     Eigen::VectorXd guess(m);
     if (first) {
       guess = x;
-      if (from == 0.0) e.initial_states_at_speed(s, guess.data());
+      if (from == 0.0) {
+        e.initial_states_at_speed(s, guess.data());
+      } else {
+        // Along the tangent of the steady states at `from`: the secant of a continuation that came this way. (A
+        // guess with the balls' rates left as they were is a slip beyond the creep range, where friction
+        // saturates: the iteration from it may settle on another, sliding state.)
+        if (tangent.size() == 0) tangent = solver.tangent(from, x);
+        guess += tangent * (s - from);
+      }
     } else {
       guess = x + (x - prev) * ((s - last_speed) / (last_speed - prev_speed));
       // Angles are not extrapolated: a ball's place in its pocket is neutral and may have moved in the last solve.
@@ -241,14 +271,27 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
 // `speed`, else at 2, 1/2, 4, 1/4 and 8 times it (not below kMaxSpeedStep), continued from there to `speed`. A
 // failure farther from rest (a rolling state that folds back) stays a failure. Returns the states and the frame
 // speed in *frame.
+//
+// With `below` (the element's steady state at the lower speed `below_speed`, from an earlier analysis), the state is
+// first continued up from there, along the branch it is on, without retracing the speeds below (where the rolling
+// state has two branches, e.g. the balls' spin axes near outer- or near inner-race control, a sweep stays on one;
+// docs/ball-bearing.md). If that fails, the search starts over from rest.
 Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout, double speed, double* frame,
-                                     double* residual) {
+                                     double* residual, const double* below = nullptr, double below_speed = 0.0) {
   ElementSteadyState solver(e, layout);
   const int m = e.n_states();
+  double norm = 0.0, failed_at = 0.0, smallest = 0.0;
+  if (below) {
+    Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(below, m);
+    if (continue_steady_state(solver, e, layout, below_speed, speed, x, &norm, &failed_at, &smallest)) {
+      *frame = solver.frame_speed(x);
+      *residual = norm;
+      return x;
+    }
+  }
   Eigen::VectorXd rest = Eigen::VectorXd::Zero(m);
   e.initial_states(rest.data());
   Eigen::VectorXd x = rest;
-  double norm = 0.0, failed_at = 0.0, smallest = 0.0;
   bool found = continue_steady_state(solver, e, layout, 0.0, speed, x, &norm, &failed_at, &smallest);
   const double first_failure = failed_at, first_norm = norm, first_smallest = smallest;
   std::string direct_note;
@@ -314,9 +357,14 @@ void check_stability_supported(const MachineSpec& spec_in) {
     if (!e->steady_rotation_layout(&layout)) throw_unsupported(*e);
 }
 
-StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const StabilityOptions& options) {
+StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const StabilityOptions& options,
+                                 const StabilityPoint* below) {
   const MachineSpec spec = stability_machine(spec_in, speed);
   const std::unique_ptr<RunupModel> model = make_runup_model(spec);
+  if (below && !(below->speed <= speed && below->steady_state.size() ==
+                                              static_cast<std::size_t>(model->n_states())))
+    throw std::logic_error("analyse_stability: the analysis to continue from is not one of this machine below " +
+                           rpm_text(speed));
   const Rotor& rotor = model->rotor();
   const int n = model->n_dof(), N = model->n_states() - 2;  // the two energy accounts are left out
 
@@ -332,8 +380,11 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     if (!e.steady_rotation_layout(&layouts[k])) throw_unsupported(e);
     if (e.n_states() == 0) continue;
     double frame = 0.0, residual = 0.0;
-    const Eigen::VectorXd z = element_steady_state(e, layouts[k], speed, &frame, &residual);
-    std::copy(z.data(), z.data() + z.size(), y.begin() + model->state_offset(static_cast<int>(k)));
+    const int offset = model->state_offset(static_cast<int>(k));
+    const Eigen::VectorXd z =
+        element_steady_state(e, layouts[k], speed, &frame, &residual,
+                             below ? below->steady_state.data() + offset : nullptr, below ? below->speed : 0.0);
+    std::copy(z.data(), z.data() + z.size(), y.begin() + offset);
     out.residual = std::max(out.residual, residual);
     if (layouts[k].turning_angles.empty()) continue;
     if (have_frame && std::abs(frame - out.frame_speed) > 1e-6 * std::max(std::abs(frame), 1.0))
@@ -470,16 +521,21 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter) {
   return false;
 }
 
-double refine_stability_onset(const MachineSpec& spec, double stable, double unstable,
+double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
                               const StabilityModeFilter& filter, std::string* error) {
   error->clear();
   StabilityOptions options;
   options.min_rotor_share = filter.min_rotor_share;
-  double lo = stable, hi = unstable;
+  StabilityPoint lo = stable;  // each halving continues the steady state up from the highest speed found stable
+  double hi = unstable;
   for (int i = 0; i < kStabilityOnsetBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
+    const double mid = 0.5 * (lo.speed + hi);
     try {
-      (grows_counted(analyse_stability(spec, mid, options), filter) ? hi : lo) = mid;
+      StabilityPoint p = analyse_stability(spec, mid, options, &lo);
+      if (grows_counted(p, filter))
+        hi = mid;
+      else
+        lo = std::move(p);
     } catch (const std::invalid_argument&) {
       throw;
     } catch (const std::exception& e) {
@@ -490,20 +546,19 @@ double refine_stability_onset(const MachineSpec& spec, double stable, double uns
   return hi;
 }
 
-StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<double>& speeds,
-                                    const std::vector<bool>& grows, const StabilityModeFilter& filter) {
+StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<const StabilityPoint*>& points,
+                                    const StabilityModeFilter& filter) {
   StabilityOnset o;
-  const std::size_t k =
-      static_cast<std::size_t>(std::find(grows.begin(), grows.end(), true) - grows.begin());
-  if (k >= speeds.size()) return o;
+  const std::size_t k = static_cast<std::size_t>(
+      std::find_if(points.begin(), points.end(), [&](const StabilityPoint* p) { return grows_counted(*p, filter); }) -
+      points.begin());
+  if (k >= points.size()) return o;
   o.found = true;
   o.at_first_speed = k == 0;
-  if (o.at_first_speed) {
-    o.speed = speeds[0];
-    return o;
-  }
-  o.speed = refine_stability_onset(spec, speeds[k - 1], speeds[k], filter, &o.error);
-  o.resolution = (speeds[k] - speeds[k - 1]) / (1 << kStabilityOnsetBisections);
+  o.speed = points[k]->speed;
+  if (o.at_first_speed) return o;
+  o.speed = refine_stability_onset(spec, *points[k - 1], points[k]->speed, filter, &o.error);
+  o.resolution = (points[k]->speed - points[k - 1]->speed) / (1 << kStabilityOnsetBisections);
   return o;
 }
 

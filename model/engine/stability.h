@@ -105,12 +105,13 @@ struct StabilityModeFilter {
 /// True if a mode of `p` that `filter` counts grows (StabilityMode::grows).
 bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter);
 
-/// The onset of instability between `stable` (rad/s: no counted mode grows there) and `unstable` (one does): the
-/// interval halved kStabilityOnsetBisections times by analyses at its middle; returns the lowest speed found growing,
-/// so the onset lies within [returned - interval/64, returned]. An analysis that fails (no steady state) ends the
+/// The onset of instability between the analysis `stable` (no counted mode grows at its speed) and the speed
+/// `unstable` (rad/s: one does): the interval halved kStabilityOnsetBisections times by analyses at its middle, each
+/// continuing the steady state up from the highest speed found stable; returns the lowest speed found growing, so
+/// the onset lies within [returned - interval/64, returned]. An analysis that fails (no steady state) ends the
 /// halving: *error says at which speed and why ("" if none did), and the lowest speed found growing so far is
 /// returned.
-double refine_stability_onset(const MachineSpec& spec, double stable, double unstable,
+double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
                               const StabilityModeFilter& filter, std::string* error);
 
 /// Where a counted mode first grows over speeds analysed in ascending order.
@@ -122,16 +123,21 @@ struct StabilityOnset {
   std::string error;            ///< an analysis inside the halved interval failed ("" if none)
 };
 
-/// The onset over `speeds` (rad/s, ascending), `grows[i]` whether a counted mode grows at speeds[i]: the first speed
-/// that grows, the interval from the speed before it halved by refine_stability_onset.
-StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<double>& speeds,
-                                    const std::vector<bool>& grows, const StabilityModeFilter& filter);
+/// The onset over the analyses `points` of `spec` (ascending speeds): the first whose counted modes grow
+/// (grows_counted), the interval from the speed before it halved by refine_stability_onset.
+StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<const StabilityPoint*>& points,
+                                    const StabilityModeFilter& filter);
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
 /// (ForceElement::steady_rotation_layout: floating rings, journal bearings, anisotropic linear bearings, linear
 /// bearings in dampers and dampers with a feed hole or supply pressure are not covered), or if the
 /// elements' frames turn at different speeds; std::runtime_error if Newton's method does not find the steady state.
-StabilityPoint analyse_stability(const MachineSpec& spec, double speed, const StabilityOptions& options = {});
+///
+/// `below`, if given, is an analysis of the same `spec` at a speed at most `speed`: the steady state is continued up
+/// from its steady state, along its branch and without retracing the speeds below (a sweep over ascending speeds
+/// passes each analysis to the next), and from rest if that fails. Without it, each speed is continued from rest.
+StabilityPoint analyse_stability(const MachineSpec& spec, double speed, const StabilityOptions& options = {},
+                                 const StabilityPoint* below = nullptr);
 
 }  // namespace turbodyn

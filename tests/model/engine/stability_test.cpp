@@ -3,6 +3,7 @@
 // modal analysis where friction plays little part, and the friction-driven instability of issue 17.
 #include "model/engine/stability.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -232,6 +233,60 @@ TEST(Stability, BallBearingsInADamperWhoseFilmIsTheSameInEveryDirection) {
     if (std::abs(m.frequency) < 1e-3) {
       EXPECT_FALSE(m.grows()) << "the rings' neutral place at 0 Hz counts as growing";
     }
+}
+
+TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {
+  // A sweep passes each analysis to the next: the steady state continued up from 45,000 rpm is the one the
+  // continuation from rest reaches at 60,000 rpm, and so are its modes (frequencies to 1e-6, growth rates to a tenth
+  // of what the analysis counts as round-off, a damping ratio of 1e-6). A point of another machine is refused.
+  const MachineSpec spec = reference_ball();
+  const StabilityPoint low = analyse_stability(spec, 45000 * kRpm);
+  const StabilityPoint rest = analyse_stability(spec, 60000 * kRpm),
+                       continued = analyse_stability(spec, 60000 * kRpm, {}, &low);
+  EXPECT_NEAR(continued.frame_speed / rest.frame_speed, 1.0, 1e-9);
+  EXPECT_LT(continued.residual, 1e-6);
+  std::vector<const StabilityMode*> a, b;
+  for (const StabilityMode& m : rest.modes)
+    if (m.rotor_share >= 0.01) a.push_back(&m);
+  for (const StabilityMode& m : continued.modes)
+    if (m.rotor_share >= 0.01) b.push_back(&m);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GE(a.size(), 4u);
+  const auto by_frequency = [](const StabilityMode* x, const StabilityMode* y) { return x->frequency < y->frequency; };
+  std::sort(a.begin(), a.end(), by_frequency);
+  std::sort(b.begin(), b.end(), by_frequency);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_NEAR(b[k]->frequency, a[k]->frequency, 1e-6 * std::abs(a[k]->frequency)) << "mode " << k;
+    const double round_off = 0.1 * kStabilityNoiseDamping * 2.0 * kPi * std::abs(a[k]->frequency);
+    EXPECT_NEAR(b[k]->growth_rate, a[k]->growth_rate, round_off) << "mode " << k;
+    EXPECT_EQ(b[k]->grows(), a[k]->grows()) << "mode " << k;
+  }
+  const StabilityPoint other = analyse_stability(load_model(testing::source_dir() + "/tests/data/stability/"
+                                                            "rigid_cross_coupled.toml"),
+                                                 10000 * kRpm);
+  EXPECT_THROW(analyse_stability(spec, 60000 * kRpm, {}, &other), std::logic_error);
+  EXPECT_THROW(analyse_stability(spec, 30000 * kRpm, {}, &low), std::logic_error);  // not below
+}
+
+TEST(Stability, ASweepStaysOnOneBranchOfTheRollingState) {
+  // At 220 N of preload and 25 deg the steady rolling state has two branches from a few thousand rpm on (the balls'
+  // spin axes near outer- or near inner-race control; cage 0.381 or 0.391 of the rotor speed at 51,000 rpm). Each
+  // speed's own continuation from rest lands on either, by the accident of its steps (0.381, 0.391, 0.381, 0.392 at
+  // 50,000-53,000 rpm); a sweep that passes each analysis to the next follows one: its cage-speed ratio moves by far
+  // less than the 2.6 % between the branches.
+  const MachineSpec spec = load_model(
+      testing::source_dir() + "/examples/reference_ball.toml",
+      {parse_override("bearings.compressor.preload=220 N"), parse_override("bearings.turbine.preload=220 N"),
+       parse_override("bearings.compressor.contact_angle=25 deg"),
+       parse_override("bearings.turbine.contact_angle=25 deg")});
+  std::vector<StabilityPoint> sweep;
+  for (const double rpm : {50000.0, 51000.0, 52000.0, 53000.0}) {
+    sweep.push_back(analyse_stability(spec, rpm * kRpm, {}, sweep.empty() ? nullptr : &sweep.back()));
+    std::printf("[ sweep  ] %.0f rpm: cage / rotor speed %.5f\n", rpm, sweep.back().frame_speed / sweep.back().speed);
+  }
+  for (std::size_t k = 1; k < sweep.size(); ++k)
+    EXPECT_NEAR(sweep[k].frame_speed / sweep[k].speed, sweep[k - 1].frame_speed / sweep[k - 1].speed, 0.002)
+        << sweep[k].speed / kRpm << " rpm";
 }
 
 TEST(Stability, ElementsWithoutASteadyTurningStateAreRefused) {
