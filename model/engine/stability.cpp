@@ -38,8 +38,11 @@ constexpr int kMaxIterations = 400, kMaxNewton = 60;
 // Pseudo-time steps (in units of 1 / speed): the first, and the largest (then the iteration is Newton's method).
 constexpr double kFirstPseudoStep = 1.0, kLargestPseudoStep = 1e12;
 // Continuation in speed: no step larger than this (rad/s), about 2,400 rpm; a step that fails is halved at most
-// this many times.
-constexpr double kMaxSpeedStep = 250.0;
+// this many times. From rest, half of it: the first steps start from the no-slip state, far from the steady state,
+// and where the rolling state has two branches (docs/ball-bearing.md, "A sweep over speeds") steps of about 245
+// rad/s and more settled on the one a run does not take (at 220 N and 25 deg from 40,000 rpm on), steps of 175 and
+// 100 rad/s on the run's.
+constexpr double kMaxSpeedStep = 250.0, kMaxSpeedStepFromRest = 0.5 * kMaxSpeedStep;
 constexpr int kMaxStepHalvings = 6;
 // Damping ratios above -this count as round-off for modes above frequency_max.
 constexpr double kHighFrequencyNoise = 1e-3;
@@ -199,14 +202,15 @@ class ElementSteadyState {
 
 // Continuation of the element's steady state x (at speed `from`) to speed `to`, each step started from the secant
 // through the last two solutions (angles excepted). A step that finds no steady state is retried at half the length,
-// down to kMaxSpeedStep / 2^kMaxStepHalvings, and the step grows back after a success. From rest (from = 0) the
-// first step starts from the no-slip state; from a steady state at speed, along the steady states' tangent there.
-// Returns false (x at the last speed reached, *failed_at and *norm of the step that failed) if the smallest step
-// fails.
+// down to 1/2^kMaxStepHalvings of the regular step (kMaxSpeedStep, from rest kMaxSpeedStepFromRest), and the step
+// grows back after a success. From rest (from = 0) the first step starts from the no-slip state; from a steady state
+// at speed, along the steady states' tangent there. Returns false (x at the last speed reached, *failed_at and *norm
+// of the step that failed) if the smallest step fails.
 bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, const Layout& layout, double from,
                            double to, Eigen::VectorXd& x, double* norm, double* failed_at, double* smallest_step) {
   const int m = e.n_states();
-  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(to - from) / kMaxSpeedStep)));
+  const double max_step = from == 0.0 ? kMaxSpeedStepFromRest : kMaxSpeedStep;
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(to - from) / max_step)));
   // Positions along the continuation in units of the smallest step: an undisturbed continuation lands on
   // from + (to - from) * k / steps exactly (the power-of-two units cancel), whatever steps were halved elsewhere.
   constexpr long kUnits = 1L << kMaxStepHalvings;
