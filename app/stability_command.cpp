@@ -141,6 +141,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
                   {"cage_speed_rad_s", p.frame_speed},
                   {"states", p.n_states},
                   {"steady_state_residual", p.residual},
+                  {"steady_state_restarted", p.restarted},
                   {"elements", p.elements},
                   {"modes", modes}});
   }
@@ -188,6 +189,11 @@ int run_stability_command(const StabilityCommandOptions& options) {
     }
   }
   std::cout << std::defaultfloat;
+  for (const StabilityPoint& p : points)
+    if (p.restarted)
+      std::cout << "Note: at " << std::fixed << std::setprecision(0) << p.speed * kRadPerSToRpm << std::defaultfloat
+                << " rpm the steady state's branch from the speed before ended (a fold); the state there was found "
+                   "anew from rest, on another branch (docs/ball-bearing.md, \"A sweep over speeds\").\n";
   if (onset.is_null())
     std::cout << "No mode with at least " << options.min_rotor_share << " of its motion in the rotor grows at the "
               << "speeds analysed.\n";

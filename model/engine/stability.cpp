@@ -281,15 +281,18 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
 // state has two branches, e.g. the balls' spin axes near outer- or near inner-race control, a sweep stays on one;
 // docs/ball-bearing.md). If that fails, the search starts over from rest.
 Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout, double speed, double* frame,
-                                     double* residual, const double* below = nullptr, double below_speed = 0.0) {
+                                     double* residual, const double* below = nullptr, double below_speed = 0.0,
+                                     bool* restarted = nullptr) {
   ElementSteadyState solver(e, layout);
   const int m = e.n_states();
   double norm = 0.0, failed_at = 0.0, smallest = 0.0;
+  if (restarted) *restarted = below != nullptr;  // until the continuation from below succeeds
   if (below) {
     Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(below, m);
     if (continue_steady_state(solver, e, layout, below_speed, speed, x, &norm, &failed_at, &smallest)) {
       *frame = solver.frame_speed(x);
       *residual = norm;
+      if (restarted) *restarted = false;
       return x;
     }
   }
@@ -384,10 +387,13 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     if (!e.steady_rotation_layout(&layouts[k])) throw_unsupported(e);
     if (e.n_states() == 0) continue;
     double frame = 0.0, residual = 0.0;
+    bool restarted = false;
     const int offset = model->state_offset(static_cast<int>(k));
     const Eigen::VectorXd z =
         element_steady_state(e, layouts[k], speed, &frame, &residual,
-                             below ? below->steady_state.data() + offset : nullptr, below ? below->speed : 0.0);
+                             below ? below->steady_state.data() + offset : nullptr, below ? below->speed : 0.0,
+                             &restarted);
+    out.restarted = out.restarted || restarted;
     std::copy(z.data(), z.data() + z.size(), y.begin() + offset);
     out.residual = std::max(out.residual, residual);
     if (layouts[k].turning_angles.empty()) continue;

@@ -71,6 +71,10 @@ struct StabilityPoint {
   /// Largest relative residual of the steady state (each state derivative over its typical magnitude times the
   /// speed), after Newton's method.
   double residual = 0.0;
+  /// Given an analysis at a lower speed (analyse_stability's `below`), the continuation from its steady state failed
+  /// for some element and that element's state was found anew from rest: the branch through the lower speed ends
+  /// between the two (a fold), and this state lies on another branch.
+  bool restarted = false;
   std::vector<std::string> elements;  ///< element names, the order of StabilityMode::element_shares
   /// The steady state at t = 0 (RunupModel::n_states() values, energy accounts 0) of the model that
   /// stability_machine(spec, speed) describes: a run started from it (RunupOptions::initial_state) stays there

@@ -433,6 +433,10 @@ EOF2
     python3 -c "import json,sys; o=json.load(open(sys.argv[1]))['onset']; assert abs(o['speed_rpm']-$onset)<1 and \
 abs(o['resolution_rpm']-65000/64)<1e-6, o" "$out/stability.json" || fail "stability.json onset"
     grep -q "Onset of instability (a mode with at least" "$out/report.html" || fail "report: onset"
+    # Each speed continued from the one before, none restarted from rest (no fold on the example's rolling state).
+    python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; assert len(r) == 2 and \
+not any(p['steady_state_restarted'] for p in r), r" "$out/stability.json" || fail "stability.json restarted"
+    ! grep -q "^Note: at" "$out/log" || fail "a restart noted: $(cat "$out/log")"
     "$exe" stability "$src/examples/reference_floating_ring.toml" --speeds "50000 rpm" -o "$out/fr" > "$out/fr.log" 2>&1
     [ $? -eq 2 ] || fail "floating rings accepted: $(cat "$out/fr.log")"
     grep -q "bearing '.*': its element has no steady state" "$out/fr.log" || fail "message: $(cat "$out/fr.log")"

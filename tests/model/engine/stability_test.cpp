@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -261,6 +262,16 @@ TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {
     EXPECT_NEAR(b[k]->growth_rate, a[k]->growth_rate, round_off) << "mode " << k;
     EXPECT_EQ(b[k]->grows(), a[k]->grows()) << "mode " << k;
   }
+  EXPECT_FALSE(continued.restarted);
+  EXPECT_FALSE(rest.restarted);
+  // A state below that cannot be continued (here spoilt on purpose) is left: the state is found anew from rest, the
+  // same as `rest`, and marked.
+  StabilityPoint spoilt = low;
+  std::fill(spoilt.steady_state.begin(), spoilt.steady_state.end(), std::numeric_limits<double>::quiet_NaN());
+  const StabilityPoint anew = analyse_stability(spec, 60000 * kRpm, {}, &spoilt);
+  EXPECT_TRUE(anew.restarted);
+  EXPECT_EQ(anew.frame_speed, rest.frame_speed);
+  EXPECT_EQ(anew.modes.size(), rest.modes.size());
   const StabilityPoint other = analyse_stability(load_model(testing::source_dir() + "/tests/data/stability/"
                                                             "rigid_cross_coupled.toml"),
                                                  10000 * kRpm);
