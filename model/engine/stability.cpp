@@ -233,8 +233,9 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
         e.initial_states_at_speed(s, guess.data());
       } else {
         // Along the tangent of the steady states at `from`: the secant of a continuation that came this way. (A
-        // guess with the balls' rates left as they were is a slip beyond the creep range, where friction
-        // saturates: the iteration from it may settle on another, sliding state.)
+        // guess with the balls' rates left as they were is a slip beyond the creep range, where friction saturates
+        // and Newton's method sees no slope: even steps of 4 rad/s failed. The no-slip change of the rates as the
+        // guess worked, with more halvings: 2.9 s for the example's 11 speeds against 1.6 s.)
         if (tangent.size() == 0) tangent = solver.tangent(from, x);
         guess += tangent * (s - from);
       }
