@@ -4,13 +4,13 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "app/command_line.h"
 #include "app/modal_command.h"
+#include "model/engine/speed_text.h"
 #include "model/engine/stability.h"
 #include "model/io/output_file.h"
 #include "model/io/result_header.h"
@@ -81,9 +81,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
     } catch (const std::invalid_argument& e) {
       throw ModelError(spec.source.string() + ": " + e.what());
     } catch (const std::runtime_error& e) {
-      std::ostringstream at;
-      at << std::fixed << std::setprecision(0) << s * kRadPerSToRpm;
-      stopped = spec.source.string() + " at " + at.str() + " rpm: " + e.what();
+      stopped = spec.source.string() + " at " + rpm_text(s) + ": " + e.what();
       break;
     }
   }
@@ -191,9 +189,9 @@ int run_stability_command(const StabilityCommandOptions& options) {
   std::cout << std::defaultfloat;
   for (const StabilityPoint& p : points)
     if (p.restarted)
-      std::cout << "Note: at " << std::fixed << std::setprecision(0) << p.speed * kRadPerSToRpm << std::defaultfloat
-                << " rpm the steady state's branch from the speed before ended (a fold); the state there was found "
-                   "anew from rest, on another branch (docs/ball-bearing.md, \"A sweep over speeds\").\n";
+      std::cout << "Note: at " << rpm_text(p.speed)
+                << " the steady state's branch from the speed before ended (a fold); the state there was found anew "
+                   "from rest, on another branch (docs/ball-bearing.md, \"A sweep over speeds\").\n";
   if (onset.is_null())
     std::cout << "No mode with at least " << options.min_rotor_share << " of its motion in the rotor grows at the "
               << "speeds analysed.\n";
@@ -204,8 +202,9 @@ int run_stability_command(const StabilityCommandOptions& options) {
     std::cout << "Onset of instability: " << std::fixed << std::setprecision(0) << onset.at("speed_rpm").get<double>()
               << " rpm (the speed before it halved " << kStabilityOnsetBisections << " times: within "
               << onset.at("resolution_rpm").get<double>() << " rpm below)"
-              << (onset.contains("halving_stopped") ? "; halving stopped: " + onset.at("halving_stopped").get<std::string>()
-                                                    : std::string())
+              << (onset.contains("halving_stopped")
+                      ? "; halving stopped: " + onset.at("halving_stopped").get<std::string>()
+                      : std::string())
               << ".\n" << std::defaultfloat;
   const bool plots = options.plots && !points.empty();
   if (plots) write_pictures(spec.name, points, options.min_rotor_share, options.output_dir);

@@ -287,15 +287,15 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
   ElementSteadyState solver(e, layout);
   const int m = e.n_states();
   double norm = 0.0, failed_at = 0.0, smallest = 0.0;
-  if (restarted) *restarted = below != nullptr;  // until the continuation from below succeeds
+  if (restarted) *restarted = false;
   if (below) {
     Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(below, m);
     if (continue_steady_state(solver, e, layout, below_speed, speed, x, &norm, &failed_at, &smallest)) {
       *frame = solver.frame_speed(x);
       *residual = norm;
-      if (restarted) *restarted = false;
       return x;
     }
+    if (restarted) *restarted = true;
   }
   Eigen::VectorXd rest = Eigen::VectorXd::Zero(m);
   e.initial_states(rest.data());

@@ -95,9 +95,9 @@ void check_stability_supported(const MachineSpec& spec);
 /// of the interval (refine_stability_onset).
 inline constexpr int kStabilityOnsetBisections = 6;
 
-/// Which modes an onset or a study's stability metric counts: at least `min_rotor_share` of their motion in the rotor,
-/// and a housing-frame frequency |f| of at most `frequency_max` (Hz; 0 = any), e.g. to leave out a rotor's bending
-/// modes at kHz that a stiff traction's creep destabilises from the whirl of the ball set.
+/// Which modes an onset or a study's stability metric counts: at least `min_rotor_share` of their motion in the
+/// rotor, and a housing-frame frequency |f| of at most `frequency_max` (Hz; 0 = any), e.g. to leave out a rotor's
+/// bending modes at kHz that a stiff traction's creep destabilises from the whirl of the ball set.
 struct StabilityModeFilter {
   double min_rotor_share = 0.0;
   double frequency_max = 0.0;

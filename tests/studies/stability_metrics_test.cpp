@@ -151,12 +151,12 @@ TEST(StabilityMetrics, AStudysRunOfStabilityMetricsIsTheAnalysisOfItsModel) {
 }
 
 TEST(StabilityMetrics, AnAnalysisThatFailsEndsTheSpeedsThereAndTheOnsetIsStillHalvedBelow) {
-  // With 200 N of preload and an outer groove of 0.56 ball diameters, Eq. 23's rolling state folds back at 77,450 rpm
-  // (the same speed to 10 rpm from sweeps starting at 10,000 and at 50,000 rpm and in steps of 1,000 rpm): the
-  // analysis at 90,000 rpm finds no steady state. The metrics are taken over the speeds below; the onset, bracketed by
-  // 50,000 and 70,000 rpm, is still halved there; the error names the speed that failed. (Until the twenty-fifth stop
-  // this was 300 N at 20 deg, whose fold at 82,710 rpm was on the branch of the rolling state that a run does not take;
-  // docs/ball-bearing.md, "A sweep over speeds".)
+  // With 200 N of preload and an outer groove of 0.56 ball diameters, Eq. 23's rolling state folds back at
+  // 77,450 rpm (the same speed to 10 rpm from sweeps starting at 10,000 and at 50,000 rpm and in steps of 1,000 rpm):
+  // the analysis at 90,000 rpm finds no steady state. The metrics are taken over the speeds below; the onset,
+  // bracketed by 50,000 and 70,000 rpm, is still halved there; the error names the speed that failed. (Until the
+  // twenty-fifth stop this was 300 N at 20 deg, whose fold at 82,710 rpm was on the branch of the rolling state that
+  // a run does not take; docs/ball-bearing.md, "A sweep over speeds".)
   StudyCommon s;
   s.model = testing::source_dir() + "/examples/reference_ball.toml";
   const MachineSpec spec = load_model(s.model, {parse_override("bearings.compressor.preload=200 N"),

@@ -253,7 +253,9 @@ TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {
     if (m.rotor_share >= 0.01) b.push_back(&m);
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GE(a.size(), 4u);
-  const auto by_frequency = [](const StabilityMode* x, const StabilityMode* y) { return x->frequency < y->frequency; };
+  const auto by_frequency = [](const StabilityMode* x, const StabilityMode* y) {
+    return x->frequency < y->frequency;
+  };
   std::sort(a.begin(), a.end(), by_frequency);
   std::sort(b.begin(), b.end(), by_frequency);
   for (std::size_t k = 0; k < a.size(); ++k) {
