@@ -88,6 +88,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
   // The onset of instability: the first analysed speed at which a mode with at least min_rotor_share of its motion
   // in the rotor grows, the interval from the speed before it halved kStabilityOnsetBisections times.
   nlohmann::json onset = nullptr;
+  std::vector<double> halving_restarted;  // rad/s
   {
     const StabilityModeFilter filter{options.min_rotor_share, 0.0};
     std::vector<const StabilityPoint*> analysed;
@@ -98,8 +99,14 @@ int run_stability_command(const StabilityCommandOptions& options) {
     } else if (o.found) {
       onset = {{"speed_rpm", o.speed * kRadPerSToRpm},
                {"resolution_rpm", o.resolution * kRadPerSToRpm},
+               {"halvings", kStabilityOnsetBisections},
                {"at_first_speed", false}};
       if (!o.error.empty()) onset["halving_stopped"] = o.error;
+      halving_restarted = o.restarted;
+      if (!o.restarted.empty()) {
+        onset["halving_restarted_rpm"] = nlohmann::json::array();
+        for (double w : o.restarted) onset["halving_restarted_rpm"].push_back(w * kRadPerSToRpm);
+      }
     }
   }
 
@@ -192,6 +199,9 @@ int run_stability_command(const StabilityCommandOptions& options) {
       std::cout << "Note: at " << rpm_text(p.speed)
                 << " the steady state's branch from the speed before ended (a fold); the state there was found anew "
                    "from rest, on another branch (docs/ball-bearing.md, \"A sweep over speeds\").\n";
+  for (double w : halving_restarted)
+    std::cout << "Note: the onset's halving at " << rpm_text(w)
+              << " found its steady state anew from rest: the branch from the stable speed below ended before it.\n";
   if (onset.is_null())
     std::cout << "No mode with at least " << options.min_rotor_share << " of its motion in the rotor grows at the "
               << "speeds analysed.\n";

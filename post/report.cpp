@@ -221,10 +221,14 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
       os << "at or below the first speed, " << o->at("speed_rpm").get<double>() << " rpm.";
     else
       os << o->at("speed_rpm").get<double>() << " rpm, within " << o->at("resolution_rpm").get<double>()
-         << " rpm below (the interval from the speed before halved six times)"
+         << " rpm below (the interval from the speed before halved " << o->value("halvings", 0) << " times)"
          << (o->contains("halving_stopped") ? "; halving stopped: " + o->at("halving_stopped").get<std::string>()
                                             : std::string())
          << ".";
+    if (const auto r = o->find("halving_restarted_rpm"); r != o->end())
+      for (const nlohmann::json& rpm : *r)
+        os << " The halving at " << rpm.get<double>()
+           << " rpm found its steady state anew from rest: the branch from the stable speed below ended before it.";
     page.paragraph(os.str());
   } else if (o != j.end()) {
     page.paragraph("No mode with rotor motion grows at the speeds analysed.");
@@ -475,9 +479,11 @@ void write_study_report(const std::filesystem::path& dir, const nlohmann::json& 
     for (std::size_t m = 0; m < metrics.size(); ++m)
       row.push_back(HtmlPage::number(F, j, json_pointer(at + "/metrics", m), disp[m].factor));
     const std::string status = text(runs[i], "status");
-    row.push_back(status == "ok" ? "ok"
-                                 : "<span class=\"bad\">" + html_escape(status) + "</span> " +
-                                       html_escape(text(runs[i], "error")));
+    const std::string note = text(runs[i], "note");
+    row.push_back((status == "ok" ? "ok"
+                                  : "<span class=\"bad\">" + html_escape(status) + "</span> " +
+                                        html_escape(text(runs[i], "error"))) +
+                  (note.empty() ? "" : " (" + html_escape(note) + ")"));
     rows.push_back(row);
   }
   page.table("runs", header, rows);

@@ -49,7 +49,7 @@ RunRecord evaluate_run(const StudyCommon& study, const std::vector<MetricSpec>& 
     if (any_stability && rec.status == "ok") {
       std::string error;
       const std::vector<double> v =
-          evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel);
+          evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel, &rec.note);
       for (std::size_t m = 0; m < metrics.size(); ++m)
         if (is_stability_metric(metrics[m].kind)) rec.metrics[m] = v[m];
       if (!error.empty()) {

@@ -21,6 +21,7 @@ struct RunRecord {
   std::string status;                ///< "ok", "incomplete" (integrator gave up, or a stability analysis found no
                                      ///< steady state at a speed; metrics from the partial run), "failed"
   std::string error;                 ///< why, for incomplete and failed runs
+  std::string note;                  ///< what a complete run's metrics need said (a stability analysis's restart)
   double wall_time = 0.0;            ///< s
 };
 

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -48,6 +49,7 @@ class Analyses {
         auto below = done_.lower_bound(speed);  // the first at or above: the one before it is below
         const StabilityPoint* from = below == done_.begin() ? nullptr : &std::prev(below)->second;
         it = done_.emplace(speed, analyse_stability(spec_, speed, options_, from)).first;
+        if (it->second.restarted) restarted_.insert(speed);
       } catch (const std::invalid_argument&) {
         throw;
       } catch (const std::exception& e) {
@@ -74,15 +76,19 @@ class Analyses {
     for (const SpeedSummary& s : grid) points.push_back(&done_.at(s.speed));
     StabilityOnset o = find_stability_onset(spec_, points, filter);
     if (!o.error.empty() && error_.empty()) error_ = o.error;
+    restarted_.insert(o.restarted.begin(), o.restarted.end());
     return o;
   }
   const std::string& error() const { return error_; }
+  // Speeds (rad/s) whose steady state was found anew from rest: grid speeds and the onset's halvings.
+  const std::set<double>& restarted() const { return restarted_; }
 
  private:
   const MachineSpec& spec_;
   const std::atomic<bool>* cancel_;
   StabilityOptions options_;
   std::map<double, StabilityPoint> done_;
+  std::set<double> restarted_;
   std::string error_;
   double failed_at_ = std::numeric_limits<double>::infinity();
 };
@@ -115,6 +121,14 @@ double metric_value(const MetricSpec& m, Analyses& a) {
 
 }  // namespace
 
+std::string stability_restart_note(const std::set<double>& speeds) {
+  if (speeds.empty()) return "";
+  std::string text;
+  for (double w : speeds) text += (text.empty() ? "" : ", ") + rpm_text(w);
+  return "stability: steady state found anew from rest at " + text +
+         " (the branch from the speed below ended: a fold; docs/ball-bearing.md, \"A sweep over speeds\")";
+}
+
 bool is_stability_metric(const std::string& kind) {
   return kind == "stability_growth" || kind == "stability_growth_speed" || kind == "stability_frequency" ||
          kind == "stability_damping" || kind == "stability_onset_speed";
@@ -143,7 +157,8 @@ std::vector<double> stability_speeds(const MetricSpec& m) {
 }
 
 std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const std::vector<MetricSpec>& metrics,
-                                               std::string* error, const std::atomic<bool>* cancel) {
+                                               std::string* error, const std::atomic<bool>* cancel,
+                                               std::string* note) {
   std::vector<double> out(metrics.size(), kNaN);
   std::map<double, Analyses> by_share;  // the analyses of one rotor share serve every metric that uses it
   error->clear();
@@ -156,6 +171,11 @@ std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const st
                             std::forward_as_tuple(spec, m.min_rotor_share, cancel)).first;
     out[i] = metric_value(m, it->second);
     if (error->empty()) *error = it->second.error();
+  }
+  if (note) {
+    std::set<double> restarted;
+    for (const auto& [share, a] : by_share) restarted.insert(a.restarted().begin(), a.restarted().end());
+    *note = stability_restart_note(restarted);
   }
   return out;
 }

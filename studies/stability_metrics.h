@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ bool is_stability_metric(const std::string& kind);
 void check_stability_metrics(const StudyCommon& study, const std::vector<MetricSpec>& metrics,
                              const MachineSpec& spec);
 
+/// The note a study's run carries where its stability analyses found the steady state anew from rest at `speeds`
+/// (rad/s; StabilityPoint::restarted): they name the speeds; "" if none.
+std::string stability_restart_note(const std::set<double>& speeds);
+
 /// The speeds a stability metric analyses: speed_count speeds evenly over [speed_min, speed_max] (rad/s).
 std::vector<double> stability_speeds(const MetricSpec& m);
 
@@ -29,8 +34,11 @@ std::vector<double> stability_speeds(const MetricSpec& m);
 /// at a speed) ends that metric's speeds there: the metric is taken over the speeds analysed, and *error says at
 /// which speed and why ("" if none failed). A set `cancel` stops before the next grid speed's analysis (*error
 /// "cancelled"). Throws nothing for a failing analysis; throws std::invalid_argument if the model has an element the
-/// analysis does not cover (check_stability_supported).
+/// analysis does not cover (check_stability_supported). *note, if given, names the speeds (grid speeds and the
+/// onset's halvings) whose steady state was found anew from rest because the branch from the speed below ended
+/// (StabilityPoint::restarted), "" if none: the metrics there are those of another branch.
 std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const std::vector<MetricSpec>& metrics,
-                                               std::string* error, const std::atomic<bool>* cancel = nullptr);
+                                               std::string* error, const std::atomic<bool>* cancel = nullptr,
+                                               std::string* note = nullptr);
 
 }  // namespace turbodyn::studies

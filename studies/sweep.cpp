@@ -60,7 +60,7 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
 
 nlohmann::json to_json(const RunRecord& r) {
   return {{"index", r.index}, {"parameters", json_numbers(r.parameters)}, {"metrics", json_numbers(r.metrics)},
-          {"status", r.status}, {"error", r.error}, {"wall_time_s", r.wall_time}};
+          {"status", r.status}, {"error", r.error}, {"note", r.note}, {"wall_time_s", r.wall_time}};
 }
 
 RunRecord from_json(const nlohmann::json& j) {
@@ -70,6 +70,7 @@ RunRecord from_json(const nlohmann::json& j) {
   r.metrics = from_json_numbers(j.at("metrics"));
   r.status = j.at("status").get<std::string>();
   r.error = j.value("error", "");
+  r.note = j.value("note", "");
   r.wall_time = j.value("wall_time_s", 0.0);
   return r;
 }
@@ -191,10 +192,10 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
     csv.text("run");
     for (std::size_t p = 0; p < design.paths.size(); ++p) csv.text(param_label(p));
     for (std::size_t m = 0; m < study.metrics.size(); ++m) csv.text(metric_label(m));
-    csv.texts({"status", "error", "wall_time_s"}).end_row();
+    csv.texts({"status", "error", "note", "wall_time_s"}).end_row();
     for (const RunRecord& r : runs) {
       csv.integer(r.index).numbers(r.parameters).numbers(r.metrics);
-      csv.text(r.status).text(r.error).number(r.wall_time).end_row();
+      csv.text(r.status).text(r.error).text(r.note).number(r.wall_time).end_row();
     }
     files.push_back("results.csv");
   }

@@ -533,7 +533,8 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter) {
 }
 
 double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
-                              const StabilityModeFilter& filter, std::string* error) {
+                              const StabilityModeFilter& filter, std::string* error,
+                              std::vector<double>* restarted) {
   error->clear();
   StabilityOptions options;
   options.min_rotor_share = filter.min_rotor_share;
@@ -543,6 +544,7 @@ double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& sta
     const double mid = 0.5 * (lo.speed + hi);
     try {
       StabilityPoint p = analyse_stability(spec, mid, options, &lo);
+      if (p.restarted && restarted) restarted->push_back(mid);
       if (grows_counted(p, filter))
         hi = mid;
       else
@@ -568,7 +570,7 @@ StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<c
   o.at_first_speed = k == 0;
   o.speed = points[k]->speed;
   if (o.at_first_speed) return o;
-  o.speed = refine_stability_onset(spec, *points[k - 1], points[k]->speed, filter, &o.error);
+  o.speed = refine_stability_onset(spec, *points[k - 1], points[k]->speed, filter, &o.error, &o.restarted);
   o.resolution = (points[k]->speed - points[k - 1]->speed) / (1 << kStabilityOnsetBisections);
   return o;
 }

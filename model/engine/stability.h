@@ -114,9 +114,11 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter);
 /// continuing the steady state up from the highest speed found stable; returns the lowest speed found growing, so
 /// the onset lies within [returned - interval/64, returned]. An analysis that fails (no steady state) ends the
 /// halving: *error says at which speed and why ("" if none did), and the lowest speed found growing so far is
-/// returned.
+/// returned. The speeds (rad/s) of halvings whose steady state was found anew from rest (StabilityPoint::restarted:
+/// the branch from the stable speed folds before them) are appended to *restarted if given.
 double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
-                              const StabilityModeFilter& filter, std::string* error);
+                              const StabilityModeFilter& filter, std::string* error,
+                              std::vector<double>* restarted = nullptr);
 
 /// Where a counted mode first grows over speeds analysed in ascending order.
 struct StabilityOnset {
@@ -125,6 +127,7 @@ struct StabilityOnset {
   bool at_first_speed = false;  ///< it grows at the first speed already (no interval below to halve)
   double resolution = 0.0;      ///< rad/s: the onset lies within [speed - resolution, speed]
   std::string error;            ///< an analysis inside the halved interval failed ("" if none)
+  std::vector<double> restarted;  ///< rad/s: halvings whose steady state was found anew from rest (a fold below)
 };
 
 /// The onset over the analyses `points` of `spec` (ascending speeds): the first whose counted modes grow

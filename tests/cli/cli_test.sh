@@ -431,8 +431,9 @@ EOF2
     onset=$(sed -n 's/^Onset of instability: \([0-9]*\) rpm (the speed before it halved 6 times.*/\1/p' "$out/log")
     [ -n "$onset" ] && [ "$onset" -gt 50000 ] && [ "$onset" -lt 60000 ] || fail "onset '$onset': $(cat "$out/log")"
     python3 -c "import json,sys; o=json.load(open(sys.argv[1]))['onset']; assert abs(o['speed_rpm']-$onset)<1 and \
-abs(o['resolution_rpm']-65000/64)<1e-6, o" "$out/stability.json" || fail "stability.json onset"
-    grep -q "Onset of instability (a mode with at least" "$out/report.html" || fail "report: onset"
+abs(o['resolution_rpm']-65000/64)<1e-6 and o['halvings'] == 6 and 'halving_restarted_rpm' not in o, o" \
+      "$out/stability.json" || fail "stability.json onset"
+    grep -q "Onset of instability (a mode with at least.*halved 6 times)" "$out/report.html" || fail "report: onset"
     # Each speed continued from the one before, none restarted from rest (no fold on the example's rolling state).
     python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; assert len(r) == 2 and \
 not any(p['steady_state_restarted'] for p in r), r" "$out/stability.json" || fail "stability.json restarted"

@@ -142,12 +142,21 @@ TEST(StabilityMetrics, AStudysRunOfStabilityMetricsIsTheAnalysisOfItsModel) {
   const MetricSpec m = metric("stability_onset_speed", 50000, 60000, 2);
   const RunRecord rec = evaluate_run(s, {m}, {});
   EXPECT_EQ(rec.status, "ok") << rec.error;
+  EXPECT_EQ(rec.note, "");  // every speed continued from the one below
   std::string error;
   const std::vector<double> v = evaluate_stability_metrics(load_model(s.model), {m}, &error);
   EXPECT_EQ(rec.metrics.at(0), v.at(0));
   std::printf("[ reference_ball ] onset %.0f rpm\n", v[0]);
   EXPECT_GT(v[0], 50000);
   EXPECT_LT(v[0], 60000);
+}
+
+TEST(StabilityMetrics, ARunSaysWhereItsSteadyStateWasFoundAnewFromRest) {
+  // The study's runs of bench/validation_studies.sh ball_stability have no such speed; the engine's halvings and
+  // sweeps report them (Stability.TheOnsetsHalvingsSayWhich..., Stability.AnAnalysisContinuedFromALowerSpeed...).
+  EXPECT_EQ(stability_restart_note({}), "");
+  const std::string note = stability_restart_note({61000 * kRpm, 52500 * kRpm});
+  EXPECT_THAT(note, HasSubstr("found anew from rest at 52500 rpm, 61000 rpm"));
 }
 
 TEST(StabilityMetrics, AnAnalysisThatFailsEndsTheSpeedsThereAndTheOnsetIsStillHalvedBelow) {

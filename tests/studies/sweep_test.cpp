@@ -225,14 +225,30 @@ TEST(Sweep, ShardsCoverTheDesignAndMergeToTheSameTable) {
   for (RunRecord& r : read_runs(s, b.output_dir)) merged.push_back(r);
   EXPECT_EQ(merged.size(), 4u);
   const auto dir = temp_dir("merged");
+  merged[1].note = "stability: a note";
   const auto files = write_results(s, ra.design, merged, dir, false);
   EXPECT_THAT(files, ::testing::Contains("results.csv"));
+  {
+    std::ifstream csv(dir / "results.csv");
+    std::string header, row;
+    std::getline(csv, header);
+    EXPECT_THAT(header, ::testing::EndsWith(",status,error,note,wall_time_s"));
+    std::vector<std::string> rows;
+    while (std::getline(csv, row)) rows.push_back(row);
+    ASSERT_EQ(rows.size(), 4u);
+    EXPECT_EQ(std::count_if(rows.begin(), rows.end(),
+                            [](const std::string& r) { return r.find(",stability: a note,") != std::string::npos; }),
+              1);
+  }
   // results.json says which program and which model file (by its content) made it.
   std::ifstream in(dir / "results.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j.at("turbodyn_version"), turbodyn_version());
   EXPECT_EQ(j.at("model_digest"), file_digest(s.model));
   EXPECT_EQ(j.at("model_digest").get<std::string>().size(), 16u);
+  const nlohmann::json& runs = j.at("runs");
+  EXPECT_EQ(std::count_if(runs.begin(), runs.end(), [](const nlohmann::json& r) { return r.at("note") != ""; }), 1);
+  EXPECT_EQ(runs.at(merged[1].index).at("note"), "stability: a note");  // the runs in index order
 }
 
 TEST(Sweep, AnotherStudysDirectoryIsRefused) {

@@ -281,6 +281,31 @@ TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {
   EXPECT_THROW(analyse_stability(spec, 30000 * kRpm, {}, &low), std::logic_error);  // not below
 }
 
+TEST(Stability, TheOnsetsHalvingsSayWhichFoundTheirSteadyStateAnewFromRest) {
+  // The example's onset lies near 54,000 rpm. Halving 45,000-60,000 rpm from a stable analysis continues each
+  // halving from the highest speed found stable: none starts anew. From a stable point that cannot be continued
+  // (spoilt on purpose) the first halving, 52,500 rpm (stable), is found from rest and says so; the later ones
+  // continue from it, and the onset is the same.
+  const MachineSpec spec = reference_ball();
+  const StabilityModeFilter filter{0.01, 0.0};
+  const StabilityPoint stable = analyse_stability(spec, 45000 * kRpm);
+  ASSERT_FALSE(grows_counted(stable, filter));
+  std::string error;
+  std::vector<double> restarted;
+  const double onset = refine_stability_onset(spec, stable, 60000 * kRpm, filter, &error, &restarted);
+  EXPECT_TRUE(error.empty()) << error;
+  EXPECT_TRUE(restarted.empty());
+  EXPECT_GT(onset, 52500 * kRpm);
+  EXPECT_LT(onset, 56000 * kRpm);
+  StabilityPoint spoilt = stable;
+  std::fill(spoilt.steady_state.begin(), spoilt.steady_state.end(), std::numeric_limits<double>::quiet_NaN());
+  const double again = refine_stability_onset(spec, spoilt, 60000 * kRpm, filter, &error, &restarted);
+  EXPECT_TRUE(error.empty()) << error;
+  ASSERT_EQ(restarted.size(), 1u);
+  EXPECT_DOUBLE_EQ(restarted[0], 52500 * kRpm);
+  EXPECT_DOUBLE_EQ(again, onset);
+}
+
 TEST(Stability, EachSpeedAndASweepFindTheBranchOfTheRollingStateARunTakes) {
   // At 220 N of preload and 25 deg the steady rolling state has two branches from low speeds on (the balls' spin
   // axes near outer-race control or steeper; docs/ball-bearing.md, "A sweep over speeds"). A run-up of the paper's
