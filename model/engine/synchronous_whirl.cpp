@@ -104,10 +104,16 @@ std::vector<BallBearingEquilibrium> WhirlProblem::centred_bearings(double speed)
   return out;
 }
 
+void WhirlProblem::with_linear_bearings(double speed, Eigen::MatrixXd& K, Eigen::MatrixXd& D) const {
+  K = rotor_.K;
+  D = rotor_.D;
+  rotor_.add_bearings(speed, K, D);
+}
+
 Eigen::MatrixXd WhirlProblem::linear_part(double speed) const {
   check_linear_bearings(speed);
-  Eigen::MatrixXd K = rotor_.K, D = rotor_.D;
-  rotor_.add_bearings(speed, K, D);
+  Eigen::MatrixXd K, D;
+  with_linear_bearings(speed, K, D);
   K += speed * speed * m_omega_;
   if (planes_ == Planes::Both) K += speed * D * j_;
   return reduce(K);
@@ -125,8 +131,8 @@ Eigen::VectorXd WhirlProblem::unbalance(double speed) const { return speed * spe
 
 Eigen::MatrixXd WhirlProblem::velocity_part(double speed) const {
   if (planes_ != Planes::Both) throw std::logic_error("the whirl's small motions need both planes");
-  Eigen::MatrixXd K = rotor_.K, D = rotor_.D;
-  rotor_.add_bearings(speed, K, D);
+  Eigen::MatrixXd K, D;
+  with_linear_bearings(speed, K, D);
   return reduce(D + speed * g_r_);
 }
 

@@ -95,6 +95,8 @@ class WhirlProblem {
 
  private:
   void check_linear_bearings(double speed) const;
+  // The rotor's K and D with the linear bearings' coefficients at `speed` added (full DOFs).
+  void with_linear_bearings(double speed, Eigen::MatrixXd& K, Eigen::MatrixXd& D) const;
   Eigen::MatrixXd reduce(const Eigen::MatrixXd& full) const;  // a rotor matrix on the reduced DOFs
   bool ball_reaction(int b, double speed, const Vector5d& q, BallBearingEquilibrium& state, Vector5d& f) const;
 
