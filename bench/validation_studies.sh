@@ -8,8 +8,8 @@
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
 #   2 cores since a run-up takes 1.7-2.9 min; 34 min on 2026-12-04, 2 h before),
 #   the 20-design map of where variant II's ball-set whirl starts over preload and contact angle, 48 designs of
-#   eight bearing parameters and 30 outer-ring mounts, stability analyses without run-ups (docs/studies.md, ~25 s,
-#   ~75 s and ~25 s on 2 cores),
+#   eight bearing parameters and 30 outer-ring mounts, stability analyses without run-ups (docs/studies.md, ~32 s,
+#   ~75 s and ~41 s on 2 cores),
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~1.5 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~12 min on 2 cores).

@@ -196,6 +196,10 @@ class ForceElement {
     std::vector<std::pair<int, int>> turning_angles;
     /// Index into turning_angles of the angle that fixes the frame's phase (the cage's), or -1 if there are none.
     int phase_angle = -1;
+    /// The fraction of the analysis' regular steps in speed that the continuation of this steady state takes (1:
+    /// the regular steps): less where the state changes so quickly with speed that the regular steps land on
+    /// another of several nearby steady states.
+    double continuation_step_factor = 1.0;
   };
   /// False (the default) if the element has no such steady state about a centred rotor, or the analysis does not
   /// know it; elements without states that act the same in every direction may return true with an empty layout.

@@ -202,14 +202,14 @@ class ElementSteadyState {
 
 // Continuation of the element's steady state x (at speed `from`) to speed `to`, each step started from the secant
 // through the last two solutions (angles excepted). A step that finds no steady state is retried at half the length,
-// down to 1/2^kMaxStepHalvings of the regular step (kMaxSpeedStep, from rest kMaxSpeedStepFromRest), and the step
-// grows back after a success. From rest (from = 0) the first step starts from the no-slip state; from a steady state
+// down to 1/2^kMaxStepHalvings of the regular step (kMaxSpeedStep, from rest kMaxSpeedStepFromRest, times the
+// layout's continuation_step_factor), and the step grows back after a success. From rest (from = 0) the first step starts from the no-slip state; from a steady state
 // at speed, along the steady states' tangent there. Returns false (x at the last speed reached, *failed_at and *norm
 // of the step that failed) if the smallest step fails.
 bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, const Layout& layout, double from,
                            double to, Eigen::VectorXd& x, double* norm, double* failed_at, double* smallest_step) {
   const int m = e.n_states();
-  const double max_step = from == 0.0 ? kMaxSpeedStepFromRest : kMaxSpeedStep;
+  const double max_step = (from == 0.0 ? kMaxSpeedStepFromRest : kMaxSpeedStep) * layout.continuation_step_factor;
   const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(to - from) / max_step)));
   // Positions along the continuation in units of the smallest step: an undisturbed continuation lands on
   // from + (to - from) * k / steps exactly (the power-of-two units cancel), whatever steps were halved elsewhere.
@@ -373,6 +373,8 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
                                               static_cast<std::size_t>(model->n_states())))
     throw std::logic_error("analyse_stability: the analysis to continue from is not one of this machine below " +
                            rpm_text(speed));
+  if (!(options.continuation_step_factor > 0.0 && std::isfinite(options.continuation_step_factor)))
+    throw std::logic_error("analyse_stability: continuation_step_factor must be positive and finite");
   const Rotor& rotor = model->rotor();
   const int n = model->n_dof(), N = model->n_states() - 2;  // the two energy accounts are left out
 
@@ -386,6 +388,7 @@ StabilityPoint analyse_stability(const MachineSpec& spec_in, double speed, const
     const ForceElement& e = *model->elements()[k];
     out.elements.push_back(e.name());
     if (!e.steady_rotation_layout(&layouts[k])) throw_unsupported(e);
+    layouts[k].continuation_step_factor *= options.continuation_step_factor;
     if (e.n_states() == 0) continue;
     double frame = 0.0, residual = 0.0;
     bool restarted = false;

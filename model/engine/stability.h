@@ -29,6 +29,10 @@ struct StabilityOptions {
   double frequency_max = 0.0;
   /// Keep only modes whose rotor share (StabilityMode::rotor_share) is at least this; 0 keeps the balls' own modes.
   double min_rotor_share = 0.0;
+  /// Multiplies the steady state's continuation steps in speed (each element's own, which the analysis' regular
+  /// steps times ForceElement::SteadyRotationLayout::continuation_step_factor give): below 1 to check that the
+  /// state found does not depend on them.
+  double continuation_step_factor = 1.0;
 };
 
 /// Damping ratios above -this are round-off of the central differences (the undamped shaft's bending modes near

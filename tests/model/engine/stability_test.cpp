@@ -306,6 +306,43 @@ TEST(Stability, TheOnsetsHalvingsSayWhichFoundTheirSteadyStateAnewFromRest) {
   EXPECT_DOUBLE_EQ(again, onset);
 }
 
+TEST(Stability, WithThePapersFrictionTheSteadyStateDoesNotDependOnTheContinuationsSteps) {
+  // Design 27 of the Eq. 23 variant of examples/study_reference_ball_stability_global.toml (271 N, 8.6 deg; docs/
+  // studies.md). Eq. 23 saturates over a creep range of millimetres per second and has steady states close together:
+  // with the regular steps (250 rad/s, 125 from rest) the continuation reached at 10,000 rpm a state in which the
+  // balls' slip diverges at about 5,300 1/s, with half of them and a quarter the state without it. So the ball bearing
+  // with Eq. 23 takes half the regular steps: the state is then that of a quarter of them.
+  const MachineSpec spec = load_model(
+      testing::source_dir() + "/examples/reference_ball.toml",
+      {parse_override("bearings.compressor.preload=270.609 N"), parse_override("bearings.turbine.preload=270.609 N"),
+       parse_override("bearings.compressor.contact_angle=8.64512 deg"),
+       parse_override("bearings.turbine.contact_angle=8.64512 deg"),
+       parse_override("bearings.compressor.pocket_clearance=0.0987157 mm"),
+       parse_override("bearings.turbine.pocket_clearance=0.0987157 mm"),
+       parse_override("bearings.compressor.cage_mass=2.39613 g"), parse_override("bearings.turbine.cage_mass=2.39613 g"),
+       parse_override("bearings.compressor.ball_density=4794.04 kg/m^3"),
+       parse_override("bearings.turbine.ball_density=4794.04 kg/m^3"),
+       parse_override("bearings.compressor.inner_groove_ratio=0.506359"),
+       parse_override("bearings.turbine.inner_groove_ratio=0.506359"),
+       parse_override("bearings.compressor.outer_groove_ratio=0.525524"),
+       parse_override("bearings.turbine.outer_groove_ratio=0.525524"),
+       parse_override("bearings.compressor.contact_damping=436.454 N*s/m"),
+       parse_override("bearings.turbine.contact_damping=436.454 N*s/m")});
+  StabilityOptions half, twice;
+  half.continuation_step_factor = 0.5;
+  twice.continuation_step_factor = 2.0;  // the regular steps
+  const StabilityPoint p = analyse_stability(spec, 10000 * kRpm), q = analyse_stability(spec, 10000 * kRpm, half),
+                       r = analyse_stability(spec, 10000 * kRpm, twice);
+  const auto top = [](const StabilityPoint& x) { return x.modes.empty() ? 0.0 : x.modes.front().growth_rate; };
+  std::printf("[ design 27, Eq. 23, 10,000 rpm ] cage ratio %.6f (half the steps %.6f, twice %.6f); largest growth "
+              "rate %.1f 1/s (%.1f, %.1f)\n",
+              p.frame_speed / p.speed, q.frame_speed / q.speed, r.frame_speed / r.speed, top(p), top(q), top(r));
+  EXPECT_NEAR(p.frame_speed / q.frame_speed, 1.0, 1e-6);
+  EXPECT_NEAR(top(p), top(q), 1.0);
+  EXPECT_LT(top(p), 100.0);  // no divergence of the balls' slip
+  EXPECT_THROW(analyse_stability(spec, 10000 * kRpm, StabilityOptions{0.0, 0.0, 0.0}), std::logic_error);
+}
+
 TEST(Stability, EachSpeedAndASweepFindTheBranchOfTheRollingStateARunTakes) {
   // At 220 N of preload and 25 deg the steady rolling state has two branches from low speeds on (the balls' spin
   // axes near outer-race control or steeper; docs/ball-bearing.md, "A sweep over speeds"). A run-up of the paper's
