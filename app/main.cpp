@@ -115,6 +115,10 @@ int main(int argc, char** argv) {
   stability->add_option("--min-rotor-share", stability_options.min_rotor_share,
                         "Table and pictures: modes with at least this fraction of their motion in the rotor")
       ->capture_default_str();
+  stability->add_option("--continuation-steps", stability_options.continuation_step_factor,
+                        "Fraction (0, 1] of the steady state's continuation steps in speed: 0.5 halves them, to check "
+                        "that the state found does not depend on them")
+      ->capture_default_str();
   stability->add_option("-o,--output", stability_options.output_dir, "Output directory")->capture_default_str();
   stability->add_flag("!--no-plots", stability_options.plots, "Do not draw PNG pictures");
   add_sets(stability);

@@ -72,12 +72,16 @@ int run_stability_command(const StabilityCommandOptions& options) {
   const std::vector<double> speeds = analysis_speeds(spec, options.speeds, 11);
   if (!(options.min_rotor_share >= 0.0 && options.min_rotor_share <= 1.0))
     throw ModelError("--min-rotor-share must lie in [0, 1]");
+  if (!(options.continuation_step_factor > 0.0 && options.continuation_step_factor <= 1.0))
+    throw ModelError("--continuation-steps must lie in (0, 1]");
+  StabilityOptions analysis;
+  analysis.continuation_step_factor = options.continuation_step_factor;
   // A speed without a steady state ends the analysis there: the speeds before it are written, marked incomplete.
   std::vector<StabilityPoint> points;
   std::string stopped;
   for (double s : speeds) {
     try {
-      points.push_back(analyse_stability(spec, s, {}, points.empty() ? nullptr : &points.back()));
+      points.push_back(analyse_stability(spec, s, analysis, points.empty() ? nullptr : &points.back()));
     } catch (const std::invalid_argument& e) {
       throw ModelError(spec.source.string() + ": " + e.what());
     } catch (const std::runtime_error& e) {
@@ -93,7 +97,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
     const StabilityModeFilter filter{options.min_rotor_share, 0.0};
     std::vector<const StabilityPoint*> analysed;
     for (const StabilityPoint& p : points) analysed.push_back(&p);
-    const StabilityOnset o = find_stability_onset(spec, analysed, filter);
+    const StabilityOnset o = find_stability_onset(spec, analysed, filter, options.continuation_step_factor);
     if (o.at_first_speed) {
       onset = {{"speed_rpm", o.speed * kRadPerSToRpm}, {"at_first_speed", true}};
     } else if (o.found) {
@@ -113,6 +117,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
   std::filesystem::create_directories(options.output_dir);
   nlohmann::json j = result_header(spec, options.overrides);
   j["min_rotor_share"] = options.min_rotor_share;
+  j["continuation_step_factor"] = options.continuation_step_factor;
   j["complete"] = stopped.empty();
   if (!stopped.empty()) j["stopped"] = stopped;
   j["onset"] = onset;

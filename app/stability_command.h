@@ -16,6 +16,7 @@ struct StabilityCommandOptions {
   std::vector<Override> overrides;
   std::string speeds;                       ///< "" = 11 speeds over [modal]; "A:B:N" or "A, B, C" with units
   double min_rotor_share = 0.01;            ///< modes with less of their motion in the rotor are the balls' own
+  double continuation_step_factor = 1.0;    ///< StabilityOptions::continuation_step_factor, in (0, 1]
   std::filesystem::path output_dir = "out/stability";
   bool plots = true;
 };

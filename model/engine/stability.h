@@ -119,10 +119,11 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter);
 /// the onset lies within [returned - interval/64, returned]. An analysis that fails (no steady state) ends the
 /// halving: *error says at which speed and why ("" if none did), and the lowest speed found growing so far is
 /// returned. The speeds (rad/s) of halvings whose steady state was found anew from rest (StabilityPoint::restarted:
-/// the branch from the stable speed folds before them) are appended to *restarted if given.
+/// the branch from the stable speed folds before them) are appended to *restarted if given. The halvings' analyses
+/// take StabilityOptions::continuation_step_factor = `continuation_step_factor`.
 double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
                               const StabilityModeFilter& filter, std::string* error,
-                              std::vector<double>* restarted = nullptr);
+                              std::vector<double>* restarted = nullptr, double continuation_step_factor = 1.0);
 
 /// Where a counted mode first grows over speeds analysed in ascending order.
 struct StabilityOnset {
@@ -137,7 +138,7 @@ struct StabilityOnset {
 /// The onset over the analyses `points` of `spec` (ascending speeds): the first whose counted modes grow
 /// (grows_counted), the interval from the speed before it halved by refine_stability_onset.
 StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<const StabilityPoint*>& points,
-                                    const StabilityModeFilter& filter);
+                                    const StabilityModeFilter& filter, double continuation_step_factor = 1.0);
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state

@@ -438,6 +438,17 @@ abs(o['resolution_rpm']-65000/64)<1e-6 and o['halvings'] == 6 and 'halving_resta
     python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results']; assert len(r) == 2 and \
 not any(p['steady_state_restarted'] for p in r), r" "$out/stability.json" || fail "stability.json restarted"
     ! grep -q "^Note: at" "$out/log" || fail "a restart noted: $(cat "$out/log")"
+    # Half the continuation's steps find the same steady state at 95,000 rpm (cage speed to 1e-6); a factor outside
+    # (0, 1] is refused.
+    "$exe" stability "$src/examples/reference_ball.toml" --speeds "95000 rpm" --continuation-steps 0.5 --no-plots \
+      -o "$out/half" > "$out/half.log" 2>&1 || fail "half steps: exit $?: $(cat "$out/half.log")"
+    python3 -c "import json,sys; a=json.load(open(sys.argv[1])); b=json.load(open(sys.argv[2])); \
+assert b['continuation_step_factor'] == 0.5 and abs(b['results'][0]['cage_speed_rad_s'] / \
+a['results'][1]['cage_speed_rad_s'] - 1) < 1e-6, (a['results'][1]['cage_speed_rad_s'], b['results'][0])" \
+      "$out/stability.json" "$out/half/stability.json" || fail "half steps: another steady state"
+    "$exe" stability "$src/examples/reference_ball.toml" --continuation-steps 0 -o "$out/zero" > "$out/zero.log" 2>&1
+    [ $? -eq 2 ] || fail "factor 0 accepted: $(cat "$out/zero.log")"
+    grep -q -- "--continuation-steps must lie in (0, 1]" "$out/zero.log" || fail "factor 0: $(cat "$out/zero.log")"
     "$exe" stability "$src/examples/reference_floating_ring.toml" --speeds "50000 rpm" -o "$out/fr" > "$out/fr.log" 2>&1
     [ $? -eq 2 ] || fail "floating rings accepted: $(cat "$out/fr.log")"
     grep -q "bearing '.*': its element has no steady state" "$out/fr.log" || fail "message: $(cat "$out/fr.log")"
