@@ -203,9 +203,9 @@ class ElementSteadyState {
 // Continuation of the element's steady state x (at speed `from`) to speed `to`, each step started from the secant
 // through the last two solutions (angles excepted). A step that finds no steady state is retried at half the length,
 // down to 1/2^kMaxStepHalvings of the regular step (kMaxSpeedStep, from rest kMaxSpeedStepFromRest, times the
-// layout's continuation_step_factor), and the step grows back after a success. From rest (from = 0) the first step starts from the no-slip state; from a steady state
-// at speed, along the steady states' tangent there. Returns false (x at the last speed reached, *failed_at and *norm
-// of the step that failed) if the smallest step fails.
+// layout's continuation_step_factor), and the step grows back after a success. From rest (from = 0) the first step
+// starts from the no-slip state; from a steady state at speed, along the steady states' tangent there. Returns false
+// (x at the last speed reached, *failed_at and *norm of the step that failed) if the smallest step fails.
 bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, const Layout& layout, double from,
                            double to, Eigen::VectorXd& x, double* norm, double* failed_at, double* smallest_step) {
   const int m = e.n_states();

@@ -280,8 +280,8 @@ void BallBearingElement::core_rotation_layout(SteadyRotationLayout* layout) cons
   layout->planar_pairs.emplace_back(c + 4, c + 5);
   // The paper's friction (Eq. 23) saturates over a creep range of millimetres per second: its steady states lie
   // close together, and steps of 250 rad/s (125 from rest) reached another of them in 3-4 of 48 designs of high
-  // preload, half those steps the same state as a quarter (docs/ball-bearing.md, "A sweep over speeds"). The
-  // lubricated traction's creep is wider: the regular steps find the state of a quarter of them.
+  // preload, half those steps the same state as a quarter (docs/ball-bearing.md, "Steps and nearby steady
+  // states"). The lubricated traction's creep is wider: the regular steps find the state of a quarter of them.
   layout->continuation_step_factor = spec_.traction_law == TractionLaw::Coulomb ? 0.5 : 1.0;
 }
 

@@ -310,8 +310,8 @@ TEST(Stability, WithThePapersFrictionTheSteadyStateDoesNotDependOnTheContinuatio
   // Design 27 of the Eq. 23 variant of examples/study_reference_ball_stability_global.toml (271 N, 8.6 deg; docs/
   // studies.md). Eq. 23 saturates over a creep range of millimetres per second and has steady states close together:
   // with the regular steps (250 rad/s, 125 from rest) the continuation reached at 10,000 rpm a state in which the
-  // balls' slip diverges at about 5,300 1/s, with half of them and a quarter the state without it. So the ball bearing
-  // with Eq. 23 takes half the regular steps: the state is then that of a quarter of them.
+  // balls' slip diverges at about 5,300 1/s, with half of them and a quarter the state without it. So the ball
+  // bearing with Eq. 23 takes half the regular steps: the state is then that of a quarter of them.
   const MachineSpec spec = load_model(
       testing::source_dir() + "/examples/reference_ball.toml",
       {parse_override("bearings.compressor.preload=270.609 N"), parse_override("bearings.turbine.preload=270.609 N"),
@@ -319,7 +319,8 @@ TEST(Stability, WithThePapersFrictionTheSteadyStateDoesNotDependOnTheContinuatio
        parse_override("bearings.turbine.contact_angle=8.64512 deg"),
        parse_override("bearings.compressor.pocket_clearance=0.0987157 mm"),
        parse_override("bearings.turbine.pocket_clearance=0.0987157 mm"),
-       parse_override("bearings.compressor.cage_mass=2.39613 g"), parse_override("bearings.turbine.cage_mass=2.39613 g"),
+       parse_override("bearings.compressor.cage_mass=2.39613 g"),
+       parse_override("bearings.turbine.cage_mass=2.39613 g"),
        parse_override("bearings.compressor.ball_density=4794.04 kg/m^3"),
        parse_override("bearings.turbine.ball_density=4794.04 kg/m^3"),
        parse_override("bearings.compressor.inner_groove_ratio=0.506359"),
