@@ -97,7 +97,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
     const StabilityModeFilter filter{options.min_rotor_share, 0.0};
     std::vector<const StabilityPoint*> analysed;
     for (const StabilityPoint& p : points) analysed.push_back(&p);
-    const StabilityOnset o = find_stability_onset(spec, analysed, filter, options.continuation_step_factor);
+    const StabilityOnset o = find_stability_onset(spec, analysed, filter, analysis);
     if (o.at_first_speed) {
       onset = {{"speed_rpm", o.speed * kRadPerSToRpm}, {"at_first_speed", true}};
     } else if (o.found) {

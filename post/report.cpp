@@ -221,7 +221,7 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
       os << "at or below the first speed, " << o->at("speed_rpm").get<double>() << " rpm.";
     else
       os << o->at("speed_rpm").get<double>() << " rpm, within " << o->at("resolution_rpm").get<double>()
-         << " rpm below (the interval from the speed before halved " << o->value("halvings", 0) << " times)"
+         << " rpm below (the interval from the speed before halved " << o->at("halvings").get<int>() << " times)"
          << (o->contains("halving_stopped") ? "; halving stopped: " + o->at("halving_stopped").get<std::string>()
                                             : std::string())
          << ".";

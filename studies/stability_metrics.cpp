@@ -74,7 +74,7 @@ class Analyses {
   StabilityOnset onset(const std::vector<SpeedSummary>& grid, const StabilityModeFilter& filter) {
     std::vector<const StabilityPoint*> points;
     for (const SpeedSummary& s : grid) points.push_back(&done_.at(s.speed));
-    StabilityOnset o = find_stability_onset(spec_, points, filter);
+    StabilityOnset o = find_stability_onset(spec_, points, filter, options_);
     if (!o.error.empty() && error_.empty()) error_ = o.error;
     restarted_.insert(o.restarted.begin(), o.restarted.end());
     return o;

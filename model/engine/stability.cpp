@@ -537,11 +537,10 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter) {
 
 double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
                               const StabilityModeFilter& filter, std::string* error,
-                              std::vector<double>* restarted, double continuation_step_factor) {
+                              std::vector<double>* restarted, const StabilityOptions& analysis) {
   error->clear();
-  StabilityOptions options;
+  StabilityOptions options = analysis;
   options.min_rotor_share = filter.min_rotor_share;
-  options.continuation_step_factor = continuation_step_factor;
   StabilityPoint lo = stable;  // each halving continues the steady state up from the highest speed found stable
   double hi = unstable;
   for (int i = 0; i < kStabilityOnsetBisections; ++i) {
@@ -564,7 +563,7 @@ double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& sta
 }
 
 StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<const StabilityPoint*>& points,
-                                    const StabilityModeFilter& filter, double continuation_step_factor) {
+                                    const StabilityModeFilter& filter, const StabilityOptions& options) {
   StabilityOnset o;
   const std::size_t k = static_cast<std::size_t>(
       std::find_if(points.begin(), points.end(), [&](const StabilityPoint* p) { return grows_counted(*p, filter); }) -
@@ -574,8 +573,7 @@ StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<c
   o.at_first_speed = k == 0;
   o.speed = points[k]->speed;
   if (o.at_first_speed) return o;
-  o.speed = refine_stability_onset(spec, *points[k - 1], points[k]->speed, filter, &o.error, &o.restarted,
-                                   continuation_step_factor);
+  o.speed = refine_stability_onset(spec, *points[k - 1], points[k]->speed, filter, &o.error, &o.restarted, options);
   o.resolution = (points[k]->speed - points[k - 1]->speed) / (1 << kStabilityOnsetBisections);
   return o;
 }

@@ -119,11 +119,11 @@ bool grows_counted(const StabilityPoint& p, const StabilityModeFilter& filter);
 /// the onset lies within [returned - interval/64, returned]. An analysis that fails (no steady state) ends the
 /// halving: *error says at which speed and why ("" if none did), and the lowest speed found growing so far is
 /// returned. The speeds (rad/s) of halvings whose steady state was found anew from rest (StabilityPoint::restarted:
-/// the branch from the stable speed folds before them) are appended to *restarted if given. The halvings' analyses
-/// take StabilityOptions::continuation_step_factor = `continuation_step_factor`.
+/// the branch from the stable speed folds before them) are appended to *restarted if given. The halvings are
+/// analysed with `options` (those of the analyses being refined), their rotor share the filter's.
 double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& stable, double unstable,
                               const StabilityModeFilter& filter, std::string* error,
-                              std::vector<double>* restarted = nullptr, double continuation_step_factor = 1.0);
+                              std::vector<double>* restarted = nullptr, const StabilityOptions& options = {});
 
 /// Where a counted mode first grows over speeds analysed in ascending order.
 struct StabilityOnset {
@@ -136,9 +136,9 @@ struct StabilityOnset {
 };
 
 /// The onset over the analyses `points` of `spec` (ascending speeds): the first whose counted modes grow
-/// (grows_counted), the interval from the speed before it halved by refine_stability_onset.
+/// (grows_counted), the interval from the speed before it halved by refine_stability_onset with `options`.
 StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<const StabilityPoint*>& points,
-                                    const StabilityModeFilter& filter, double continuation_step_factor = 1.0);
+                                    const StabilityModeFilter& filter, const StabilityOptions& options = {});
 
 /// The analysis at rotor speed `speed` (rad/s) of the machine `spec` with gravity and unbalance removed and the
 /// shaft in its physical DOFs. Throws std::invalid_argument if an element has no steady rotating state
