@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "model/engine/speed_text.h"
 #include "model/engine/stability.h"
@@ -28,15 +29,18 @@ struct SpeedSummary {
   bool grows = false;            // a counted mode grows beyond round-off (StabilityMode::grows)
 };
 
-// Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by). Each continues
+// Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by) and one fraction of
+// the continuation's steps. Each continues
 // its steady state up from the highest speed below it analysed so far. A failure is remembered and every speed from
 // the failed one up is refused (one that cannot reach a speed does not reach a higher one); speeds below it are
 // still analysed (the onset's halvings).
 class Analyses {
  public:
-  Analyses(const MachineSpec& spec, double min_rotor_share, const std::atomic<bool>* cancel)
+  Analyses(const MachineSpec& spec, double min_rotor_share, double continuation_steps,
+           const std::atomic<bool>* cancel)
       : spec_(spec), cancel_(cancel) {
     options_.min_rotor_share = min_rotor_share;
+    options_.continuation_step_factor = continuation_steps;
   }
   // The summary at `speed` of the modes `filter` counts, or false (and error() says why) if the analysis failed or
   // was cancelled.
@@ -160,21 +164,23 @@ std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const st
                                                std::string* error, const std::atomic<bool>* cancel,
                                                std::string* note) {
   std::vector<double> out(metrics.size(), kNaN);
-  std::map<double, Analyses> by_share;  // the analyses of one rotor share serve every metric that uses it
+  // The analyses of one rotor share and one fraction of the steps serve every metric that uses them.
+  std::map<std::pair<double, double>, Analyses> by_options;
   error->clear();
   for (std::size_t i = 0; i < metrics.size(); ++i) {
     const MetricSpec& m = metrics[i];
     if (!is_stability_metric(m.kind)) continue;
-    auto it = by_share.find(m.min_rotor_share);
-    if (it == by_share.end())
-      it = by_share.emplace(std::piecewise_construct, std::forward_as_tuple(m.min_rotor_share),
-                            std::forward_as_tuple(spec, m.min_rotor_share, cancel)).first;
+    const std::pair<double, double> key{m.min_rotor_share, m.continuation_steps};
+    auto it = by_options.find(key);
+    if (it == by_options.end())
+      it = by_options.emplace(std::piecewise_construct, std::forward_as_tuple(key),
+                              std::forward_as_tuple(spec, m.min_rotor_share, m.continuation_steps, cancel)).first;
     out[i] = metric_value(m, it->second);
     if (error->empty()) *error = it->second.error();
   }
   if (note) {
     std::set<double> restarted;
-    for (const auto& [share, a] : by_share) restarted.insert(a.restarted().begin(), a.restarted().end());
+    for (const auto& [options, a] : by_options) restarted.insert(a.restarted().begin(), a.restarted().end());
     *note = stability_restart_note(restarted);
   }
   return out;

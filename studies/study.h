@@ -46,6 +46,10 @@ struct MetricSpec {
   int speed_count = 15;
   double min_rotor_share = 0.01;
   double frequency_max = 0.0;  ///< Hz: only modes whose |housing-frame frequency| is at most this count; 0 = any
+  /// stability_* metrics: the fraction (0, 1] of the continuation's regular steps between speeds and from rest
+  /// (StabilityOptions::continuation_step_factor; `turbodyn stability --continuation-steps`), to check that a
+  /// design's steady states do not depend on the steps.
+  double continuation_steps = 1.0;
 };
 
 /// What every kind of study ([study], [optimize], [identify]) says about its runs: the keys name, model (relative to

@@ -93,6 +93,10 @@ void read_metric_subject(Reader& r, MetricSpec& m, double window_min, double win
   if (!(m.min_rotor_share <= 1.0))
     r.fail("min_rotor_share", "must lie in [0, 1]: the fraction of a mode's motion in the rotor");
   m.frequency_max = r.quantity_or("frequency_max", dim::frequency, 0.0, Bound::Positive);
+  m.continuation_steps =
+      r.quantity_or("continuation_steps", dim::dimensionless, m.continuation_steps, Bound::Positive);
+  if (!(m.continuation_steps <= 1.0))
+    r.fail("continuation_steps", "must lie in (0, 1]: the fraction of the continuation's regular steps");
   if (m.speed_max <= 0.0) {
     if (window_max <= 0.0)
       r.fail_missing("speed_window",

@@ -50,6 +50,7 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
     if (is_stability_metric(m.kind)) {
       id << ":speed_count=" << m.speed_count << ":min_rotor_share=" << m.min_rotor_share;
       if (m.frequency_max != plain.frequency_max) id << ":frequency_max=" << m.frequency_max;
+      if (m.continuation_steps != plain.continuation_steps) id << ":continuation_steps=" << m.continuation_steps;
     }
     metrics.push_back(id.str());
   }

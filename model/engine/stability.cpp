@@ -269,12 +269,12 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
   return true;
 }
 
-// The element's steady state at `speed`: by continuation from rest (the preload equilibrium). If that fails within
-// the first regular step from rest (kMaxSpeedStep: a lubricated (EHL) contact's traction is stiffest at the smallest
-// entrainment speeds, where its film is thinnest; with 200 N of preload the iteration stops at 31 rpm), the steady
-// state is sought directly from the balls' and cage's no-slip state, as a run started mid-ramp starts them: at
-// `speed`, else at 2, 1/2, 4, 1/4 and 8 times it (not below kMaxSpeedStep), continued from there to `speed`. A
-// failure farther from rest (a rolling state that folds back) stays a failure. Returns the states and the frame
+// The element's steady state at `speed`: by continuation from rest (the preload equilibrium). If that fails below
+// kMaxSpeedStep (250 rad/s, a speed near rest whatever the continuation's steps: a lubricated (EHL) contact's
+// traction is stiffest at the smallest entrainment speeds, where its film is thinnest; with 200 N of preload the
+// iteration stops at 31 rpm), the steady state is sought directly from the balls' and cage's no-slip state, as a run
+// started mid-ramp starts them: at `speed`, else at 2, 1/2, 4, 1/4 and 8 times it (not below kMaxSpeedStep),
+// continued from there to `speed`. A failure farther from rest (a rolling state that folds back) stays a failure. Returns the states and the frame
 // speed in *frame.
 //
 // With `below` (the element's steady state at the lower speed `below_speed`, from an earlier analysis), the state is

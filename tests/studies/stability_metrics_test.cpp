@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "model/engine/stability.h"
 #include "model/io/model_file.h"
 #include "model/io/overrides.h"
 #include "model/spec/constants.h"
@@ -151,6 +153,36 @@ TEST(StabilityMetrics, AStudysRunOfStabilityMetricsIsTheAnalysisOfItsModel) {
   EXPECT_LT(v[0], 60000);
 }
 
+TEST(StabilityMetrics, AMetricsContinuationStepsAreThoseOfItsAnalyses) {
+  // continuation_steps = 0.5: each speed's steady state continued in half the steps, as `turbodyn stability
+  // --continuation-steps 0.5` does, so that a study's user checks that the states do not depend on the steps
+  // (docs/studies.md, "Stability metrics"). The metric is the analyses' with StabilityOptions::
+  // continuation_step_factor 0.5 to the last bit, and not the regular steps' (other Newton paths, another round-off).
+  const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball.toml");
+  MetricSpec m = metric("stability_growth", 10000, 12000, 2);
+  m.continuation_steps = 0.5;
+  std::string error;
+  const double half = evaluate_stability_metrics(spec, {m}, &error).at(0);
+  EXPECT_EQ(error, "");
+  m.continuation_steps = 1.0;
+  const double regular = evaluate_stability_metrics(spec, {m}, &error).at(0);
+  StabilityOptions o;
+  o.min_rotor_share = m.min_rotor_share;
+  o.continuation_step_factor = 0.5;
+  const StabilityPoint low = analyse_stability(spec, 10000 * kRpm, o),
+                       high = analyse_stability(spec, 12000 * kRpm, o, &low);
+  const StabilityModeFilter counts{m.min_rotor_share, 0.0};
+  double expected = std::numeric_limits<double>::quiet_NaN();
+  for (const StabilityPoint* p : {&low, &high})
+    for (const StabilityMode& mode : p->modes)
+      if (counts.counts(mode) && !(mode.growth_rate <= expected)) expected = mode.growth_rate;
+  std::printf("[ reference_ball, 10,000-12,000 rpm ] largest growth rate %.12g 1/s in half the steps, %.12g in the "
+              "regular ones\n", half, regular);
+  EXPECT_EQ(half, expected);
+  EXPECT_NE(half, regular);
+  EXPECT_NEAR(half, regular, 1e-3);  // the same state
+}
+
 TEST(StabilityMetrics, ARunSaysWhereItsSteadyStateWasFoundAnewFromRest) {
   // The study's runs of bench/validation_studies.sh ball_stability have no such speed; the engine's halvings and
   // sweeps report them (Stability.TheOnsetsHalvingsSayWhich..., Stability.AnAnalysisContinuedFromALowerSpeed...).
@@ -247,6 +279,8 @@ TEST(StabilityMetrics, AStudyOfOtherSpeedsDoesNotResumeTheRunsAndAnyThreadCountG
   for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(serial.runs.at(i).metrics.at(0), first.runs.at(i).metrics.at(0));
   EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\nmin_rotor_share = 0.5\n")), o),
                ModelError);
+  EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\ncontinuation_steps = 0.5\n")), o),
+               ModelError);
 }
 
 TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
@@ -273,6 +307,10 @@ TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
               HasSubstr("metrics[0].speed_count"));
   EXPECT_THAT(load_error(write_study("g.toml", with("reference_ball.toml", window + "frequency_max = \"0 Hz\"\n"))),
               HasSubstr("metrics[0].frequency_max"));
+  EXPECT_THAT(load_error(write_study("h.toml", with("reference_ball.toml", window + "continuation_steps = 0\n"))),
+              HasSubstr("metrics[0].continuation_steps: must be positive"));
+  EXPECT_THAT(load_error(write_study("i.toml", with("reference_ball.toml", window + "continuation_steps = 1.5\n"))),
+              HasSubstr("metrics[0].continuation_steps: must lie in (0, 1]"));
   // A model the analysis does not cover: refused before any run, naming the study, the metric and the bearing.
   const std::filesystem::path ring = write_study("f.toml", with("reference_floating_ring.toml", window));
   const StudySpec study = load_study(ring);
