@@ -334,6 +334,16 @@ void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   s.cage_poisson_ratio = r.quantity_or("cage_poisson_ratio", dim::dimensionless, s.cage_poisson_ratio, Bound::NonNegative);
   s.pocket_damping = r.quantity_or("pocket_damping", dim::damping, s.pocket_damping, Bound::NonNegative);
   s.contact_damping = r.quantity_or("contact_damping", dim::damping, s.contact_damping, Bound::NonNegative);
+  // The race contacts' Hertz law: the exact ellipse of their curvatures, or the paper's Eq. 20 with its mu*
+  // (docs/ball-bearing.md, "Contacts").
+  if (r.choice("hertz_law", {"ellipse", "paper"}, "ellipse") == "paper") {
+    s.hertz_coefficient = r.quantity_or("hertz_coefficient", dim::dimensionless, 0.171, Bound::Positive);
+    if (!(s.hertz_coefficient <= 1.0))
+      r.fail("hertz_coefficient", "must lie in (0, 1]: paper Eq. 20's mu*, 1 for a sphere on a flat, less for a "
+                                  "conforming groove");
+  } else if (r.has("hertz_coefficient")) {
+    r.fail("hertz_coefficient", "hertz_coefficient needs hertz_law = \"paper\" (paper Eq. 20's mu*)");
+  }
   s.friction_static = r.quantity_or("friction_static", dim::dimensionless, s.friction_static, Bound::NonNegative);
   s.friction_sliding = r.quantity_or("friction_sliding", dim::dimensionless, s.friction_sliding, Bound::NonNegative);
   s.friction_v1 = r.quantity_or("friction_v1", dim::velocity, s.friction_v1, Bound::Positive);

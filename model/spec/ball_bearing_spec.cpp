@@ -80,6 +80,9 @@ bool BallBearingSpec::IsValid(std::string* error) const {
       return fail(error, c.field, c.rule == Rule::Positive ? "> 0" : c.rule == Rule::NonNegative ? ">= 0" : "in (-1, 0.5)",
                   c.value);
   }
+  if (!(hertz_coefficient == 0.0 || (hertz_coefficient > 0.0 && hertz_coefficient <= 1.0)))
+    return fail(error, "hertz_coefficient", "in (0, 1] (paper Eq. 20's mu*), or 0 for the exact Hertz ellipse",
+                hertz_coefficient);
   if (!positive(pocket_clearance) || pocket_clearance >= 0.5 * ball_diameter)
     return fail(error, "pocket_clearance", "> 0 and < ball_diameter / 2", pocket_clearance);
   if (traction_law == TractionLaw::Eyring && !positive(lubricant_viscosity))

@@ -67,7 +67,12 @@ struct BallBearingSpec {
   double cage_poisson_ratio = 0.35;       ///< -
   double pocket_damping = 5.0;            ///< N s/m, linear damping of a pocket contact
 
-  // Contact laws (paper Eqs. 21, 23).
+  // Contact laws (paper Eqs. 20, 21, 23).
+  /// mu* of paper Eq. 20 for both race contacts, F = E' sqrt(3 / rho') (2 delta / (3 mu*))^1.5 with rho' the sum of
+  /// the four principal curvatures (the paper's 0.171, "for cylinder against sphere"; for a sphere on a flat it is 1,
+  /// and a conforming groove has less, e.g. 0.59 and 0.72 for the reference bearing's inner and outer contacts);
+  /// 0 = the exact Hertz ellipse of the contact's curvatures (the default). In (0, 1].
+  double hertz_coefficient = 0.0;
   double contact_damping = 15.0;   ///< d in N s/m, ball-race contacts
   double friction_static = 0.10;   ///< mu_0
   double friction_sliding = 0.05;  ///< mu_r

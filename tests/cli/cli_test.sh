@@ -252,6 +252,19 @@ assert abs(r[0]["force_on_inner_ring"][0] + 20) < 1e-6 and abs(r[0]["force_on_in
 assert 4.5e7 < r[0]["stiffness"][0][0] < 5.5e7, r[0]["stiffness"][0][0]
 assert r[-1]["cage_speed_ratio"] > r[1]["cage_speed_ratio"] > 0.3
 assert len(r[-1]["balls"]) == 8
+assert j["bearing"]["hertz_law"] == "ellipse" and j["bearing"]["hertz_coefficient"] == 0
+EOF2
+    # The paper's Eq. 20 (mu* 0.171): stiffer contacts, about 4x the radial stiffness at rest (docs/ball-bearing.md).
+    "$exe" bearing "$src/examples/reference_ball.toml" --bearing turbine --speeds "0 rpm" --load "20,-10" --no-plots \
+      --set bearings.turbine.hertz_law=paper -o "$out/paper" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    python3 - "$out/bearing.json" "$out/paper/bearing.json" <<'EOF2' || fail "paper: $(head -c 2000 "$out/paper/bearing.json")"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert b["bearing"]["hertz_law"] == "paper" and b["bearing"]["hertz_coefficient"] == 0.171, b["bearing"]
+ratio = b["bearing"]["inner_hertz_constant_n_per_m1_5"] / a["bearing"]["inner_hertz_constant_n_per_m1_5"]
+assert 6.4 < ratio < 6.6, ratio
+k = b["results"][0]["stiffness"][0][0] / a["results"][0]["stiffness"][0][0]
+assert 3.5 < k < 4.5, k
 EOF2
     # The load-deflection curve (--radial-travel): one per speed in the JSON, the CSV and the picture; the bare
     # START takes END's unit; the load rises with the travel and the secant stiffness hardens (Hertz).

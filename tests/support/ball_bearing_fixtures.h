@@ -21,6 +21,22 @@ inline constexpr double kRpm = 2.0 * M_PI / 60.0;  // rad/s per rpm
 // The reference bearing of docs/reference-machine.md, variant II (the spec defaults).
 inline BallBearingSpec reference_bearing() { return BallBearingSpec{}; }
 
+// The deep-groove reference of docs/references.md §5: Z = 7, D = 11.5 mm, d_m = 43.5 mm, f = 0.52 / 0.53 (the
+// spec's defaults), zero clearance (free contact angle 0), E = 210 GPa, nu = 0.3, no preload, the outer ring held
+// axially by a stiff spring.
+inline BallBearingSpec deep_groove_reference() {
+  BallBearingSpec s;
+  s.n_balls = 7;
+  s.ball_diameter = 11.5e-3;
+  s.pitch_diameter = 43.5e-3;
+  s.contact_angle = 0.0;
+  s.ball_youngs_modulus = s.ring_youngs_modulus = 210e9;
+  s.ball_poisson_ratio = s.ring_poisson_ratio = 0.3;
+  s.preload = 0.0;
+  s.preload_stiffness = 1e12;
+  return s;
+}
+
 // Element state derivatives with the shaft held at (q, v) and spinning at `speed`.
 struct Evaluator {
   const BallBearingElement& e;

@@ -87,6 +87,12 @@ HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y,
   return h;
 }
 
+double PaperHertzConstant(double curvature_sum, double modulus, double mu_star) {
+  if (!(curvature_sum > 0.0 && modulus > 0.0 && mu_star > 0.0))
+    throw std::invalid_argument("paper Eq. 20: curvature sum, modulus and mu* must be > 0");
+  return modulus * std::sqrt(3.0 / curvature_sum) * std::pow(2.0 / (3.0 * mu_star), 1.5);
+}
+
 void RaceCurvatures(double D, double d_m, double f, double alpha, bool inner, double* curvature_x,
                     double* curvature_y) {
   const double c = std::cos(alpha);
@@ -162,6 +168,14 @@ BallBearingElement::BallBearingElement(const std::string& name, const BallBearin
   hertz_inner_ = SolveHertzPointContact(cx, cy, e_br);
   RaceCurvatures(D, dm, spec.outer_groove_ratio, a0, false, &cx, &cy);
   hertz_outer_ = SolveHertzPointContact(cx, cy, e_br);
+  if (spec.hertz_coefficient > 0.0) {
+    // The paper's Eq. 20 sets the load-deflection law; the contact ellipse's size at a load (spin moment, lubricated
+    // traction) stays the exact one's.
+    for (HertzPointContact* h : {&hertz_inner_, &hertz_outer_}) {
+      h->stiffness = PaperHertzConstant(h->curvature_sum, e_br, spec.hertz_coefficient);
+      h->cbrt_stiffness = std::cbrt(h->stiffness);
+    }
+  }
 
   // Ball in a spherical pocket of radius D/2 + c_p: sphere in a conforming sphere, F = (4/3) E* sqrt(R) delta^1.5
   // with 1/R = 2/D - 1/(D/2 + c_p) (Johnson 1985, §4.2).

@@ -71,6 +71,11 @@ double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointCont
 /// negative), both > 0; modulus: E' = 2 / ((1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2) in Pa (Hamrock's E').
 HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y, double modulus);
 
+/// The Hertz constant of paper Eq. 20, F = E' sqrt(3 / rho') (2 delta / (3 mu*))^1.5, in N/m^1.5: rho' the sum of
+/// the principal curvatures of both bodies (1/m), E' the modulus as HertzPointContact's, mu* the paper's coefficient
+/// (Harris & Kotzalas' dimensionless approach delta*: 1 for a sphere on a flat).
+double PaperHertzConstant(double curvature_sum, double modulus, double mu_star);
+
 /// Curvature sums (1/m) of a ball of diameter D in a race groove of ratio f at contact angle alpha, pitch
 /// diameter d_m, rolling direction x and transverse direction y (Harris & Kotzalas 2007, ch. 2).
 void RaceCurvatures(double D, double d_m, double f, double alpha, bool inner, double* curvature_x,

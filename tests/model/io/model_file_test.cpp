@@ -113,6 +113,27 @@ TEST(ModelFile, LubricatedTractionTakesTheModelsOilUnlessGivenAndItsKeysNeedIt) 
               HasSubstr("pressure_viscosity"));
 }
 
+TEST(ModelFile, ThePapersHertzLawIsAChoiceWithItsCoefficient) {
+  // hertz_law = "paper": Eq. 20 with the paper's mu* = 0.171 unless hertz_coefficient says otherwise; the default is
+  // the exact Hertz ellipse (hertz_coefficient 0 in the spec), and the coefficient alone is an error.
+  const std::string f = example("reference_ball.toml");
+  const MachineSpec s = load_model(f, {parse_override("bearings.compressor.hertz_law=\"paper\""),
+                                       parse_override("bearings.turbine.hertz_law=\"paper\""),
+                                       parse_override("bearings.turbine.hertz_coefficient=0.5")});
+  EXPECT_DOUBLE_EQ(s.bearings[0].ball.hertz_coefficient, 0.171);
+  EXPECT_DOUBLE_EQ(s.bearings[1].ball.hertz_coefficient, 0.5);
+  EXPECT_EQ(load_model(f).bearings[0].ball.hertz_coefficient, 0.0);
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.hertz_coefficient=0.3")}),
+              HasSubstr("needs hertz_law = \"paper\""));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.hertz_law=\"paper\""),
+                           parse_override("bearings.compressor.hertz_coefficient=1.5")}),
+              AllOf(HasSubstr("bearings.compressor.hertz_coefficient"), HasSubstr("(0, 1]")));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.hertz_law=\"paper\""),
+                           parse_override("bearings.compressor.hertz_coefficient=0")}),
+              HasSubstr("hertz_coefficient"));
+  EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.hertz_law=\"hertz\"")}), HasSubstr("hertz_law"));
+}
+
 TEST(ModelFile, ABallBearingThatNamesNoTractionLawGetsTheLubricatedOne) {
   // The default race traction of a model file is the lubricated (EHL) law with the model's oil; the examples name
   // the paper's Eq. 23 ("coulomb") to reproduce the paper. The example without its traction_law lines:

@@ -10,10 +10,13 @@
 #include <gtest/gtest.h>
 
 #include "model/io/model_file.h"
+#include "tests/support/ball_bearing_fixtures.h"
 #include "tests/support/test_support.h"
 
 namespace turbodyn {
 namespace {
+
+using testing::deep_groove_reference;
 
 constexpr double kRpm = 2.0 * M_PI / 60.0;
 
@@ -138,21 +141,6 @@ struct JonesHarris {
     return -(solve(w, h, &centred.unknowns).fx - solve(w, -h, &centred.unknowns).fx) / (2 * h);
   }
 };
-
-// docs/references.md §5: Z = 7, D = 11.5 mm, d_m = 43.5 mm, f = 0.52 / 0.53 (the spec's defaults), zero clearance,
-// E = 210 GPa, nu = 0.3, no preload, the outer ring held axially.
-BallBearingSpec deep_groove_reference() {
-  BallBearingSpec s;
-  s.n_balls = 7;
-  s.ball_diameter = 11.5e-3;
-  s.pitch_diameter = 43.5e-3;
-  s.contact_angle = 0.0;
-  s.ball_youngs_modulus = s.ring_youngs_modulus = 210e9;
-  s.ball_poisson_ratio = s.ring_poisson_ratio = 0.3;
-  s.preload = 0.0;
-  s.preload_stiffness = 1e12;
-  return s;
-}
 
 TEST(BallBearingQuasiStatic, DeepGrooveReferenceAtRest) {
   // docs/references.md §5: Z = 7, D = 11.5 mm, d_m = 43.5 mm, f = 0.52 / 0.53, zero clearance, E = 210 GPa,

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -210,15 +212,7 @@ TEST(BallBearing, HertzConstantsMatchTheDeepGrooveReference) {
 
   // The element itself with this bearing (free contact angle 0 = zero clearance, no preload, outer ring held
   // axially by a stiff spring): shaft pushed 15.110 um towards the ball at 0 deg -> 1000 N back.
-  BallBearingSpec s;
-  s.n_balls = 7;
-  s.ball_diameter = D;
-  s.pitch_diameter = dm;
-  s.contact_angle = 0.0;
-  s.ball_youngs_modulus = s.ring_youngs_modulus = E;
-  s.ball_poisson_ratio = s.ring_poisson_ratio = nu;
-  s.preload = 0.0;
-  s.preload_stiffness = 1e12;
+  const BallBearingSpec s = deep_groove_reference();
   const BallBearingElement e("deep_groove", s, 0, 0.0);
   std::vector<double> z(e.n_states());
   e.initial_states(z.data());
@@ -229,6 +223,51 @@ TEST(BallBearing, HertzConstantsMatchTheDeepGrooveReference) {
               " rigid rings 1000 N -> %.4f um; element at 15.110 um -> %.2f N\n",
               hi.curvature_sum / 1000, hi.ellipticity, hi.stiffness / kNmm15, ho.curvature_sum / 1000, ho.ellipticity,
               ho.stiffness / kNmm15, Kn / kNmm15, 0.5 * (lo + hi_d) * 1e6, -f[0]);
+}
+
+TEST(BallBearing, ThePapersEq20IsHertzForASphereOnAFlatAndSetsBothRaceContacts) {
+  // Paper Eq. 20, F = E' sqrt(3 / rho') (2 delta / (3 mu*))^1.5 (hertz_law = "paper", docs/ball-bearing.md,
+  // "Contacts"). For a sphere of radius R on a flat (rho' = 2 / R, mu* = 1) it is Hertz's F = (4/3) E* sqrt(R)
+  // delta^1.5 with E* = E' / 2 (Johnson 1985, §4.2); the exact ellipse of equal curvatures is the same contact.
+  const double E = 210e9, nu = 0.3, Ep = 2.0 / (2.0 * (1 - nu * nu) / E), R = 2.25e-3;
+  EXPECT_NEAR(PaperHertzConstant(2.0 / R, Ep, 1.0) / (4.0 / 3.0 * (0.5 * Ep) * std::sqrt(R)), 1.0, 1e-14);
+  EXPECT_NEAR(PaperHertzConstant(2.0 / R, Ep, 1.0) / SolveHertzPointContact(1.0 / R, 1.0 / R, Ep).stiffness, 1.0,
+              1e-12);
+  EXPECT_THROW(PaperHertzConstant(2.0 / R, Ep, 0.0), std::invalid_argument);
+  // In the element, the deep-groove reference of HertzConstantsMatchTheDeepGrooveReference with the paper's
+  // mu* = 0.171 on both races: pushed 5 um towards the ball at 0 deg, the shaft gets what rigid rings on those
+  // constants give (written here separately: Q = K_n delta^1.5 over the loaded balls), and the contact ellipse's size
+  // at a load stays the exact one's.
+  const double mu = 0.171;
+  BallBearingSpec s = deep_groove_reference();
+  const BallBearingElement exact("deep_groove", s, 0, 0.0);
+  s.hertz_coefficient = mu;
+  const BallBearingElement paper("deep_groove", s, 0, 0.0);
+  const double rho_i = 0.24310e3, rho_o = 0.14739e3;  // 1/m, the reference's curvature sums
+  const double Ki = Ep * std::sqrt(3.0 / rho_i) * std::pow(2.0 / (3.0 * mu), 1.5),
+               Ko = Ep * std::sqrt(3.0 / rho_o) * std::pow(2.0 / (3.0 * mu), 1.5);
+  EXPECT_NEAR(paper.inner_contact().stiffness / Ki, 1.0, 1e-4);
+  EXPECT_NEAR(paper.outer_contact().stiffness / Ko, 1.0, 1e-4);
+  EXPECT_EQ(paper.inner_contact().radius_factor, exact.inner_contact().radius_factor);
+  const double Kn = std::pow(std::pow(Ki, -2.0 / 3.0) + std::pow(Ko, -2.0 / 3.0), -1.5), d = 5e-6;
+  double F = 0.0;
+  for (int j = 0; j < 7; ++j) {
+    const double c = std::cos(2 * M_PI * j / 7);
+    if (c > 0) F += Kn * std::pow(d * c, 1.5) * c;
+  }
+  std::vector<double> z(paper.n_states());
+  paper.initial_states(z.data());
+  const Eigen::Vector4d f = element_static_force(paper, Eigen::Vector4d(d, 0, 0, 0), z);
+  std::printf("[ paper Eq. 20, mu* 0.171 ] K inner %.4e (exact ellipse %.4e), outer %.4e (%.4e) N/m^1.5; 5 um -> "
+              "%.1f N (rigid rings %.1f N)\n",
+              paper.inner_contact().stiffness, exact.inner_contact().stiffness, paper.outer_contact().stiffness,
+              exact.outer_contact().stiffness, -f[0], F);
+  EXPECT_NEAR(-f[0] / F, 1.0, 1e-3);
+  // mu* outside (0, 1] is no Hertz contact.
+  std::string error;
+  s.hertz_coefficient = 1.5;
+  EXPECT_FALSE(s.IsValid(&error));
+  EXPECT_NE(error.find("hertz_coefficient"), std::string::npos) << error;
 }
 
 TEST(BallBearing, StaticStiffnessMatchesAnIndependentRigidRingCalculation) {
