@@ -30,10 +30,9 @@ struct SpeedSummary {
 };
 
 // Analyses at speeds, with the results kept, for one rotor share (which the analysis filters by) and one fraction of
-// the continuation's steps. Each continues
-// its steady state up from the highest speed below it analysed so far. A failure is remembered and every speed from
-// the failed one up is refused (one that cannot reach a speed does not reach a higher one); speeds below it are
-// still analysed (the onset's halvings).
+// the continuation's steps. Each continues its steady state up from the highest speed below it analysed so far. A
+// failure is remembered and every speed from the failed one up is refused (one that cannot reach a speed does not
+// reach a higher one); speeds below it are still analysed (the onset's halvings).
 class Analyses {
  public:
   Analyses(const MachineSpec& spec, double min_rotor_share, double continuation_steps,

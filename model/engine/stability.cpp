@@ -274,8 +274,8 @@ bool continue_steady_state(ElementSteadyState& solver, const ForceElement& e, co
 // traction is stiffest at the smallest entrainment speeds, where its film is thinnest; with 200 N of preload the
 // iteration stops at 31 rpm), the steady state is sought directly from the balls' and cage's no-slip state, as a run
 // started mid-ramp starts them: at `speed`, else at 2, 1/2, 4, 1/4 and 8 times it (not below kMaxSpeedStep),
-// continued from there to `speed`. A failure farther from rest (a rolling state that folds back) stays a failure. Returns the states and the frame
-// speed in *frame.
+// continued from there to `speed`. A failure farther from rest (a rolling state that folds back) stays a failure.
+// Returns the states and the frame speed in *frame.
 //
 // With `below` (the element's steady state at the lower speed `below_speed`, from an earlier analysis), the state is
 // first continued up from there, along the branch it is on, without retracing the speeds below (where the rolling
