@@ -33,10 +33,10 @@ std::vector<double> stability_speeds(const MetricSpec& m);
 /// share the analyses at their common speeds; the onset's halvings are analysed each time. An analysis that fails
 /// (no steady state found at a speed) ends that metric's speeds there: the metric is taken over the speeds analysed,
 /// and *error says at which speed and why ("" if none failed). A set `cancel` stops before the next grid speed's
-/// analysis (*error "cancelled"). Throws nothing for a failing analysis; throws std::invalid_argument if the model has an element the
-/// analysis does not cover (check_stability_supported). *note, if given, names the speeds (grid speeds and the
-/// onset's halvings) whose steady state was found anew from rest because the branch from the speed below ended
-/// (StabilityPoint::restarted), "" if none: the metrics there are those of another branch.
+/// analysis (*error "cancelled"). Throws nothing for a failing analysis; throws std::invalid_argument if the model has
+/// an element the analysis does not cover (check_stability_supported). *note, if given, names the speeds (grid speeds
+/// and the onset's halvings) whose steady state was found anew from rest because the branch from the speed below
+/// ended (StabilityPoint::restarted), "" if none: the metrics there are those of another branch.
 std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const std::vector<MetricSpec>& metrics,
                                                std::string* error, const std::atomic<bool>* cancel = nullptr,
                                                std::string* note = nullptr);

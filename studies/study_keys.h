@@ -45,8 +45,8 @@ void read_metric_window(input::Reader& r, MetricSpec& m, const std::string& exam
 
 /// The keys of a metric that follow its kind: for the stability_* kinds no probe, speed_count (2 to 1000, default
 /// 15), min_rotor_share (0 to 1, default 0.01), frequency_max (Hz, > 0; default any), continuation_steps ((0, 1],
-/// default 1) and a speed window, here or the study's [window_min, window_max] (rad/s; 0 = none); for every other kind a probe. Sets m.name to "KIND(PROBE)" or
-/// "KIND" unless a name is given.
+/// default 1) and a speed window, here or the study's [window_min, window_max] (rad/s; 0 = none); for every other
+/// kind a probe. Sets m.name to "KIND(PROBE)" or "KIND" unless a name is given.
 void read_metric_subject(input::Reader& r, MetricSpec& m, double window_min, double window_max);
 
 }  // namespace turbodyn::studies

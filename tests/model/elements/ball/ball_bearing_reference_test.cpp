@@ -176,6 +176,21 @@ KinematicRun run_at_speed(double speed_rpm, double revolutions) {
   return {cage, bpfo, s.n_balls * (W - orbit) / (2 * M_PI), ai, ao, f_best, best / sorted[sorted.size() / 2]};
 }
 
+// The deep-groove reference's rigid rings (written apart from the element): the two race contacts of a ball in
+// series, K_n = (K_i^(-2/3) + K_o^(-2/3))^(-3/2) (Harris & Kotzalas 2007, ch. 7), and the radial load of the 7 balls
+// when the inner ring moves by d towards the ball at 0 deg, sum_j K_n (d cos psi_j)^1.5 cos psi_j over the loaded ones.
+double series_hertz_constant(double Ki, double Ko) {
+  return std::pow(std::pow(Ki, -2.0 / 3.0) + std::pow(Ko, -2.0 / 3.0), -1.5);
+}
+double rigid_ring_radial_load(double Kn, double d) {
+  double F = 0.0;
+  for (int j = 0; j < 7; ++j) {
+    const double c = std::cos(2 * M_PI * j / 7);
+    if (c > 0) F += Kn * std::pow(d * c, 1.5) * c;
+  }
+  return F;
+}
+
 TEST(BallBearing, HertzConstantsMatchTheDeepGrooveReference) {
   // docs/references.md §5: Z = 7, D = 11.5 mm, d_m = 43.5 mm, f = 0.52 / 0.53, alpha = 0, E = 210 GPa,
   // nu = 0.3, zero clearance, a ball at 0 deg, 1000 N radial -> 15.110 um; inner 0.24310 1/mm, k = 9.802,
@@ -195,19 +210,12 @@ TEST(BallBearing, HertzConstantsMatchTheDeepGrooveReference) {
   EXPECT_NEAR(ho.ellipticity / 5.549, 1.0, kReferenceTolerance);
   EXPECT_NEAR(hi.stiffness / kNmm15 / 9.720e5, 1.0, kReferenceTolerance);
   EXPECT_NEAR(ho.stiffness / kNmm15 / 9.165e5, 1.0, kReferenceTolerance);
-  const double Kn = std::pow(std::pow(hi.stiffness, -2.0 / 3.0) + std::pow(ho.stiffness, -2.0 / 3.0), -1.5);
+  const double Kn = series_hertz_constant(hi.stiffness, ho.stiffness);
   EXPECT_NEAR(Kn / kNmm15 / 3.336e5, 1.0, kReferenceTolerance);
-  // Rigid rings: sum_j K_n (d cos psi_j)^1.5 cos psi_j = 1000 N over the loaded balls.
-  const auto radial_load = [&](double d) {
-    double F = 0.0;
-    for (int j = 0; j < 7; ++j) {
-      const double c = std::cos(2 * M_PI * j / 7);
-      if (c > 0) F += Kn * std::pow(d * c, 1.5) * c;
-    }
-    return F;
-  };
+  // Rigid rings: 1000 N over the loaded balls.
   double lo = 0.0, hi_d = 1e-4;
-  for (int i = 0; i < 200; ++i) (radial_load(0.5 * (lo + hi_d)) < 1000.0 ? lo : hi_d) = 0.5 * (lo + hi_d);
+  for (int i = 0; i < 200; ++i)
+    (rigid_ring_radial_load(Kn, 0.5 * (lo + hi_d)) < 1000.0 ? lo : hi_d) = 0.5 * (lo + hi_d);
   EXPECT_NEAR(0.5 * (lo + hi_d) / 15.110e-6, 1.0, kReferenceTolerance) << 0.5 * (lo + hi_d);
 
   // The element itself with this bearing (free contact angle 0 = zero clearance, no preload, outer ring held
@@ -249,12 +257,7 @@ TEST(BallBearing, ThePapersEq20IsHertzForASphereOnAFlatAndSetsBothRaceContacts) 
   EXPECT_NEAR(paper.inner_contact().stiffness / Ki, 1.0, 1e-4);
   EXPECT_NEAR(paper.outer_contact().stiffness / Ko, 1.0, 1e-4);
   EXPECT_EQ(paper.inner_contact().radius_factor, exact.inner_contact().radius_factor);
-  const double Kn = std::pow(std::pow(Ki, -2.0 / 3.0) + std::pow(Ko, -2.0 / 3.0), -1.5), d = 5e-6;
-  double F = 0.0;
-  for (int j = 0; j < 7; ++j) {
-    const double c = std::cos(2 * M_PI * j / 7);
-    if (c > 0) F += Kn * std::pow(d * c, 1.5) * c;
-  }
+  const double d = 5e-6, F = rigid_ring_radial_load(series_hertz_constant(Ki, Ko), d);
   std::vector<double> z(paper.n_states());
   paper.initial_states(z.data());
   const Eigen::Vector4d f = element_static_force(paper, Eigen::Vector4d(d, 0, 0, 0), z);
