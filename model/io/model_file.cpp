@@ -342,7 +342,7 @@ void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
       r.fail("hertz_coefficient", "must lie in (0, 1]: paper Eq. 20's mu*, 1 for a sphere on a flat, less for a "
                                   "conforming groove");
   } else if (r.has("hertz_coefficient")) {
-    r.fail("hertz_coefficient", "hertz_coefficient needs hertz_law = \"paper\" (paper Eq. 20's mu*)");
+    r.fail("hertz_coefficient", "needs hertz_law = \"paper\" (paper Eq. 20's mu*)");
   }
   s.friction_static = r.quantity_or("friction_static", dim::dimensionless, s.friction_static, Bound::NonNegative);
   s.friction_sliding = r.quantity_or("friction_sliding", dim::dimensionless, s.friction_sliding, Bound::NonNegative);
@@ -362,7 +362,7 @@ void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   if (s.traction_law != TractionLaw::Eyring)
     for (const char* key : {"lubricant_viscosity", "pressure_viscosity", "eyring_stress", "limiting_shear_coefficient",
                             "lubricant_shear_modulus"})
-      if (r.has(key)) r.fail(key, std::string(key) + " needs traction_law = \"eyring\"");
+      if (r.has(key)) r.fail(key, "needs traction_law = \"eyring\"");
   s.pressure_viscosity =
       r.quantity_or("pressure_viscosity", dim::dimensionless / dim::pressure, s.pressure_viscosity, Bound::NonNegative);
   s.eyring_stress = r.quantity_or("eyring_stress", dim::pressure, s.eyring_stress, Bound::Positive);

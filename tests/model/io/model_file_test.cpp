@@ -99,7 +99,7 @@ TEST(ModelFile, LubricatedTractionTakesTheModelsOilUnlessGivenAndItsKeysNeedIt) 
   EXPECT_DOUBLE_EQ(s.bearings[1].ball.eyring_stress, 3e6);
   EXPECT_DOUBLE_EQ(s.bearings[1].ball.pressure_viscosity, 2e-8);
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.eyring_stress=3 MPa")}),
-              HasSubstr("needs traction_law = \"eyring\""));
+              HasSubstr("bearings.compressor.eyring_stress: needs traction_law = \"eyring\""));
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.lubricant_shear_modulus=1 GPa")}),
               HasSubstr("needs traction_law = \"eyring\""));
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.traction_law=\"eyring\""),
@@ -124,7 +124,7 @@ TEST(ModelFile, ThePapersHertzLawIsAChoiceWithItsCoefficient) {
   EXPECT_DOUBLE_EQ(s.bearings[1].ball.hertz_coefficient, 0.5);
   EXPECT_EQ(load_model(f).bearings[0].ball.hertz_coefficient, 0.0);
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.hertz_coefficient=0.3")}),
-              HasSubstr("needs hertz_law = \"paper\""));
+              HasSubstr("bearings.compressor.hertz_coefficient: needs hertz_law = \"paper\""));
   EXPECT_THAT(error_of(f, {parse_override("bearings.compressor.hertz_law=\"paper\""),
                            parse_override("bearings.compressor.hertz_coefficient=1.5")}),
               AllOf(HasSubstr("bearings.compressor.hertz_coefficient"), HasSubstr("(0, 1]")));
