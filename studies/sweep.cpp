@@ -15,8 +15,10 @@
 #include "post/plot.h"
 #include "post/run_pictures.h"
 #include "model/engine/integrator.h"
+#include "model/engine/stability.h"
 #include "model/io/output_file.h"
 #include "model/io/result_header.h"
+#include "model/spec/constants.h"
 #include "studies/metrics.h"
 #include "studies/stability_metrics.h"
 #include "studies/parallel.h"
@@ -55,8 +57,8 @@ nlohmann::json fingerprint(const StudySpec& s, const Design& d) {
     metrics.push_back(id.str());
   }
   return {{"study", s.name}, {"model", s.model.filename().string()}, {"model_digest", base_model_digest(s)},
-          {"paths", d.paths},
-          {"units", s.parameter_units}, {"also", s.parameter_also}, {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
+          {"paths", d.paths}, {"units", s.parameter_units}, {"also", s.parameter_also},
+          {"runs", d.values.size()}, {"values", d.values}, {"metrics", metrics}};
 }
 
 nlohmann::json to_json(const RunRecord& r) {
@@ -209,11 +211,22 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   for (std::size_t p = 0; p < design.paths.size(); ++p)
     j["parameters"].push_back({{"path", design.paths[p]}, {"unit", study.parameter_units[p]}});
   j["metrics"] = nlohmann::json::array();
-  for (std::size_t m = 0; m < study.metrics.size(); ++m)
-    j["metrics"].push_back({{"name", study.metrics[m].name},
-                            {"kind", study.metrics[m].kind},
-                            {"probe", study.metrics[m].probe},
-                            {"unit", metric_units[m]}});
+  for (std::size_t m = 0; m < study.metrics.size(); ++m) {
+    const MetricSpec& spec = study.metrics[m];
+    nlohmann::json e = {{"name", spec.name}, {"kind", spec.kind}, {"probe", spec.probe}, {"unit", metric_units[m]}};
+    if (is_stability_metric(spec.kind)) {
+      // The speeds analysed: a design is stable at these, and an unstable window narrower than their spacing can lie
+      // between two of them unseen (docs/studies.md).
+      const std::vector<double> speeds = stability_speeds(spec);
+      nlohmann::json rpm = nlohmann::json::array();
+      for (double w : speeds) rpm.push_back(w * kRadPerSToRpm);
+      e["speeds_rpm"] = rpm;
+      if (spec.kind == "stability_onset_speed" && speeds.size() > 1)
+        e["onset_resolution_rpm"] =
+            (speeds[1] - speeds[0]) * kRadPerSToRpm / std::ldexp(1.0, kStabilityOnsetBisections);
+    }
+    j["metrics"].push_back(e);
+  }
   j["runs"] = nlohmann::json::array();
   std::size_t failed = 0;
   for (const RunRecord& r : runs) {

@@ -13,6 +13,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "model/engine/stability.h"
 #include "model/io/model_file.h"
@@ -281,6 +282,43 @@ TEST(StabilityMetrics, AStudyOfOtherSpeedsDoesNotResumeTheRunsAndAnyThreadCountG
                ModelError);
   EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\ncontinuation_steps = 0.5\n")), o),
                ModelError);
+}
+
+TEST(StabilityMetrics, AStudysResultsNameTheSpeedsItsStabilityMetricsAnalysed) {
+  // A design is stable at the speeds analysed only: results.json lists them per stability metric, and the onset's
+  // resolution (the grid's step halved kStabilityOnsetBisections times). On the rigid rotor, 3 speeds over
+  // 10,000-110,000 rpm: the onset of the closed form (73,426 rpm) lies between the second and third, and the metric
+  // finds it from above within that resolution (and the growth criterion's 0.01 1/s, about 60 rpm).
+  const std::string body = "[study]\nmodel = \"" + testing::source_dir() +
+                           "/tests/data/stability/rigid_cross_coupled.toml\"\n"
+                           "speed_window = [\"10000 rpm\", \"110000 rpm\"]\n"
+                           "[design]\nkind = \"full-factorial\"\n[[parameters]]\npath = \"bearings.left.c\"\n"
+                           "also = [\"bearings.right.c\"]\nlevels = [\"100 N*s/m\"]\n"
+                           "[[metrics]]\nkind = \"stability_onset_speed\"\nspeed_count = 3\n"
+                           "[[metrics]]\nkind = \"stability_growth\"\nspeed_count = 3\n";
+  const StudySpec study = load_study(write_study("speeds.toml", body));
+  SweepOptions o;
+  o.output_dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test" / "speeds";
+  std::filesystem::remove_all(o.output_dir);
+  const SweepResult r = run_sweep(study, o);
+  ASSERT_TRUE(r.complete);
+  write_results(study, r.design, r.runs, o.output_dir, false);
+  std::ifstream in(o.output_dir / "results.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json& onset = j.at("metrics").at(0);
+  ASSERT_EQ(onset.at("kind"), "stability_onset_speed");
+  const std::vector<double> speeds = onset.at("speeds_rpm").get<std::vector<double>>();
+  ASSERT_EQ(speeds.size(), 3u);
+  EXPECT_NEAR(speeds[0], 10000, 1e-6);
+  EXPECT_NEAR(speeds[1], 60000, 1e-6);
+  EXPECT_NEAR(speeds[2], 110000, 1e-6);
+  const double resolution = onset.at("onset_resolution_rpm").get<double>();
+  EXPECT_NEAR(resolution, 50000.0 / 64, 1e-6);
+  EXPECT_EQ(j.at("metrics").at(1).at("speeds_rpm"), onset.at("speeds_rpm"));
+  EXPECT_FALSE(j.at("metrics").at(1).contains("onset_resolution_rpm"));  // the growth is taken at the grid's speeds
+  const double found = r.runs.at(0).metrics.at(0), closed_form = 73426;
+  EXPECT_GT(found, closed_form - 60);
+  EXPECT_LT(found, closed_form + resolution + 60);
 }
 
 TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
