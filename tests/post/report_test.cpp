@@ -87,5 +87,35 @@ TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Report, StudyReportNamesTheSpeedsItsStabilityMetricsAnalysed) {
+  // A stability metric's grid (results.json's speeds_rpm, onset_resolution_rpm) and the caveat that goes with it.
+  const auto dir = fresh_dir("study_stability");
+  nlohmann::json j;
+  j["study"] = "s";
+  j["model"] = "m.toml";
+  j["parameters"] = {{{"path", "bearings.a.preload"}, {"unit", "N"}}};
+  j["metrics"] = {{{"name", "onset"}, {"unit", "rpm"}, {"speeds_rpm", {10000.0, 30000.0, 50000.0}},
+                   {"onset_resolution_rpm", 312.5}},
+                  {{"name", "growth"}, {"unit", "1/s"}, {"speeds_rpm", {50000.0}}},
+                  {{"name", "max_x"}, {"unit", "m"}}};
+  j["runs"] = {{{"index", 0}, {"parameters", {40.0}}, {"metrics", {45000.0, 12.0, 1e-5}}, {"status", "ok"}}};
+  j["runs_total"] = 1;
+  j["runs_recorded"] = 1;
+  j["runs_failed"] = 0;
+  write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}});
+  const std::string html = read(dir / "report.html");
+  turbodyn::testing::expect_contains(html, {
+      "Stability metrics",
+      "onset: the linearised model analysed at 3 speeds from",
+      "data-pointer=\"/metrics/0/speeds_rpm/2\"",
+      "20000 rpm apart",
+      "data-pointer=\"/metrics/0/onset_resolution_rpm\"",
+      "an unstable window narrower than their spacing",
+      "growth: the linearised model analysed at 1 speed, ",
+  });
+  EXPECT_THAT(html, ::testing::Not(HasSubstr("max_x: the linearised")));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace turbodyn::post
