@@ -9,6 +9,7 @@
 #include "post/plot_style.h"
 #include "post/run_pictures.h"
 #include "model/io/result_header.h"
+#include "studies/stability_metrics.h"
 #include "studies/study.h"
 #include "studies/table.h"
 
@@ -109,6 +110,12 @@ nlohmann::json result_json(const OptimizationSpec& s, const OptimizationResult& 
   for (const Variable& v : s.variables)
     j["variables"].push_back({{"path", v.path}, {"paths", v.paths}, {"unit", v.unit}, {"low", v.low}, {"high", v.high}, {"start", v.start},
                               {"scale", v.log_scale ? "log" : "linear"}});
+  j["metrics"] = nlohmann::json::array();
+  for (const Metric& m : s.metrics) {
+    nlohmann::json e = {{"name", m.spec.name}, {"kind", m.spec.kind}, {"unit", m.unit}};
+    e.update(studies::stability_grid_json(m.spec));  // the speeds a stability metric analysed
+    j["metrics"].push_back(e);
+  }
   if (!r.history.empty()) j["initial"] = entry_json(s, r.history.front());
   j["best_feasible"] = r.best_feasible;
   j["best"] = r.best ? entry_json(s, r.history[*r.best]) : nlohmann::json(nullptr);

@@ -70,6 +70,40 @@ long argmax(const nlohmann::json& a) {
   return best;
 }
 
+// A section on the speeds at which each stability metric of a study or an optimisation judged its designs (the
+// result file's "metrics": speeds_rpm, onset_resolution_rpm), if it has any.
+void stability_grids(HtmlPage& page, const std::string& F, const nlohmann::json& j) {
+  const auto list = j.find("metrics");
+  if (list == j.end() || !list->is_array()) return;
+  const nlohmann::json& metrics = *list;
+  bool stability_heading = false;
+  for (std::size_t m = 0; m < metrics.size(); ++m) {
+    const auto s = metrics[m].find("speeds_rpm");
+    if (s == metrics[m].end() || !s->is_array() || s->empty()) continue;
+    if (!stability_heading) page.heading("Stability metrics"), stability_heading = true;
+    const std::string at = json_pointer(json_pointer("/metrics", m), "speeds_rpm");
+    const std::size_t n = s->size();
+    std::string html = html_escape(text(metrics[m], "name")) + ": the linearised model analysed at " +
+                       std::to_string(n) + (n == 1 ? " speed, " : " speeds from ") +
+                       HtmlPage::number(F, j, json_pointer(at, 0), 1.0, "rpm", 5);
+    if (n > 1) {
+      html += " to " + HtmlPage::number(F, j, json_pointer(at, n - 1), 1.0, "rpm", 5) + ", " +
+              display_number(((*s)[1].get<double>() - (*s)[0].get<double>()), 4) + " rpm apart";
+      if (metrics[m].contains("onset_resolution_rpm"))
+        html += " (an onset found within " +
+                HtmlPage::number(F, j, json_pointer(json_pointer("/metrics", m), "onset_resolution_rpm"), 1.0, "rpm",
+                                 3) +
+                " below it)";
+      html += ". A design is judged at these speeds only: an unstable window narrower than their spacing can lie "
+              "between two of them unseen, so a design called stable here needs a finer grid before it is taken as "
+              "stable.";
+    } else {
+      html += ".";
+    }
+    page.paragraph_html(html);
+  }
+}
+
 }  // namespace
 
 std::pair<std::vector<std::string>, std::vector<std::string>> split_pictures(const std::vector<std::string>& files) {
@@ -443,33 +477,7 @@ void write_study_report(const std::filesystem::path& dir, const nlohmann::json& 
   const nlohmann::json& metrics = j.at("metrics");
   std::vector<Display> disp;
   for (const auto& m : metrics) disp.push_back(display_of(text(m, "unit")));
-  // A stability metric judges each design at its grid's speeds only (results.json: speeds_rpm).
-  bool stability_heading = false;
-  for (std::size_t m = 0; m < metrics.size(); ++m) {
-    const auto s = metrics[m].find("speeds_rpm");
-    if (s == metrics[m].end() || !s->is_array() || s->empty()) continue;
-    if (!stability_heading) page.heading("Stability metrics"), stability_heading = true;
-    const std::string at = json_pointer(json_pointer("/metrics", m), "speeds_rpm");
-    const std::size_t n = s->size();
-    std::string html = html_escape(text(metrics[m], "name")) + ": the linearised model analysed at " +
-                       std::to_string(n) + (n == 1 ? " speed, " : " speeds from ") +
-                       HtmlPage::number(F, j, json_pointer(at, 0), 1.0, "rpm", 5);
-    if (n > 1) {
-      html += " to " + HtmlPage::number(F, j, json_pointer(at, n - 1), 1.0, "rpm", 5) + ", " +
-              display_number(((*s)[1].get<double>() - (*s)[0].get<double>()), 4) + " rpm apart";
-      if (metrics[m].contains("onset_resolution_rpm"))
-        html += " (an onset found within " +
-                HtmlPage::number(F, j, json_pointer(json_pointer("/metrics", m), "onset_resolution_rpm"), 1.0, "rpm",
-                                 3) +
-                " below it)";
-      html += ". A design is judged at these speeds only: an unstable window narrower than their spacing can lie "
-              "between two of them unseen, so a design called stable here needs a finer grid before it is taken as "
-              "stable.";
-    } else {
-      html += ".";
-    }
-    page.paragraph_html(html);
-  }
+  stability_grids(page, F, j);
   if (j.contains("sensitivity") && !j["sensitivity"].empty()) {
     page.heading("Sensitivity");
     page.paragraph("Standardised regression coefficients: the change of the metric, in standard deviations, per "
@@ -542,6 +550,7 @@ void write_optimize_report(const std::filesystem::path& dir, const nlohmann::jso
                    {"wall time", HtmlPage::number(F, j, "/wall_time_s", 1.0, "s", 3)},
                    {"initial objective", HtmlPage::number(F, j, "/initial/objective")},
                    {"best objective", HtmlPage::number(F, j, "/best/objective")}});
+  stability_grids(page, F, j);
   if (!j.at("best").is_null()) {
     page.heading("Optimum");
     std::vector<Row> rows;

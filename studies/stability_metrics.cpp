@@ -159,6 +159,18 @@ std::vector<double> stability_speeds(const MetricSpec& m) {
   return s;
 }
 
+nlohmann::json stability_grid_json(const MetricSpec& m) {
+  nlohmann::json e = nlohmann::json::object();
+  if (!is_stability_metric(m.kind)) return e;
+  const std::vector<double> speeds = stability_speeds(m);
+  nlohmann::json rpm = nlohmann::json::array();
+  for (double w : speeds) rpm.push_back(w * kRadPerSToRpm);
+  e["speeds_rpm"] = rpm;
+  if (m.kind == "stability_onset_speed" && speeds.size() > 1)
+    e["onset_resolution_rpm"] = (speeds[1] - speeds[0]) * kRadPerSToRpm / std::ldexp(1.0, kStabilityOnsetBisections);
+  return e;
+}
+
 std::vector<double> evaluate_stability_metrics(const MachineSpec& spec, const std::vector<MetricSpec>& metrics,
                                                std::string* error, const std::atomic<bool>* cancel,
                                                std::string* note) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "model/spec/model_spec.h"
 #include "studies/study.h"
 
@@ -27,6 +29,11 @@ std::string stability_restart_note(const std::set<double>& speeds);
 
 /// The speeds a stability metric analyses: speed_count speeds evenly over [speed_min, speed_max] (rad/s).
 std::vector<double> stability_speeds(const MetricSpec& m);
+
+/// What a result file says of a stability metric's grid: {"speeds_rpm": [...]} and, for stability_onset_speed on
+/// more than one speed, "onset_resolution_rpm" (the grid's step halved kStabilityOnsetBisections times); an empty
+/// object for any other metric. A design is judged at those speeds only (docs/studies.md).
+nlohmann::json stability_grid_json(const MetricSpec& m);
 
 /// The stability metrics among `metrics` for the machine `spec` (NaN in every other place, and where a metric is
 /// undefined: no growing mode for stability_onset_speed). Metrics with the same rotor share and continuation_steps

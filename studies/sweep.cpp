@@ -15,10 +15,8 @@
 #include "post/plot.h"
 #include "post/run_pictures.h"
 #include "model/engine/integrator.h"
-#include "model/engine/stability.h"
 #include "model/io/output_file.h"
 #include "model/io/result_header.h"
-#include "model/spec/constants.h"
 #include "studies/metrics.h"
 #include "studies/stability_metrics.h"
 #include "studies/parallel.h"
@@ -214,17 +212,7 @@ std::vector<std::string> write_results(const StudySpec& study, const Design& des
   for (std::size_t m = 0; m < study.metrics.size(); ++m) {
     const MetricSpec& spec = study.metrics[m];
     nlohmann::json e = {{"name", spec.name}, {"kind", spec.kind}, {"probe", spec.probe}, {"unit", metric_units[m]}};
-    if (is_stability_metric(spec.kind)) {
-      // The speeds analysed: a design is stable at these, and an unstable window narrower than their spacing can lie
-      // between two of them unseen (docs/studies.md).
-      const std::vector<double> speeds = stability_speeds(spec);
-      nlohmann::json rpm = nlohmann::json::array();
-      for (double w : speeds) rpm.push_back(w * kRadPerSToRpm);
-      e["speeds_rpm"] = rpm;
-      if (spec.kind == "stability_onset_speed" && speeds.size() > 1)
-        e["onset_resolution_rpm"] =
-            (speeds[1] - speeds[0]) * kRadPerSToRpm / std::ldexp(1.0, kStabilityOnsetBisections);
-    }
+    e.update(stability_grid_json(spec));  // the speeds a stability metric analysed
     j["metrics"].push_back(e);
   }
   j["runs"] = nlohmann::json::array();

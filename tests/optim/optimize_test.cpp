@@ -13,6 +13,7 @@
 #include "model/io/model_file.h"
 #include "model/io/overrides.h"
 #include "optim/evaluation_log.h"
+#include "optim/report.h"
 #include "tests/support/test_support.h"
 #include "tests/support/temp_dir.h"
 
@@ -313,6 +314,15 @@ TEST(Optimizer, LeastDampingForStabilityAgainstTheClosedForm) {
   EXPECT_NEAR(best.evaluation.design[0] / c_closed, 1.0, 1e-3);
   EXPECT_LE(best.evaluation.cases[0].metrics[1], 0.0);
   EXPECT_NEAR(best.evaluation.cases[0].metrics[0], 0.0, 1e-5);  // marginal: the least damping ratio is 0
+  // result.json says at which speeds the designs were judged (stable there only).
+  const nlohmann::json j = result_json(s, r);
+  for (std::size_t m = 0; m < 2; ++m) {
+    EXPECT_EQ(j.at("metrics").at(m).at("name"), s.metrics[m].spec.name);
+    const std::vector<double> rpm = j.at("metrics").at(m).at("speeds_rpm").get<std::vector<double>>();
+    ASSERT_EQ(rpm.size(), 2u);
+    EXPECT_NEAR(rpm[0], 10000, 1e-6);
+    EXPECT_NEAR(rpm[1], 110000, 1e-6);
+  }
 }
 
 TEST(Optimizer, RestartReusesTheLoggedEvaluations) {
