@@ -87,8 +87,9 @@ void stability_grids(HtmlPage& page, const std::string& F, const nlohmann::json&
                        std::to_string(n) + (n == 1 ? " speed, " : " speeds from ") +
                        HtmlPage::number(F, j, json_pointer(at, 0), 1.0, "rpm", 5);
     if (n > 1) {
-      html += " to " + HtmlPage::number(F, j, json_pointer(at, n - 1), 1.0, "rpm", 5) + ", " +
-              display_number(((*s)[1].get<double>() - (*s)[0].get<double>()), 4) + " rpm apart";
+      html += " to " + HtmlPage::number(F, j, json_pointer(at, n - 1), 1.0, "rpm", 5);
+      if ((*s)[0].is_number() && (*s)[1].is_number())
+        html += ", " + display_number((*s)[1].get<double>() - (*s)[0].get<double>(), 4) + " rpm apart";
       if (metrics[m].contains("onset_resolution_rpm"))
         html += " (an onset found within " +
                 HtmlPage::number(F, j, json_pointer(json_pointer("/metrics", m), "onset_resolution_rpm"), 1.0, "rpm",

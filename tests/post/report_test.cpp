@@ -114,6 +114,10 @@ TEST(Report, StudyReportNamesTheSpeedsItsStabilityMetricsAnalysed) {
       "growth: the linearised model analysed at 1 speed, ",
   });
   EXPECT_THAT(html, ::testing::Not(HasSubstr("max_x: the linearised")));
+  // A hand-edited file with something else in the list: shown as missing, not a crash.
+  j["metrics"][0]["speeds_rpm"] = {"fast", nullptr};
+  EXPECT_NO_THROW(write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}}));
+  EXPECT_THAT(read(dir / "report.html"), HasSubstr("onset: the linearised model analysed at 2 speeds from"));
   std::filesystem::remove_all(dir);
 }
 
