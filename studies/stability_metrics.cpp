@@ -167,7 +167,7 @@ nlohmann::json stability_grid_json(const MetricSpec& m) {
   for (double w : speeds) rpm.push_back(w * kRadPerSToRpm);
   e["speeds_rpm"] = rpm;
   if (m.kind == "stability_onset_speed" && speeds.size() > 1)
-    e["onset_resolution_rpm"] = (speeds[1] - speeds[0]) * kRadPerSToRpm / std::ldexp(1.0, kStabilityOnsetBisections);
+    e["onset_resolution_rpm"] = stability_onset_resolution((speeds[1] - speeds[0]) * kRadPerSToRpm);
   return e;
 }
 

@@ -574,7 +574,7 @@ StabilityOnset find_stability_onset(const MachineSpec& spec, const std::vector<c
   o.speed = points[k]->speed;
   if (o.at_first_speed) return o;
   o.speed = refine_stability_onset(spec, *points[k - 1], points[k]->speed, filter, &o.error, &o.restarted, options);
-  o.resolution = (points[k]->speed - points[k - 1]->speed) / (1 << kStabilityOnsetBisections);
+  o.resolution = stability_onset_resolution(points[k]->speed - points[k - 1]->speed);
   return o;
 }
 

@@ -99,6 +99,11 @@ void check_stability_supported(const MachineSpec& spec);
 /// of the interval (refine_stability_onset).
 inline constexpr int kStabilityOnsetBisections = 6;
 
+/// How closely the halvings place an onset inside a grid interval of `step` (any unit): step / 2^6.
+inline constexpr double stability_onset_resolution(double step) {
+  return step / static_cast<double>(1 << kStabilityOnsetBisections);
+}
+
 /// Which modes an onset or a study's stability metric counts: at least `min_rotor_share` of their motion in the
 /// rotor, and a housing-frame frequency |f| of at most `frequency_max` (Hz; 0 = any), e.g. to leave out a rotor's
 /// bending modes at kHz that a stiff traction's creep destabilises from the whirl of the ball set.
