@@ -249,7 +249,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
   return 0;
 }
 
-void write_pictures(const std::string& title, const std::vector<BallBearingEquilibrium>& results,
+void write_bearing_pictures(const std::string& title, const std::vector<BallBearingEquilibrium>& results,
                     const std::filesystem::path& dir) {
   using plot::Series;
   std::vector<double> rpm;
@@ -495,7 +495,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
                 << std::scientific << std::setprecision(4) << std::setw(15) << p.secant << std::setw(16) << p.tangent << std::fixed << std::setprecision(1) << std::setw(12) << p.max_contact_load << "\n";
   }
   std::cout << std::defaultfloat;
-  if (options.plots) write_pictures(b.name, results, options.output_dir);
+  if (options.plots) write_bearing_pictures(b.name, results, options.output_dir);
   if (options.plots && !curves.empty()) {
     plot::LineChart chart;
     chart.title = "Load-deflection of ball bearing " + b.name + " (inner ring moved radially, tilt held)";

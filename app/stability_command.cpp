@@ -25,7 +25,7 @@ namespace {
 // Damping ratios below this are drawn at it on the logarithmic axis of the damping picture.
 constexpr double kDampingFloor = 1e-6;
 
-void write_pictures(const std::string& name, const std::vector<StabilityPoint>& points, double min_share,
+void write_stability_pictures(const std::string& name, const std::vector<StabilityPoint>& points, double min_share,
                     const std::filesystem::path& dir) {
   using plot::Series;
   Series stable{"stable", {}, {}, Series::Style::Points, "#1f77b4", 1.0};
@@ -222,7 +222,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
                       : std::string())
               << ".\n" << std::defaultfloat;
   const bool plots = options.plots && !points.empty();
-  if (plots) write_pictures(spec.name, points, options.min_rotor_share, options.output_dir);
+  if (plots) write_stability_pictures(spec.name, points, options.min_rotor_share, options.output_dir);
   post::write_stability_report(options.output_dir, j,
                                {command_line(),
                                 plots ? std::vector<std::string>{"stability_frequencies.png", "stability_damping.png"}

@@ -10,11 +10,10 @@
 #include "studies/channels.h"
 #include "studies/run_evaluation.h"
 #include "studies/table.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::identification {
 namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // Steady-state response method: where a probe sits in the rotor's DOFs or bearing forces.
 struct ResponseProbe {

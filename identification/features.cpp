@@ -4,10 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "model/spec/constants.h"
+
 namespace turbodyn::identification {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMinSubsyncHz = 5.0;       // lowest frequency taken as sub-synchronous (drift, DC leakage below)
 constexpr int kResonanceGrid = 201;         // response method: speeds scanned for the 1x peak
 constexpr double kOneXBins = 1.5;           // spectra: the 1x line is the largest bin within this many bins of f_d

@@ -13,11 +13,10 @@
 #include <ceres/ceres.h>
 
 #include "studies/parallel.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::identification {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Maps scaled parameters x (what Ceres sees) to values in the parameters' units and back.
 struct ParameterScaling {

@@ -9,6 +9,7 @@
 #include "studies/channels.h"
 #include "studies/study.h"
 #include "studies/study_keys.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::identification {
 namespace {
@@ -16,8 +17,6 @@ namespace {
 using input::Bound;
 using input::Reader;
 using input::Sources;
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // A quantity in the unit dimension of a sensor, or absent (0).
 double sensor_quantity(Reader& r, const std::string& key, const Dimension& d) {

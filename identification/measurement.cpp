@@ -10,11 +10,11 @@
 #include "model/io/model_file.h"
 #include "model/io/timeseries_file.h"
 #include "studies/channels.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::identification {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
 // Time steps that differ by more than this fraction of the mean step count as uneven sampling (then resampled).
 constexpr double kUnevenSampling = 1e-3;
 

@@ -7,11 +7,11 @@
 #include "post/signal.h"
 #include "studies/channels.h"
 #include "studies/stability_metrics.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::studies {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kHzToRpm = 60.0;
 
 bool in_window(const MetricSpec& m, double speed_hz) {

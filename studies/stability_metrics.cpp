@@ -18,8 +18,6 @@
 namespace turbodyn::studies {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 // What one analysed speed says, reduced to the modes that count (the metric's rotor share and frequency limit).
 struct SpeedSummary {
   double speed = 0.0;            // rad/s

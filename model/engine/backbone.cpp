@@ -17,10 +17,10 @@ namespace turbodyn {
 
 namespace {
 
-constexpr int kMaxNewton = 25;
+constexpr int kBackboneMaxNewton = 25;
 // Relative correction of the deflection and of the speed: the balls' equilibria leave their reaction exact to
 // about 1e-9 of the whirl's forces at the smallest amplitude (kStartTranslation).
-constexpr double kNewtonTolerance = 1e-7;
+constexpr double kBackboneNewtonTolerance = 1e-7;
 constexpr int kMaxHalvings = 8;
 constexpr double kMaxAmplitudeRatio = 1.5;  // per continuation step
 constexpr double kMaxSpeedChange = 0.02;    // relative, per continuation step
@@ -33,7 +33,7 @@ bool solve_whirl(const WhirlProblem& problem, int ref, double amplitude, WhirlSt
   Eigen::VectorXd r;
   Eigen::MatrixXd Jp, J(n + 1, n + 1);
   const double start_speed = w.speed;
-  for (int it = 0; it < kMaxNewton; ++it) {
+  for (int it = 0; it < kBackboneMaxNewton; ++it) {
     if (!problem.residual(w.p, w.speed, w.bearings, r)) return false;
     if (!problem.jacobian_p(w, Jp)) return false;
     // The speed column by central differences of the whole residual (linear part and balls).
@@ -55,8 +55,8 @@ bool solve_whirl(const WhirlProblem& problem, int ref, double amplitude, WhirlSt
     w.p += d.head(n);
     w.speed += d(n);
     if (!(w.speed > 0.2 * start_speed && w.speed < 5.0 * start_speed)) return false;
-    if (d.head(n).lpNorm<Eigen::Infinity>() <= kNewtonTolerance * w.p.lpNorm<Eigen::Infinity>() &&
-        std::abs(d(n)) <= kNewtonTolerance * w.speed)
+    if (d.head(n).lpNorm<Eigen::Infinity>() <= kBackboneNewtonTolerance * w.p.lpNorm<Eigen::Infinity>() &&
+        std::abs(d(n)) <= kBackboneNewtonTolerance * w.speed)
       return problem.residual(w.p, w.speed, w.bearings, r);  // the bearings' states at the solution
   }
   return false;

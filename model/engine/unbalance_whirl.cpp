@@ -22,14 +22,14 @@ namespace {
 // last point of the curve, so that a step of the same size is a like change of the whirl at 10 nm and at 500 um.
 constexpr double kTiltLength = 0.01;           // m
 constexpr double kSmallestScale = 1e-10;       // m
-constexpr double kMaxSpeedStep = 0.01;         // relative change of the speed per step
+constexpr double kWhirlMaxSpeedStep = 0.01;         // relative change of the speed per step
 constexpr double kMaxDeflectionStep = 0.2;     // relative change of the deflection per step
 // Newton's corrections: relative to the deflection and the speed, or an absolute 1e-13 m on the deflection, where
 // the balls' equilibria leave their reaction exact to about 1e-9 N (a ball at the edge of a contact: Newton on it
 // stalls at 1e-8 of its force scale, docs/ball-bearing.md), i.e. 1e-16 m on bearings of 1e7 N/m.
-constexpr double kNewtonTolerance = 1e-8;
+constexpr double kWhirlNewtonTolerance = 1e-8;
 constexpr double kAbsoluteTolerance = 1e-13;  // m
-constexpr int kMaxNewton = 10;
+constexpr int kWhirlMaxNewton = 10;
 constexpr int kFastNewton = 3;                 // at most this many iterations: the next step grows
 constexpr double kStepGrowth = 1.5;
 constexpr double kSmallestStep = 1e-7;         // scaled arclength
@@ -203,7 +203,7 @@ class Tracer {
 
   double step_limit(const Eigen::VectorXd& t) const {
     const int n = problem_.size();
-    return std::min(kMaxSpeedStep / std::max(std::abs(t(n)), 1e-12),
+    return std::min(kWhirlMaxSpeedStep / std::max(std::abs(t(n)), 1e-12),
                     kMaxDeflectionStep / std::max(t.head(n).lpNorm<Eigen::Infinity>(), 1e-12));
   }
 
@@ -219,13 +219,13 @@ class Tracer {
   bool newton_at_speed(WhirlState& w, double load) const {
     Eigen::VectorXd r;
     Eigen::MatrixXd Jp;
-    for (int it = 0; it < 2 * kMaxNewton; ++it) {
+    for (int it = 0; it < 2 * kWhirlMaxNewton; ++it) {
       if (!problem_.residual(w.p, w.speed, w.bearings, r, load) || !problem_.jacobian_p(w, Jp)) return false;
       const Eigen::VectorXd d = Jp.partialPivLu().solve(-r);
       if (!d.allFinite()) return false;
       w.p += d;
       if ((d.array() * weights_.array()).abs().maxCoeff() <=
-          std::max(kNewtonTolerance * scale_of(w.p), kAbsoluteTolerance))
+          std::max(kWhirlNewtonTolerance * scale_of(w.p), kAbsoluteTolerance))
         return problem_.residual(w.p, w.speed, w.bearings, r, load);
     }
     return false;
@@ -314,7 +314,7 @@ class Tracer {
     next.speed = predicted(n) * w.speed;
     Eigen::VectorXd r;
     Eigen::MatrixXd J, A(n + 1, n + 1);
-    for (iterations = 1; iterations <= kMaxNewton; ++iterations) {
+    for (iterations = 1; iterations <= kWhirlMaxNewton; ++iterations) {
       if (!(next.speed > 0.0) || !problem_.residual(next.p, next.speed, next.bearings, r)) return false;
       if (!scaled_jacobian(next, scale, w.speed, J)) return false;  // scaled at w, as the unknowns
       A.topRows(n) = J;
@@ -326,8 +326,8 @@ class Tracer {
       if (!d.allFinite()) return false;
       next.p += (d.head(n).array() / weights_.array()).matrix() * scale;
       next.speed += d(n) * w.speed;
-      if (d.head(n).lpNorm<Eigen::Infinity>() <= std::max(kNewtonTolerance, kAbsoluteTolerance / scale) &&
-          std::abs(d(n)) <= kNewtonTolerance) {
+      if (d.head(n).lpNorm<Eigen::Infinity>() <= std::max(kWhirlNewtonTolerance, kAbsoluteTolerance / scale) &&
+          std::abs(d(n)) <= kWhirlNewtonTolerance) {
         // Stay near the prediction: a corrector that wanders off may have jumped to another branch.
         if ((to_scaled(next) - z0).norm() > 2.0 * ds) return false;
         return next.speed > 0.0 && problem_.residual(next.p, next.speed, next.bearings, r);

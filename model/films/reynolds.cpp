@@ -15,8 +15,6 @@ namespace turbodyn::reynolds {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * kPi;
-
 bool finite_state(const FilmState& s) {
   const double v[] = {s.ex, s.ey, s.vx, s.vy, s.sx, s.sy, s.dsx, s.dsy, s.omega_inner, s.omega_outer};
   for (double x : v)

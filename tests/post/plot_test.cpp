@@ -2,6 +2,7 @@
 // clear errors; rendering from several threads at once works; text is passed to gnuplot literally.
 #include "post/plot.h"
 #include "tests/support/text_checks.h"
+#include "model/spec/constants.h"
 
 #include <algorithm>
 #include <array>
@@ -27,8 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // gnuplot is a dependency (scripts/install-deps.sh installs gnuplot-nox): its absence fails, it does not skip.
 #define REQUIRE_GNUPLOT() \
@@ -125,7 +124,7 @@ Heatmap ridge(bool uniform_x = true) {
 
 // Expects f() to throw PlotError and returns its message.
 template <class F>
-std::string error_of(F f) {
+std::string plot_error_of(F f) {
   try {
     f();
   } catch (const PlotError& e) {
@@ -401,7 +400,7 @@ TEST(PlotScript, UnevenHeatmapAxisIsResampledOntoCells) {
 TEST_F(PlotTest, SizeMismatchIsAnError) {
   LineChart c = two_series();
   c.series[1].y.pop_back();
-  const std::string msg = error_of([&] { render_png(c, file("bad.png")); });
+  const std::string msg = plot_error_of([&] { render_png(c, file("bad.png")); });
   turbodyn::testing::expect_contains(msg, {
       "size mismatch",
       "backward whirl",
@@ -412,79 +411,80 @@ TEST_F(PlotTest, SizeMismatchIsAnError) {
 
   Heatmap m = ridge();
   m.z.pop_back();
-  EXPECT_THAT(error_of([&] { render_png(m, file("bad.png")); }),
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("bad.png")); }),
               HasSubstr("heat map z has 2399 values, expected ny * nx = 40 * 60 = 2400"));
   m = ridge();
   m.overlays[0].x.push_back(3);
-  EXPECT_THAT(error_of([&] { render_png(m, file("bad.png")); }), HasSubstr("overlay series 1 ('1x'): size mismatch"));
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("bad.png")); }),
+              HasSubstr("overlay series 1 ('1x'): size mismatch"));
 }
 
 TEST_F(PlotTest, EmptyDataIsAnError) {
-  EXPECT_THAT(error_of([&] { render_png(LineChart{}, file("e.png")); }), HasSubstr("no series"));
+  EXPECT_THAT(plot_error_of([&] { render_png(LineChart{}, file("e.png")); }), HasSubstr("no series"));
   LineChart c = two_series();
   c.series.push_back(Series{"nothing", {}, {}, Series::Style::Lines, "", 1.5});
-  EXPECT_THAT(error_of([&] { render_png(c, file("e.png")); }), HasSubstr("series 3 ('nothing') is empty"));
+  EXPECT_THAT(plot_error_of([&] { render_png(c, file("e.png")); }), HasSubstr("series 3 ('nothing') is empty"));
   LineChart all_nan;
   all_nan.series.push_back({"nan", {1, 2}, {kNaN, kNaN}, Series::Style::Lines, "", 1.5});
-  EXPECT_THAT(error_of([&] { render_png(all_nan, file("e.png")); }), HasSubstr("no finite data points"));
-  EXPECT_THAT(error_of([&] { render_png(Heatmap{}, file("e.png")); }), HasSubstr("no x values"));
+  EXPECT_THAT(plot_error_of([&] { render_png(all_nan, file("e.png")); }), HasSubstr("no finite data points"));
+  EXPECT_THAT(plot_error_of([&] { render_png(Heatmap{}, file("e.png")); }), HasSubstr("no x values"));
   Heatmap m = ridge();
   std::fill(m.z.begin(), m.z.end(), kNaN);
-  EXPECT_THAT(error_of([&] { render_png(m, file("e.png")); }), HasSubstr("no finite z values"));
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("e.png")); }), HasSubstr("no finite z values"));
   m = ridge();
   std::fill(m.z.begin(), m.z.end(), 0.0);
-  EXPECT_THAT(error_of([&] { render_png(m, file("e.png")); }), HasSubstr("no positive z values"));
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("e.png")); }), HasSubstr("no positive z values"));
 }
 
 TEST_F(PlotTest, NonAscendingOrNonFiniteHeatmapAxisIsAnError) {
   Heatmap m = ridge();
   std::swap(m.x[3], m.x[4]);
-  const std::string msg = error_of([&] { render_png(m, file("h.png")); });
+  const std::string msg = plot_error_of([&] { render_png(m, file("h.png")); });
   EXPECT_THAT(msg, HasSubstr("x values are not strictly ascending"));
   EXPECT_THAT(msg, HasSubstr("x[3] = 4, x[4] = 3"));
   m = ridge();
   m.y[7] = m.y[6];
-  EXPECT_THAT(error_of([&] { render_png(m, file("h.png")); }), HasSubstr("y values are not strictly ascending"));
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("h.png")); }), HasSubstr("y values are not strictly ascending"));
   m = ridge();
   m.x[0] = kNaN;
-  EXPECT_THAT(error_of([&] { render_png(m, file("h.png")); }), HasSubstr("x[0] = NaN is not finite"));
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("h.png")); }), HasSubstr("x[0] = NaN is not finite"));
 }
 
 TEST_F(PlotTest, BadRangesAndOptionsAreErrors) {
   LineChart c = two_series();
   c.xrange = std::make_pair(1.0, 1.0);
-  EXPECT_THAT(error_of([&] { render_png(c, file("r.png")); }), HasSubstr("x range"));
+  EXPECT_THAT(plot_error_of([&] { render_png(c, file("r.png")); }), HasSubstr("x range"));
   c = two_series();
   c.logy = true;
   c.yrange = std::make_pair(0.0, 10.0);
-  EXPECT_THAT(error_of([&] { render_png(c, file("r.png")); }), HasSubstr("positive on a logarithmic scale"));
+  EXPECT_THAT(plot_error_of([&] { render_png(c, file("r.png")); }), HasSubstr("positive on a logarithmic scale"));
   c = two_series();
   c.legend_position = "top; system 'rm x'";
-  EXPECT_THAT(error_of([&] { render_png(c, file("r.png")); }), HasSubstr("legend position"));
-  EXPECT_THAT(error_of([&] { render_png(two_series(), file("r.png"), Size{0, 700}); }), HasSubstr("picture size"));
+  EXPECT_THAT(plot_error_of([&] { render_png(c, file("r.png")); }), HasSubstr("legend position"));
+  EXPECT_THAT(plot_error_of([&] { render_png(two_series(), file("r.png"), Size{0, 700}); }), HasSubstr("picture size"));
   Heatmap m = ridge();
   m.zrange = std::make_pair(0.0, 1.0);  // log scale
-  EXPECT_THAT(error_of([&] { render_png(m, file("r.png")); }), HasSubstr("z range"));
+  EXPECT_THAT(plot_error_of([&] { render_png(m, file("r.png")); }), HasSubstr("z range"));
 }
 
 TEST_F(PlotTest, MissingGnuplotIsAClearError) {
   ScopedEnv env("TURBODYN_GNUPLOT", "/nonexistent/gnuplot");
   EXPECT_FALSE(gnuplot_available());
   EXPECT_THROW(gnuplot_executable(), PlotError);
-  const std::string msg = error_of([&] { render_png(two_series(), file("none.png")); });
+  const std::string msg = plot_error_of([&] { render_png(two_series(), file("none.png")); });
   turbodyn::testing::expect_contains(msg, {
       "gnuplot not found",
       "/nonexistent/gnuplot",
       "none.png",
   });
-  EXPECT_THAT(error_of([&] { render_png(ridge(), file("none.png")); }), HasSubstr("gnuplot"));
+  EXPECT_THAT(plot_error_of([&] { render_png(ridge(), file("none.png")); }), HasSubstr("gnuplot"));
   EXPECT_FALSE(fs::exists(file("none.png")));
 }
 
 TEST_F(PlotTest, MissingGnuplotByNameIsAClearError) {
   ScopedEnv env("TURBODYN_GNUPLOT", "no-such-gnuplot-program");
   EXPECT_FALSE(gnuplot_available());
-  EXPECT_THAT(error_of([&] { render_png(two_series(), file("none.png")); }),
+  EXPECT_THAT(plot_error_of([&] { render_png(two_series(), file("none.png")); }),
               HasSubstr("'no-such-gnuplot-program' is not on PATH"));
 }
 
@@ -492,7 +492,7 @@ TEST_F(PlotTest, GnuplotFailureReportsItsMessages) {
   REQUIRE_GNUPLOT();
   LineChart c = two_series();
   c.series[0].color = "no-such-colour";
-  const std::string msg = error_of([&] { render_png(c, file("fail.png")); });
+  const std::string msg = plot_error_of([&] { render_png(c, file("fail.png")); });
   turbodyn::testing::expect_contains(msg, {
       "fail.png",
       "gnuplot",
@@ -507,7 +507,7 @@ TEST_F(PlotTest, AProgramThatIsNotGnuplotFails) {
   // 'true' exits 0 but writes no picture.
   ScopedEnv env("TURBODYN_GNUPLOT", "true");
   ASSERT_TRUE(gnuplot_available()) << "no 'true' program on PATH";
-  const std::string msg = error_of([&] { render_png(two_series(), file("fake.png")); });
+  const std::string msg = plot_error_of([&] { render_png(two_series(), file("fake.png")); });
   EXPECT_THAT(msg, HasSubstr("wrote no PNG picture"));
   EXPECT_THAT(msg, Not(HasSubstr("gnuplot not found")));
 }

@@ -39,7 +39,7 @@ std::size_t peak_bin(const Spectrogram& s, std::size_t segment, std::size_t from
 }
 
 // The message of the std::invalid_argument `f` throws; fails the test if it throws nothing.
-std::string error_of(const std::function<void()>& f) {
+std::string signal_error_of(const std::function<void()>& f) {
   try {
     f();
     ADD_FAILURE() << "expected std::invalid_argument";
@@ -80,7 +80,7 @@ TEST(Window, FromStringAcceptsTheNamesCaseInsensitively) {
 }
 
 TEST(Window, FromStringRejectsUnknownNamesListingTheValidOnes) {
-  EXPECT_THAT(error_of([] { window_from_string("hanning"); }),
+  EXPECT_THAT(signal_error_of([] { window_from_string("hanning"); }),
               AllOf(HasSubstr("'hanning'"), HasSubstr("rectangular"), HasSubstr("hann,"), HasSubstr("hamming"),
                     HasSubstr("blackman"), HasSubstr("flattop")));
   EXPECT_THROW(window_from_string(""), std::invalid_argument);
@@ -380,9 +380,9 @@ TEST(Stft, ValuesAtSegmentCentresInterpolateTheSeries) {
   ASSERT_EQ(v.size(), s.n_segments());
   for (std::size_t seg = 0; seg < v.size(); ++seg) EXPECT_NEAR(v[seg], 5.0 + 625.0 * s.times[seg], 1e-9);
 
-  EXPECT_THAT(error_of([&] { values_at_segment_centres(s, std::vector<double>(3000, 1.0), fs); }),
+  EXPECT_THAT(signal_error_of([&] { values_at_segment_centres(s, std::vector<double>(3000, 1.0), fs); }),
               HasSubstr("outside the series of 3000 samples"));
-  EXPECT_THAT(error_of([&] { values_at_segment_centres(s, speed, 0.0); }), HasSubstr("sample rate"));
+  EXPECT_THAT(signal_error_of([&] { values_at_segment_centres(s, speed, 0.0); }), HasSubstr("sample rate"));
 }
 
 // A run-up as in the simulations: fs = 20 kHz, 4 s, 0 -> 2500 Hz. The spectrogram rows, placed at the rotor speed
@@ -411,27 +411,29 @@ TEST(Stft, InvalidInputsAreRejectedWithAClearMessage) {
   const std::vector<double> x(100, 0.0);
   StftOptions o;
   o.segment_length = 32;
-  EXPECT_THAT(error_of([&] { stft(x, 0.0, o); }), HasSubstr("sample rate"));
-  EXPECT_THAT(error_of([&] { stft(x, -5.0, o); }), HasSubstr("sample rate"));
-  EXPECT_THAT(error_of([&] { stft(x, std::numeric_limits<double>::quiet_NaN(), o); }), HasSubstr("sample rate"));
-  EXPECT_THAT(error_of([&] { stft(std::vector<double>(31, 0.0), 10.0, o); }),
+  EXPECT_THAT(signal_error_of([&] { stft(x, 0.0, o); }), HasSubstr("sample rate"));
+  EXPECT_THAT(signal_error_of([&] { stft(x, -5.0, o); }), HasSubstr("sample rate"));
+  EXPECT_THAT(signal_error_of([&] { stft(x, std::numeric_limits<double>::quiet_NaN(), o); }), HasSubstr("sample rate"));
+  EXPECT_THAT(signal_error_of([&] { stft(std::vector<double>(31, 0.0), 10.0, o); }),
               AllOf(HasSubstr("31 samples"), HasSubstr("shorter than one segment of 32")));
   {
     StftOptions bad = o;
     bad.segment_length = 7;
-    EXPECT_THAT(error_of([&] { stft(x, 10.0, bad); }), HasSubstr("segment_length must be at least 8"));
+    EXPECT_THAT(signal_error_of([&] { stft(x, 10.0, bad); }), HasSubstr("segment_length must be at least 8"));
   }
   for (double overlap : {-0.1, 1.0, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
     StftOptions bad = o;
     bad.overlap = overlap;
-    EXPECT_THAT(error_of([&] { stft(x, 10.0, bad); }), HasSubstr("overlap must be a fraction in [0, 1)"));
+    EXPECT_THAT(signal_error_of([&] { stft(x, 10.0, bad); }), HasSubstr("overlap must be a fraction in [0, 1)"));
   }
   std::vector<double> with_nan = x;
   with_nan[17] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THAT(error_of([&] { stft(with_nan, 10.0, o); }), AllOf(HasSubstr("sample 17"), HasSubstr("not finite")));
+  EXPECT_THAT(signal_error_of([&] { stft(with_nan, 10.0, o); }),
+              AllOf(HasSubstr("sample 17"), HasSubstr("not finite")));
   std::vector<double> with_inf = x;
   with_inf[99] = -std::numeric_limits<double>::infinity();
-  EXPECT_THAT(error_of([&] { stft(with_inf, 10.0, o); }), AllOf(HasSubstr("sample 99"), HasSubstr("not finite")));
+  EXPECT_THAT(signal_error_of([&] { stft(with_inf, 10.0, o); }),
+              AllOf(HasSubstr("sample 99"), HasSubstr("not finite")));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -597,35 +599,36 @@ TEST(TrackOrder, InvalidInputsAreRejectedWithAClearMessage) {
   const auto phi = sampled(n, fs, [](double t) { return 2 * pi * 20.0 * t; });
   const std::vector<double> x(n, 0.0);
   const OrderTrackOptions o;
-  EXPECT_THAT(error_of([&] { track_order(x, phi, f, 0.0, o); }), HasSubstr("sample rate"));
-  EXPECT_THAT(error_of([&] { track_order(std::vector<double>(999, 0.0), phi, f, fs, o); }),
+  EXPECT_THAT(signal_error_of([&] { track_order(x, phi, f, 0.0, o); }), HasSubstr("sample rate"));
+  EXPECT_THAT(signal_error_of([&] { track_order(std::vector<double>(999, 0.0), phi, f, fs, o); }),
               AllOf(HasSubstr("same length"), HasSubstr("999")));
-  EXPECT_THAT(error_of([&] { track_order(x, phi, std::vector<double>(5, 1.0), fs, o); }), HasSubstr("same length"));
-  EXPECT_THAT(error_of([&] { track_order({1.0}, {0.0}, {1.0}, fs, o); }), HasSubstr("at least 2 samples"));
+  EXPECT_THAT(signal_error_of([&] { track_order(x, phi, std::vector<double>(5, 1.0), fs, o); }),
+              HasSubstr("same length"));
+  EXPECT_THAT(signal_error_of([&] { track_order({1.0}, {0.0}, {1.0}, fs, o); }), HasSubstr("at least 2 samples"));
   {
     auto bad = x;
     bad[3] = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_THAT(error_of([&] { track_order(bad, phi, f, fs, o); }),
+    EXPECT_THAT(signal_error_of([&] { track_order(bad, phi, f, fs, o); }),
                 AllOf(HasSubstr("signal sample 3"), HasSubstr("not finite")));
     auto bad_phi = phi;
     bad_phi[5] = std::numeric_limits<double>::infinity();
-    EXPECT_THAT(error_of([&] { track_order(x, bad_phi, f, fs, o); }), HasSubstr("rotor_angle sample 5"));
+    EXPECT_THAT(signal_error_of([&] { track_order(x, bad_phi, f, fs, o); }), HasSubstr("rotor_angle sample 5"));
     auto bad_f = f;
     bad_f[7] = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_THAT(error_of([&] { track_order(x, phi, bad_f, fs, o); }), HasSubstr("rotor_frequency sample 7"));
+    EXPECT_THAT(signal_error_of([&] { track_order(x, phi, bad_f, fs, o); }), HasSubstr("rotor_frequency sample 7"));
   }
   {
     auto back = phi;
     back[500] = back[498];
-    EXPECT_THAT(error_of([&] { track_order(x, back, f, fs, o); }),
+    EXPECT_THAT(signal_error_of([&] { track_order(x, back, f, fs, o); }),
                 AllOf(HasSubstr("monotonic"), HasSubstr("sample 500")));
-    EXPECT_THAT(error_of([&] { track_order(x, std::vector<double>(n, 1.0), f, fs, o); }),
+    EXPECT_THAT(signal_error_of([&] { track_order(x, std::vector<double>(n, 1.0), f, fs, o); }),
                 HasSubstr("does not change"));
   }
   auto with = [&](auto change) {
     OrderTrackOptions b;
     change(b);
-    return error_of([&] { track_order(x, phi, f, fs, b); });
+    return signal_error_of([&] { track_order(x, phi, f, fs, b); });
   };
   EXPECT_THAT(with([](OrderTrackOptions& b) { b.order = 0.0; }), HasSubstr("order must be"));
   EXPECT_THAT(with([](OrderTrackOptions& b) { b.order = -1.0; }), HasSubstr("order must be"));

@@ -41,7 +41,7 @@ RunupResult jumping_whirl(double whirl_amplitude) {
   return r;
 }
 
-MetricSpec metric(const std::string& kind, double threshold) {
+MetricSpec threshold_metric(const std::string& kind, double threshold) {
   MetricSpec m;
   m.kind = kind;
   m.probe = "disk.compressor.x";
@@ -51,22 +51,22 @@ MetricSpec metric(const std::string& kind, double threshold) {
 
 TEST(Metrics, JumpSpeedIsWhereTheDominantSubsynchronousLineChangesItsFrequency) {
   const RunupResult r = jumping_whirl(1.0);
-  const double jump = evaluate_metric(metric("subsync_jump_speed", 0.5e-6), r, {}, 20000.0);
+  const double jump = evaluate_metric(threshold_metric("subsync_jump_speed", 0.5e-6), r, {}, 20000.0);
   // One STFT segment (2048 samples, 0.1 s) spans 40 Hz of rotor speed, 2,400 rpm.
   EXPECT_NEAR(jump, 30000.0, 3000.0);
-  const double onset = evaluate_metric(metric("subsync_onset_speed", 0.5e-6), r, {}, 20000.0);
+  const double onset = evaluate_metric(threshold_metric("subsync_onset_speed", 0.5e-6), r, {}, 20000.0);
   EXPECT_LT(onset, 9000.0);  // present from the first segments (f_d about 120 Hz)
-  const double top = evaluate_metric(metric("subsync_max", 0.0), r, {}, 20000.0);
+  const double top = evaluate_metric(threshold_metric("subsync_max", 0.0), r, {}, 20000.0);
   EXPECT_NEAR(top, 3e-6, 0.6e-6);
-  EXPECT_NEAR(evaluate_metric(metric("subsync_frequency", 0.0), r, {}, 20000.0), 350.0, 15.0);
+  EXPECT_NEAR(evaluate_metric(threshold_metric("subsync_frequency", 0.0), r, {}, 20000.0), 350.0, 15.0);
 }
 
 TEST(Metrics, JumpSpeedNeedsALineAboveTheThreshold) {
   const RunupResult r = jumping_whirl(0.1);  // lines of 0.2 and 0.3 um
-  EXPECT_TRUE(std::isnan(evaluate_metric(metric("subsync_jump_speed", 0.5e-6), r, {}, 20000.0)));
-  EXPECT_TRUE(std::isnan(evaluate_metric(metric("subsync_onset_speed", 0.5e-6), r, {}, 20000.0)));
+  EXPECT_TRUE(std::isnan(evaluate_metric(threshold_metric("subsync_jump_speed", 0.5e-6), r, {}, 20000.0)));
+  EXPECT_TRUE(std::isnan(evaluate_metric(threshold_metric("subsync_onset_speed", 0.5e-6), r, {}, 20000.0)));
   // With the threshold below both lines the jump is found again.
-  EXPECT_NEAR(evaluate_metric(metric("subsync_jump_speed", 0.1e-6), r, {}, 20000.0), 30000.0, 3000.0);
+  EXPECT_NEAR(evaluate_metric(threshold_metric("subsync_jump_speed", 0.1e-6), r, {}, 20000.0), 30000.0, 3000.0);
 }
 
 // Two whirls at once, as in a floating-ring bearing: an inner-film whirl at 0.55 f_d from the start (2 um) and an
@@ -85,19 +85,19 @@ RunupResult two_whirls() {
 
 TEST(Metrics, AnOrderBandPicksOneOfTwoWhirls) {
   const RunupResult r = two_whirls();
-  MetricSpec onset = metric("subsync_onset_speed", 0.5e-6);
+  MetricSpec onset = threshold_metric("subsync_onset_speed", 0.5e-6);
   EXPECT_LT(evaluate_metric(onset, r, {}, 20000.0), 9000.0);  // the default band sees the inner whirl at once
   onset.order_min = 0.05;
   onset.order_max = 0.3;
   // One STFT segment spans 2,400 rpm; the segment that first holds enough of the new line is within one of 36,000.
   EXPECT_NEAR(evaluate_metric(onset, r, {}, 20000.0), 36000.0, 2500.0);
-  MetricSpec frequency = metric("subsync_frequency", 0.0);
+  MetricSpec frequency = threshold_metric("subsync_frequency", 0.0);
   frequency.order_min = 0.05;
   frequency.order_max = 0.3;
   frequency.speed_min = 2.0 * kPi * 800.0;  // near 800 Hz rotor speed: 0.15 f_d = 120 Hz
   frequency.speed_max = 2.0 * kPi * 810.0;
   EXPECT_NEAR(evaluate_metric(frequency, r, {}, 20000.0), 120.0, 6.0);
-  MetricSpec top = metric("subsync_max", 0.0);
+  MetricSpec top = threshold_metric("subsync_max", 0.0);
   top.order_min = 0.05;
   top.order_max = 0.3;
   EXPECT_NEAR(evaluate_metric(top, r, {}, 20000.0), 1.5e-6, 0.3e-6);

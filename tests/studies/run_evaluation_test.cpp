@@ -7,24 +7,24 @@
 
 #include "model/engine/speed_profile.h"
 #include "tests/support/test_support.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn::studies {
 namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kRpm = 2.0 * M_PI / 60.0;
 
 // The reference rotor up to 30,000 rpm, output at 5 kHz: a run of a few seconds of wall time at most.
 StudyCommon cheap_study() {
   StudyCommon s;
   s.model = testing::source_dir() + "/examples/reference_linear.toml";
-  s.speed_window_max = 30000 * kRpm;
+  s.speed_window_max = 30000 * kRpmToRadPerS;
   s.fixed = {{"output.sample_rate", "5 kHz"}};
   return s;
 }
 
-MetricSpec metric(const std::string& kind, const std::string& probe) {
+MetricSpec probe_metric(const std::string& kind, const std::string& probe) {
   MetricSpec m;
   m.name = kind;
   m.kind = kind;
@@ -39,7 +39,8 @@ TEST(RunEvaluation, TheRunStopsAtTheWindowAndGivesItsMetrics) {
   EXPECT_NEAR(run.options.t_end, time_at_speed(run.spec.speed, s.speed_window_max), 1e-12);
   EXPECT_LT(run.options.t_end, SpeedFunction(run.spec.speed).duration());
 
-  const RunRecord r = evaluate_run(s, {metric("max", "disk.turbine.x"), metric("summary", "no.such.key")}, s.fixed);
+  const RunRecord r =
+      evaluate_run(s, {probe_metric("max", "disk.turbine.x"), probe_metric("summary", "no.such.key")}, s.fixed);
   EXPECT_EQ(r.status, "ok") << r.error;
   ASSERT_EQ(r.metrics.size(), 2u);
   EXPECT_GT(r.metrics[0], 0.0);
@@ -51,7 +52,7 @@ TEST(RunEvaluation, AFailingRunIsReportedNotThrown) {
   StudyCommon s = cheap_study();
   std::vector<Override> o = s.fixed;
   o.push_back({"bearings.compressor.k", "12 furlongs"});
-  const RunRecord r = evaluate_run(s, {metric("max", "disk.turbine.x")}, o);
+  const RunRecord r = evaluate_run(s, {probe_metric("max", "disk.turbine.x")}, o);
   EXPECT_EQ(r.status, "failed");
   EXPECT_THAT(r.error, HasSubstr("furlongs"));
   ASSERT_EQ(r.metrics.size(), 1u);

@@ -29,7 +29,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kRpm = kRpmToRadPerS;
 
 // tests/data/stability/rigid_cross_coupled.toml: a rigid rotor symmetric about its middle on two equal bearings of
 // stiffness k, damping c and a cross-coupled stiffness q = q1 * speed (kxy = q, kyx = -q, linear in the speed
@@ -62,11 +61,11 @@ std::complex<double> forward_root(const RigidRotor& r, double speed) {
   return s1.imag() > 0 ? s1 : s2;
 }
 
-MetricSpec metric(const std::string& kind, double low_rpm, double high_rpm, int count) {
+MetricSpec stability_metric(const std::string& kind, double low_rpm, double high_rpm, int count) {
   MetricSpec m;
   m.name = m.kind = kind;
-  m.speed_min = low_rpm * kRpm;
-  m.speed_max = high_rpm * kRpm;
+  m.speed_min = low_rpm * kRpmToRadPerS;
+  m.speed_max = high_rpm * kRpmToRadPerS;
   m.speed_count = count;
   return m;
 }
@@ -83,16 +82,17 @@ TEST(StabilityMetrics, ARigidRotorOnCrossCoupledBearingsLosesStabilityWhereTheCl
   const RigidRotor r = rigid_rotor();
   constexpr double kLow = 10000, kHigh = 110000, kTolerance = 1e-3;
   constexpr int kCount = 11;
-  const std::vector<MetricSpec> metrics = {
-      metric("stability_onset_speed", kLow, kHigh, kCount), metric("stability_growth", kLow, kHigh, kCount),
-      metric("stability_growth_speed", kLow, kHigh, kCount), metric("stability_frequency", kLow, kHigh, kCount),
-      metric("stability_damping", kLow, kHigh, kCount)};
+  const std::vector<MetricSpec> metrics = {stability_metric("stability_onset_speed", kLow, kHigh, kCount),
+                                           stability_metric("stability_growth", kLow, kHigh, kCount),
+                                           stability_metric("stability_growth_speed", kLow, kHigh, kCount),
+                                           stability_metric("stability_frequency", kLow, kHigh, kCount),
+                                           stability_metric("stability_damping", kLow, kHigh, kCount)};
   std::string error;
   const std::vector<double> v = evaluate_stability_metrics(r.spec, metrics, &error);
   EXPECT_EQ(error, "");
-  const double onset = r.c * std::sqrt(2 * r.k / r.mass) / r.q1 / kRpm;
+  const double onset = r.c * std::sqrt(2 * r.k / r.mass) / r.q1 / kRpmToRadPerS;
   const double step = (kHigh - kLow) / (kCount - 1) / 64;
-  const std::complex<double> top = forward_root(r, kHigh * kRpm);
+  const std::complex<double> top = forward_root(r, kHigh * kRpmToRadPerS);
   std::printf("[ rigid rotor ] onset %.1f rpm (closed form %.1f, resolution %.1f rpm); at %.0f rpm growth %.3f 1/s "
               "(%.3f), %.2f Hz (%.2f), damping ratio %.5f (%.5f)\n",
               v[0], onset, step, kHigh, v[1], top.real(), v[3], top.imag() / (2 * M_PI), v[4],
@@ -110,19 +110,21 @@ TEST(StabilityMetrics, WithoutAGrowingModeTheOnsetIsUndefinedAndTheGrowthNegativ
   // negative and, on this rotor, the cylindrical forward mode's (the least damped).
   const RigidRotor r = rigid_rotor();
   std::string error;
-  const std::vector<double> v = evaluate_stability_metrics(
-      r.spec, {metric("stability_onset_speed", 10000, 60000, 3), metric("stability_growth", 10000, 60000, 3)}, &error);
+  const std::vector<double> v = evaluate_stability_metrics(r.spec,
+                                                           {stability_metric("stability_onset_speed", 10000, 60000, 3),
+                                                            stability_metric("stability_growth", 10000, 60000, 3)},
+                                                           &error);
   EXPECT_EQ(error, "");
   EXPECT_TRUE(std::isnan(v[0]));
-  EXPECT_NEAR(v[1] / forward_root(r, 60000 * kRpm).real(), 1.0, 1e-2);
+  EXPECT_NEAR(v[1] / forward_root(r, 60000 * kRpmToRadPerS).real(), 1.0, 1e-2);
 }
 
 TEST(StabilityMetrics, AFrequencyLimitCountsOnlyTheModesBelowIt) {
   // The rigid rotor's cylindrical forward whirl (1,224 Hz) is its only growing mode: with frequency_max above it the
   // onset is the one without a limit; below it no mode counts (onset and growth undefined).
   const RigidRotor r = rigid_rotor();
-  MetricSpec onset = metric("stability_onset_speed", 10000, 110000, 11);
-  MetricSpec growth = metric("stability_growth", 10000, 110000, 11);
+  MetricSpec onset = stability_metric("stability_onset_speed", 10000, 110000, 11);
+  MetricSpec growth = stability_metric("stability_growth", 10000, 110000, 11);
   std::string error;
   const double free_onset = evaluate_stability_metrics(r.spec, {onset}, &error).at(0);
   onset.frequency_max = growth.frequency_max = 1500.0;
@@ -142,7 +144,7 @@ TEST(StabilityMetrics, AStudysRunOfStabilityMetricsIsTheAnalysisOfItsModel) {
   // 55,000 rpm (docs/ball-bearing.md, "Linearised stability").
   StudyCommon s;
   s.model = testing::source_dir() + "/examples/reference_ball.toml";
-  const MetricSpec m = metric("stability_onset_speed", 50000, 60000, 2);
+  const MetricSpec m = stability_metric("stability_onset_speed", 50000, 60000, 2);
   const RunRecord rec = evaluate_run(s, {m}, {});
   EXPECT_EQ(rec.status, "ok") << rec.error;
   EXPECT_EQ(rec.note, "");  // every speed continued from the one below
@@ -160,7 +162,7 @@ TEST(StabilityMetrics, AMetricsContinuationStepsAreThoseOfItsAnalyses) {
   // (docs/studies.md, "Stability metrics"). The metric is the analyses' with StabilityOptions::
   // continuation_step_factor 0.5 to the last bit, and not the regular steps' (other Newton paths, another round-off).
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball.toml");
-  MetricSpec m = metric("stability_growth", 10000, 12000, 2);
+  MetricSpec m = stability_metric("stability_growth", 10000, 12000, 2);
   m.continuation_steps = 0.5;
   std::string error;
   const double half = evaluate_stability_metrics(spec, {m}, &error).at(0);
@@ -170,8 +172,8 @@ TEST(StabilityMetrics, AMetricsContinuationStepsAreThoseOfItsAnalyses) {
   StabilityOptions o;
   o.min_rotor_share = m.min_rotor_share;
   o.continuation_step_factor = 0.5;
-  const StabilityPoint low = analyse_stability(spec, 10000 * kRpm, o),
-                       high = analyse_stability(spec, 12000 * kRpm, o, &low);
+  const StabilityPoint low = analyse_stability(spec, 10000 * kRpmToRadPerS, o),
+                       high = analyse_stability(spec, 12000 * kRpmToRadPerS, o, &low);
   const StabilityModeFilter counts{m.min_rotor_share, 0.0};
   double expected = std::numeric_limits<double>::quiet_NaN();
   for (const StabilityPoint* p : {&low, &high})
@@ -188,7 +190,7 @@ TEST(StabilityMetrics, ARunSaysWhereItsSteadyStateWasFoundAnewFromRest) {
   // The study's runs of bench/validation_studies.sh ball_stability have no such speed; the engine's halvings and
   // sweeps report them (Stability.TheOnsetsHalvingsSayWhich..., Stability.AnAnalysisContinuedFromALowerSpeed...).
   EXPECT_EQ(stability_restart_note({}), "");
-  const std::string note = stability_restart_note({61000 * kRpm, 52500 * kRpm});
+  const std::string note = stability_restart_note({61000 * kRpmToRadPerS, 52500 * kRpmToRadPerS});
   EXPECT_THAT(note, HasSubstr("found anew from rest at 52500 rpm, 61000 rpm"));
 }
 
@@ -206,9 +208,11 @@ TEST(StabilityMetrics, AnAnalysisThatFailsEndsTheSpeedsThereAndTheOnsetIsStillHa
                                                 parse_override("bearings.compressor.outer_groove_ratio=0.56"),
                                                 parse_override("bearings.turbine.outer_groove_ratio=0.56")});
   std::string error;
-  const std::vector<double> v = evaluate_stability_metrics(
-      spec, {metric("stability_onset_speed", 50000, 90000, 3), metric("stability_growth_speed", 50000, 90000, 3)},
-      &error);
+  const std::vector<double> v =
+      evaluate_stability_metrics(spec,
+                                 {stability_metric("stability_onset_speed", 50000, 90000, 3),
+                                  stability_metric("stability_growth_speed", 50000, 90000, 3)},
+                                 &error);
   std::printf("[ 200 N, f_o 0.56 ] onset %.1f rpm, fastest at %.0f rpm; %s\n", v[0], v[1], error.c_str());
   EXPECT_THAT(error, HasSubstr("stability analysis at 90000 rpm: element 'compressor': no steady state found"));
   EXPECT_GT(v[0], 50000);
@@ -228,15 +232,15 @@ TEST(StabilityMetrics, TheExampleStudiesReadAndTheirModelsAreOnesTheAnalysisTake
     for (const MetricSpec& m : s.metrics) {
       EXPECT_TRUE(is_stability_metric(m.kind)) << m.name;
       EXPECT_EQ(m.speed_count, count);
-      EXPECT_DOUBLE_EQ(m.speed_min, 10000 * kRpm);
-      EXPECT_DOUBLE_EQ(m.speed_max, 150000 * kRpm);
+      EXPECT_DOUBLE_EQ(m.speed_min, 10000 * kRpmToRadPerS);
+      EXPECT_DOUBLE_EQ(m.speed_max, 150000 * kRpmToRadPerS);
     }
     EXPECT_NO_THROW(
         check_stability_metrics(s, s.metrics, load_study_model(s, run_overrides(s, make_design(s.design), 0))));
   }
 }
 
-std::filesystem::path write_study(const std::string& name, const std::string& text) {
+std::filesystem::path study_file(const std::string& name, const std::string& text) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test";
   std::filesystem::create_directories(dir);
   const std::filesystem::path file = dir / name;
@@ -265,22 +269,22 @@ TEST(StabilityMetrics, AStudyOfOtherSpeedsDoesNotResumeTheRunsAndAnyThreadCountG
   SweepOptions o;
   o.output_dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test" / "resume";
   std::filesystem::remove_all(o.output_dir);
-  const SweepResult first = run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), o);
+  const SweepResult first = run_sweep(load_study(study_file("r.toml", body + "speed_count = 3\n")), o);
   ASSERT_TRUE(first.complete);
   EXPECT_GT(first.runs.at(0).metrics.at(0), 0.0);  // 100 N s/m: unstable at the top (onset 73,426 rpm)
   EXPECT_LT(first.runs.at(1).metrics.at(0), 0.0);  // 200 N s/m: stable to 110,000 rpm (149.8 N s/m suffice)
-  EXPECT_EQ(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), o).resumed, 2u);
-  EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 4\n")), o), ModelError);
+  EXPECT_EQ(run_sweep(load_study(study_file("r.toml", body + "speed_count = 3\n")), o).resumed, 2u);
+  EXPECT_THROW(run_sweep(load_study(study_file("r.toml", body + "speed_count = 4\n")), o), ModelError);
   // One thread or two: the same numbers (each design is its own analysis).
   SweepOptions one = o;
   one.output_dir = o.output_dir.parent_path() / "resume_one_thread";
   one.threads = 1;
   std::filesystem::remove_all(one.output_dir);
-  const SweepResult serial = run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\n")), one);
+  const SweepResult serial = run_sweep(load_study(study_file("r.toml", body + "speed_count = 3\n")), one);
   for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(serial.runs.at(i).metrics.at(0), first.runs.at(i).metrics.at(0));
-  EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\nmin_rotor_share = 0.5\n")), o),
+  EXPECT_THROW(run_sweep(load_study(study_file("r.toml", body + "speed_count = 3\nmin_rotor_share = 0.5\n")), o),
                ModelError);
-  EXPECT_THROW(run_sweep(load_study(write_study("r.toml", body + "speed_count = 3\ncontinuation_steps = 0.5\n")), o),
+  EXPECT_THROW(run_sweep(load_study(study_file("r.toml", body + "speed_count = 3\ncontinuation_steps = 0.5\n")), o),
                ModelError);
 }
 
@@ -296,7 +300,7 @@ TEST(StabilityMetrics, AStudysResultsNameTheSpeedsItsStabilityMetricsAnalysed) {
                            "also = [\"bearings.right.c\"]\nlevels = [\"100 N*s/m\"]\n"
                            "[[metrics]]\nkind = \"stability_onset_speed\"\nspeed_count = 3\n"
                            "[[metrics]]\nkind = \"stability_growth\"\nspeed_count = 3\n";
-  const StudySpec study = load_study(write_study("speeds.toml", body));
+  const StudySpec study = load_study(study_file("speeds.toml", body));
   SweepOptions o;
   o.output_dir = std::filesystem::temp_directory_path() / "turbodyn_stability_metrics_test" / "speeds";
   std::filesystem::remove_all(o.output_dir);
@@ -331,26 +335,26 @@ TEST(StabilityMetrics, AStudyRefusesWhatTheAnalysisCannotTake) {
     return t + keys;
   };
   // No speeds: neither the metric nor the study has a speed window.
-  EXPECT_THAT(load_error(write_study("a.toml", with("reference_ball.toml", ""))),
+  EXPECT_THAT(load_error(study_file("a.toml", with("reference_ball.toml", ""))),
               HasSubstr("metrics[0].speed_window: missing"));
   // A probe, a threshold, a share outside [0, 1], a single speed.
   const std::string window = "speed_window = [\"10000 rpm\", \"20000 rpm\"]\n";
-  EXPECT_THAT(load_error(write_study("b.toml", with("reference_ball.toml", window + "probe = \"disk.turbine.x\"\n"))),
+  EXPECT_THAT(load_error(study_file("b.toml", with("reference_ball.toml", window + "probe = \"disk.turbine.x\"\n"))),
               HasSubstr("metrics[0].probe: kind = \"stability_growth\" reads no probe"));
-  EXPECT_THAT(load_error(write_study("c.toml", with("reference_ball.toml", window + "threshold = \"1 um\"\n"))),
+  EXPECT_THAT(load_error(study_file("c.toml", with("reference_ball.toml", window + "threshold = \"1 um\"\n"))),
               HasSubstr("metrics[0].threshold"));
-  EXPECT_THAT(load_error(write_study("d.toml", with("reference_ball.toml", window + "min_rotor_share = 2\n"))),
+  EXPECT_THAT(load_error(study_file("d.toml", with("reference_ball.toml", window + "min_rotor_share = 2\n"))),
               HasSubstr("metrics[0].min_rotor_share: must lie in [0, 1]"));
-  EXPECT_THAT(load_error(write_study("e.toml", with("reference_ball.toml", window + "speed_count = 1\n"))),
+  EXPECT_THAT(load_error(study_file("e.toml", with("reference_ball.toml", window + "speed_count = 1\n"))),
               HasSubstr("metrics[0].speed_count"));
-  EXPECT_THAT(load_error(write_study("g.toml", with("reference_ball.toml", window + "frequency_max = \"0 Hz\"\n"))),
+  EXPECT_THAT(load_error(study_file("g.toml", with("reference_ball.toml", window + "frequency_max = \"0 Hz\"\n"))),
               HasSubstr("metrics[0].frequency_max"));
-  EXPECT_THAT(load_error(write_study("h.toml", with("reference_ball.toml", window + "continuation_steps = 0\n"))),
+  EXPECT_THAT(load_error(study_file("h.toml", with("reference_ball.toml", window + "continuation_steps = 0\n"))),
               HasSubstr("metrics[0].continuation_steps: must be positive"));
-  EXPECT_THAT(load_error(write_study("i.toml", with("reference_ball.toml", window + "continuation_steps = 1.5\n"))),
+  EXPECT_THAT(load_error(study_file("i.toml", with("reference_ball.toml", window + "continuation_steps = 1.5\n"))),
               HasSubstr("metrics[0].continuation_steps: must lie in (0, 1]"));
   // A model the analysis does not cover: refused before any run, naming the study, the metric and the bearing.
-  const std::filesystem::path ring = write_study("f.toml", with("reference_floating_ring.toml", window));
+  const std::filesystem::path ring = study_file("f.toml", with("reference_floating_ring.toml", window));
   const StudySpec study = load_study(ring);
   SweepOptions o;
   o.output_dir = ring.parent_path() / "out_f";

@@ -19,6 +19,9 @@ namespace turbodyn::testing {
 
 inline std::string source_dir() { return TURBODYN_SOURCE_DIR; }
 
+/// The path of examples/NAME.
+inline std::string example(const std::string& name) { return source_dir() + "/examples/" + name; }
+
 /// The rotor of examples/EXAMPLE with the overrides applied.
 inline Rotor load_rotor(const std::string& example, const std::vector<Override>& overrides = {}) {
   return build_rotor(load_model(source_dir() + "/examples/" + example, overrides));

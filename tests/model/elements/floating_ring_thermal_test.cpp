@@ -27,7 +27,7 @@ FloatingRingSpec thermal_ring(const OilSpec& oil) {
 }
 
 // A general state as in floating_ring_test.cpp, with both film temperatures.
-void general_state(double* q, double* v, double* z, double Ti, double To) {
+void general_thermal_state(double* q, double* v, double* z, double Ti, double To) {
   testing::general_ring_state(q, v, z);
   z[E::kAngle] = 0.4;
   z[E::kInnerTemperature] = Ti;
@@ -49,7 +49,7 @@ TEST(ThermalFilms, BulkFilmsAtTheSupplyTemperatureExertTheIsothermalForcesBitFor
   EXPECT_EQ(b.n_states(), E::kMaxStates);
   auto wa = a.make_workspace(), wb = b.make_workspace();
   double q[4], v[4], z[E::kMaxStates];
-  general_state(q, v, z, oil.temperature, oil.temperature);
+  general_thermal_state(q, v, z, oil.temperature, oil.temperature);
   const SpinState s{0.0, 3000.0, 50.0, 0.0};
   double fa[4] = {}, fb[4] = {}, za[E::kMaxStates] = {}, zb[E::kMaxStates] = {};
   a.calc_and_add_forces(s, q, v, z, *wa, fa, za);
@@ -200,7 +200,7 @@ TEST(ThermalFilms, OwnJacobianMatchesPlainFiniteDifferences) {
   const E e("test", f, oil, 0, 9.81);
   auto ws = e.make_workspace();
   double q[4], v[4], z[E::kMaxStates];
-  general_state(q, v, z, 395.0, 375.0);
+  general_thermal_state(q, v, z, 395.0, 375.0);
   const SpinState s{0.0, 3000.0, 50.0, 0.0};
   constexpr int d = 4, m = E::kMaxStates, rows = d + m, cols = 2 * d + m;
   const std::vector<double> out0 = testing::element_outputs(e, s, q, v, z, m, *ws);

@@ -24,8 +24,6 @@
 namespace turbodyn {
 namespace {
 
-constexpr double kRpm = kRpmToRadPerS;
-
 // The forward 1x critical speeds of `rotor` below `top` (rad/s) by the Campbell diagram (complex modes).
 std::vector<double> forward_criticals(const Rotor& rotor, double top) {
   std::vector<double> speeds;
@@ -45,7 +43,7 @@ TEST(Backbone, OnLinearBearingsItIsTheCampbellCriticalAtEveryAmplitude) {
       load_model(testing::source_dir() + "/examples/reference_linear.toml",
                  {parse_override("bearings.compressor.c=0"), parse_override("bearings.turbine.c=0")});
   const Rotor rotor = build_rotor(spec);
-  const std::vector<double> crit = forward_criticals(rotor, 150000 * kRpm);
+  const std::vector<double> crit = forward_criticals(rotor, 150000 * kRpmToRadPerS);
   ASSERT_FALSE(crit.empty());
   BackboneOptions o;
   o.reference_nodes = {rotor.node_at(spec.disks.front().z)};
@@ -59,7 +57,7 @@ TEST(Backbone, OnLinearBearingsItIsTheCampbellCriticalAtEveryAmplitude) {
       EXPECT_NEAR(p.speed / b.linear_speed, 1.0, 1e-6) << "branch " << b.branch << " at " << p.amplitude;
       EXPECT_TRUE(p.bearings.empty());
     }
-    std::printf("[ linear ] branch %d: %.1f rpm\n", b.branch + 1, b.points.back().speed / kRpm);
+    std::printf("[ linear ] branch %d: %.1f rpm\n", b.branch + 1, b.points.back().speed / kRpmToRadPerS);
   }
 }
 
@@ -70,12 +68,12 @@ TEST(Backbone, BallBearingsStartAtTheModalCriticalsAndMeetTheRunsResonanceAtItsA
   // 46,532 rpm (775.5 Hz, 5-ms windows), the bearings' synchronous forces then 2,880 N (compressor) and 1,462 N
   // (turbine). The undamped whirl of that amplitude has the run's bearing forces to 3 % and its speed within 2 %
   // below the run's (a passage on a ramp peaks a little after the backbone: 1.7 %).
-  constexpr double kRunAmplitude = 518.4e-6, kRunSpeed = 46532 * kRpm;
+  constexpr double kRunAmplitude = 518.4e-6, kRunSpeed = 46532 * kRpmToRadPerS;
   constexpr double kRunForceCompressor = 2880.0, kRunForceTurbine = 1462.0;
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball.toml");
   Rotor lin = build_rotor(spec);
   add_ball_bearing_linearisations(spec, lin);
-  const std::vector<double> crit = forward_criticals(lin, 60000 * kRpm);
+  const std::vector<double> crit = forward_criticals(lin, 60000 * kRpmToRadPerS);
   ASSERT_EQ(crit.size(), 2u);
   const Rotor rotor = build_rotor(spec);
   ASSERT_TRUE(rotor.bearings.empty());
@@ -135,7 +133,7 @@ TEST(Backbone, ARigidSymmetricRotorWhirlsAtItsBearingsSecantStiffness) {
   add_ball_bearing_linearisations(spec, lin);
   const double w0 = std::sqrt(2.0 * qs.load_deflection(3000.0, {0.0}).back().tangent / m);
   double start = 0.0;  // the forward 1x critical nearest the cylindrical mode's
-  for (double c : forward_criticals(lin, 150000 * kRpm))
+  for (double c : forward_criticals(lin, 150000 * kRpmToRadPerS))
     if (std::abs(c - w0) < std::abs(start - w0)) start = c;
   BackboneOptions o;
   o.reference_nodes = {rotor.node_at(0.035)};

@@ -17,7 +17,7 @@
 namespace turbodyn {
 namespace {
 
-RunupResult run(const std::string& example, const std::vector<Override>& o) {
+RunupResult ball_run(const std::string& example, const std::vector<Override>& o) {
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/" + example, o);
   const auto model = make_runup_model(spec);
   return simulate_runup(*model, runup_options(spec));
@@ -48,7 +48,7 @@ double peak(const RunupResult& r, const std::string& name) {
 const std::vector<Override> kShortRamp = {{"speed.end", "6000 rpm"}, {"speed.duration", "0.16"}};
 
 TEST(BallRunup, CageFollowsTheKinematicsAndTheEnergyBalanceCloses) {
-  const RunupResult r = run("reference_ball.toml", kShortRamp);
+  const RunupResult r = ball_run("reference_ball.toml", kShortRamp);
   ASSERT_TRUE(r.complete) << r.message;
   // Cage speed of an angular-contact bearing with a rotating inner ring and a fixed outer ring, pure rolling:
   // w_c / W = (1 - D cos(a) / d_m) / 2 (Harris & Kotzalas 2007, §8.2), at the loaded contact angle of the run.
@@ -71,7 +71,7 @@ TEST(BallRunup, ARunStartingMidRampStartsBallsAndCageAtTheirKinematicSpeeds) {
   // which would put a spin-up transient of the whole bearing into the window. 30,000 rpm, the paper's ramp.
   constexpr double kKinematicTolerance = 0.02;
   const std::vector<Override> o = {{"speed.start", "30000 rpm"}, {"speed.end", "30600 rpm"}, {"speed.duration", "0.016"}};
-  const RunupResult r = run("reference_ball.toml", o);
+  const RunupResult r = ball_run("reference_ball.toml", o);
   ASSERT_TRUE(r.complete) << r.message;
   const double D = 4.5e-3, dm = 17.5e-3;
   const std::vector<double>& ratio = channel(r, "bearing.compressor.cage_speed_ratio");
@@ -83,7 +83,7 @@ TEST(BallRunup, ARunStartingMidRampStartsBallsAndCageAtTheirKinematicSpeeds) {
 }
 
 TEST(BallRunup, BallBearingsInDampersRunAndBalanceTheirEnergy) {
-  const RunupResult r = run("reference_ball_sfd.toml", kShortRamp);
+  const RunupResult r = ball_run("reference_ball_sfd.toml", kShortRamp);
   ASSERT_TRUE(r.complete) << r.message;
   EXPECT_LT(peak(r, "bearing.compressor.damper_eccentricity"), 1.0);
   const double error = r.energy_final - r.energy_initial - r.work_in + r.dissipated;
@@ -131,7 +131,7 @@ TEST(BallRunup, DamperRingsWithoutForceSpikesAtTheExamplesTolerance) {
   const std::vector<Override> window = {{"speed.end", "15000 rpm"}, {"speed.duration", "0.4"}};
   std::vector<Override> tight = window;
   tight.insert(tight.end(), {{"solver.rtol", "1e-6"}, {"solver.atol", "1e-10"}});
-  const RunupResult a = run("reference_ball_sfd.toml", window), b = run("reference_ball_sfd.toml", tight);
+  const RunupResult a = ball_run("reference_ball_sfd.toml", window), b = ball_run("reference_ball_sfd.toml", tight);
   ASSERT_TRUE(a.complete && b.complete) << a.message << b.message;
   for (const std::string bearing : {"compressor", "turbine"})
     for (const std::string f : {".fx", ".fy"}) {

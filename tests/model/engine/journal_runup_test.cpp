@@ -87,7 +87,7 @@ struct Outcome {
   double whirl_hz;     // dominant frequency in the last window
 };
 
-Outcome run(double speed, double duration) {
+Outcome journal_run(double speed, double duration) {
   MachineSpec spec = rotor_in_journal_bearings(speed);
   spec.output.sample_rate = 20000;
   const auto model = make_runup_model(spec);
@@ -141,8 +141,8 @@ TEST(JournalRunup, OilWhirlThresholdAndHalfSpeedWhirl) {
   // formulas, which shifts the threshold by a similar amount).
   // Above the threshold the whirl grows within a few tens of revolutions; the runs stop before the limit cycle
   // close to the clearance, where the stiff film makes the integration slow.
-  const Outcome below = run(0.6 * th.speed, 0.12);
-  const Outcome above = run(1.6 * th.speed, 0.06);
+  const Outcome below = journal_run(0.6 * th.speed, 0.12);
+  const Outcome above = journal_run(1.6 * th.speed, 0.06);
   std::cout << "[ validation ] threshold " << th.speed << " rad/s (whirl ratio " << th.whirl_ratio << "); below: "
             << below.early * 1e6 << " -> " << below.late * 1e6 << " um; above: " << above.early * 1e6 << " -> "
             << above.late * 1e6 << " um, whirl " << above.whirl_hz << " Hz at "

@@ -14,13 +14,13 @@
 #include "model/rotor/response.h"
 #include "post/signal.h"
 #include "tests/support/test_support.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn {
 namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kRpm = 2.0 * M_PI / 60.0;  // rad/s per rpm
 
 MachineSpec reference(std::vector<Override> overrides = {}) {
   return load_model(testing::source_dir() + "/examples/reference_linear.toml", overrides);
@@ -124,7 +124,7 @@ TEST(Jacobian, AssembledJacobianMatchesFiniteDifferencesOfTheRhs) {
   // Pedestal bearings add internal states; the exact rotor part, the analytic element Jacobian and the
   // scattering into the blocks are all checked against forward differences of the full right-hand side.
   MachineSpec spec = reference(compressor_pedestal());
-  spec.speed.end = 60000 * kRpm;
+  spec.speed.end = 60000 * kRpmToRadPerS;
   const auto model = make_runup_model(spec);
   auto ws = model->make_workspace();
   const int ny = model->n_states();
@@ -160,7 +160,7 @@ TEST(Jacobian, BlockEliminatedNewtonSolveMatchesTheFullSystem) {
                                      {"bearings.turbine.pedestal_stiffness", "5e7"},
                                      {"bearings.turbine.pedestal_damping", "100"}});
   MachineSpec spec = reference(overrides);
-  spec.speed.end = 60000 * kRpm;
+  spec.speed.end = 60000 * kRpmToRadPerS;
   const auto model = make_runup_model(spec);
   ASSERT_GT(model->n_element_states(), 4);
   auto ws = model->make_workspace();
@@ -176,7 +176,7 @@ TEST(Jacobian, RespunJacobianSolvesAsAFreshOneWhereOnlyTheRotorDependsOnTheSpeed
   // the elements' blocks kept. With linear pedestal bearings (speed-independent blocks) the Newton solve must then
   // be that of a fresh Jacobian, and differ from that of the old one (the ramp's speed doubles).
   MachineSpec spec = reference(compressor_pedestal());
-  spec.speed.end = 150000 * kRpm;
+  spec.speed.end = 150000 * kRpmToRadPerS;
   const auto model = make_runup_model(spec);
   auto ws = model->make_workspace();
   const int ny = model->n_states();
@@ -238,7 +238,7 @@ class Forwarding final : public ForceElement {
 // factors of 1 give CVODE's own weights bit for bit, factors that depend on the state change the run.
 TEST(Runup, StateDependentTolerancesEnterTheErrorWeights) {
   MachineSpec spec = reference(compressor_pedestal());
-  spec.speed.end = 10000 * kRpm;
+  spec.speed.end = 10000 * kRpmToRadPerS;
   spec.speed.duration = 0.02;
   spec.solver.atol_scaling = AtolScaling::Typical;
   auto build = [&](double (*factor)(double)) {
@@ -339,7 +339,7 @@ TEST(Runup, SlowRampMatchesSteadyStateResponse) {
   MachineSpec spec = reference({{"bearings.compressor.c", "500"}, {"bearings.turbine.c", "500"}});
   spec.speed.kind = SpeedProfile::Kind::Table;
   spec.speed.times = {0.0, 0.3, 3.3};
-  spec.speed.speeds = {0.0, 55000 * kRpm, 100000 * kRpm};
+  spec.speed.speeds = {0.0, 55000 * kRpmToRadPerS, 100000 * kRpmToRadPerS};
   spec.speed.end = spec.speed.speeds.back();
   spec.speed.duration = spec.speed.times.back();
   const auto model = make_runup_model(spec);
@@ -369,7 +369,7 @@ TEST(Runup, SlowRampMatchesSteadyStateResponse) {
 // 2001, Meccanica 36).
 TEST(Runup, FastRampShiftsAndShrinksThePeak) {
   MachineSpec spec = reference();
-  spec.speed.end = 60000 * kRpm;
+  spec.speed.end = 60000 * kRpmToRadPerS;
   spec.speed.duration = 4.0 * 60000.0 / 150000.0;  // the paper's 37,500 rpm/s
   ASSERT_EQ(spec.output.sample_rate, 20000.0);
   const auto model = make_runup_model(spec);
@@ -386,7 +386,7 @@ TEST(Runup, FastRampShiftsAndShrinksThePeak) {
   const int node = rotor.disks[0].name == "turbine" ? rotor.disks[0].node : rotor.disks[1].node;
   double steady_peak = 0, steady_speed = 0;
   for (double rpm = 20000; rpm < 38000; rpm += 10) {
-    const double a = std::abs(unbalance_response(rotor, rpm * kRpm).q(rotor.dof(node, kX)));
+    const double a = std::abs(unbalance_response(rotor, rpm * kRpmToRadPerS).q(rotor.dof(node, kX)));
     if (a > steady_peak) {
       steady_peak = a;
       steady_speed = rpm;
@@ -401,7 +401,7 @@ TEST(Runup, FastRampShiftsAndShrinksThePeak) {
 TEST(Runup, TighterToleranceChangesMaximaByLessThanOnePercent) {
   constexpr double kMaximaChange = 0.01;
   MachineSpec spec = reference();
-  spec.speed.end = 60000 * kRpm;
+  spec.speed.end = 60000 * kRpmToRadPerS;
   spec.speed.duration = 1.6;
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);
@@ -421,7 +421,7 @@ TEST(Runup, NewtonToleranceReachesTheIntegratorAndLeavesTheMaxima) {
   // CVODE's Newton test (nlscoef): a tighter one takes more right-hand sides per step; the answer stays within
   // the error test's own tolerance.
   MachineSpec spec = reference(compressor_pedestal());
-  spec.speed.end = 30000 * kRpm;
+  spec.speed.end = 30000 * kRpmToRadPerS;
   spec.speed.duration = 0.4;
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);
@@ -460,7 +460,7 @@ TEST(Runup, TypicalToleranceScalingResolvesEveryStateToTheSameFraction) {
       EXPECT_DOUBLE_EQ(a(model->state_offset(static_cast<int>(k)) + i),
                        1e-10 * model->elements()[k]->tolerance_scale(i) / 1e-6);
   // A run with the scaled tolerances gives the same maxima as the default within the accuracy both ask for.
-  spec.speed.end = 30000 * kRpm;
+  spec.speed.end = 30000 * kRpmToRadPerS;
   spec.speed.duration = 0.8;
   const auto m2 = make_runup_model(spec);
   RunupOptions o = options_for(spec);
@@ -484,7 +484,7 @@ TEST(Runup, EnergyBalanceCloses) {
   MachineSpec spec = reference({{"bearings.turbine.pedestal_mass", "0.5"},
                                 {"bearings.turbine.pedestal_stiffness", "2e7"},
                                 {"bearings.turbine.pedestal_damping", "200"}});
-  spec.speed.end = 60000 * kRpm;
+  spec.speed.end = 60000 * kRpmToRadPerS;
   spec.speed.duration = 1.6;
   const auto model = make_runup_model(spec);
   const RunupResult r = simulate_runup(*model, options_for(spec));
@@ -497,7 +497,7 @@ TEST(Runup, EnergyBalanceCloses) {
 
 TEST(Runup, ExplicitAndImplicitIntegratorsAgree) {
   MachineSpec spec = reference();
-  spec.speed.end = 40000 * kRpm;
+  spec.speed.end = 40000 * kRpmToRadPerS;
   spec.speed.duration = 0.4;
   const auto model = make_runup_model(spec);
   RunupOptions o = options_for(spec);

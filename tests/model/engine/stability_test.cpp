@@ -24,8 +24,6 @@
 namespace turbodyn {
 namespace {
 
-constexpr double kRpm = kRpmToRadPerS;
-
 MachineSpec reference_ball() { return load_model(testing::source_dir() + "/examples/reference_ball.toml"); }
 
 TEST(Stability, SteadyStateTurnsAtTheQuasiStaticCageSpeed) {
@@ -33,7 +31,7 @@ TEST(Stability, SteadyStateTurnsAtTheQuasiStaticCageSpeed) {
   // cage speed of the quasi-static model (outer-race control, no friction but the gyroscopic traction), 100,000 rpm.
   // The element's own steady run agrees with the quasi-static orbit speed to 0.05 % (docs/ball-bearing.md); here
   // 0.3 % allows for the friction's slip.
-  constexpr double kSpeed = 100000 * kRpm, kTolerance = 0.003;
+  constexpr double kSpeed = 100000 * kRpmToRadPerS, kTolerance = 0.003;
   const MachineSpec spec = reference_ball();
   const StabilityPoint p = analyse_stability(spec, kSpeed);
   const BallBearingElement element("compressor", spec.bearings[0].ball, 0, 0.0);
@@ -51,7 +49,7 @@ TEST(Stability, ALubricatedBearingThatTheContinuationCannotStartIsFoundDirectlyA
   // the smallest entrainment speeds that not even the continuation's first step from rest (31 rpm) converges. The
   // steady state is then sought at the speed itself from the no-slip state; it is the rolling state: the cage turns
   // at the quasi-static cage speed (as in SteadyStateTurnsAtTheQuasiStaticCageSpeed, 0.3 % for the traction's slip).
-  constexpr double kSpeed = 100000 * kRpm, kTolerance = 0.003;
+  constexpr double kSpeed = 100000 * kRpmToRadPerS, kTolerance = 0.003;
   const MachineSpec spec = load_model(
       testing::source_dir() + "/examples/reference_ball.toml",
       {parse_override("bearings.compressor.traction_law=eyring"),
@@ -71,7 +69,7 @@ TEST(Stability, OnIsotropicLinearBearingsTheModesAreTheModalAnalysisOnes) {
   // examples/reference_linear.toml (k = 3e7 N/m, c = 100 N s/m, no states, no turning frame) at 60,000 rpm: the
   // linearisation of the run-up model's right-hand side is the rotor's own linear model, so its eigenvalues are the
   // modal analysis', up to the central differences' round-off.
-  constexpr double kSpeed = 60000 * kRpm, kTolerance = 1e-6;
+  constexpr double kSpeed = 60000 * kRpmToRadPerS, kTolerance = 1e-6;
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_linear.toml");
   const StabilityPoint p = analyse_stability(spec, kSpeed);
   EXPECT_EQ(p.frame_speed, 0.0);
@@ -93,7 +91,7 @@ TEST(Stability, RotorModesAtLowSpeedAreTheModalAnalysisOnes) {
   // frequency (190 Hz, 30 %). They are not equal: the race friction in its creep range ties the balls' tangential
   // motion to the races, which the quasi-static model (balls in their azimuth planes, no friction) leaves out;
   // measured +3 to +6 %, so 8 %.
-  constexpr double kSpeed = 30000 * kRpm, kTolerance = 0.08;
+  constexpr double kSpeed = 30000 * kRpmToRadPerS, kTolerance = 0.08;
   const MachineSpec spec = reference_ball();
   const StabilityPoint p = analyse_stability(spec, kSpeed);
   std::vector<double> full;  // signed housing-frame frequencies of the rotor modes below 1 kHz, ascending |f|
@@ -123,7 +121,7 @@ TEST(Stability, RaceFrictionDestabilisesAForwardWhirlAboveSixtyThousandRpm) {
   // "Linearised stability").
   constexpr double kRotorMotion = 0.01;
   const MachineSpec spec = reference_ball();
-  const StabilityPoint low = analyse_stability(spec, 30000 * kRpm);
+  const StabilityPoint low = analyse_stability(spec, 30000 * kRpmToRadPerS);
   for (const StabilityMode& m : low.modes) {
     if (m.grows())
       std::printf("[ 30,000 rpm ] growing: %.1f Hz, zeta %.3g, rotor share %.2e\n", m.frequency, m.damping_ratio,
@@ -132,7 +130,7 @@ TEST(Stability, RaceFrictionDestabilisesAForwardWhirlAboveSixtyThousandRpm) {
       EXPECT_FALSE(m.grows()) << m.frequency << " Hz";
     }
   }
-  const StabilityPoint high = analyse_stability(spec, 95000 * kRpm);
+  const StabilityPoint high = analyse_stability(spec, 95000 * kRpmToRadPerS);
   ASSERT_FALSE(high.modes.empty());
   const StabilityMode& top = high.modes.front();
   const double cage_hz = high.frame_speed / (2.0 * kPi);
@@ -159,7 +157,7 @@ TEST(Stability, TheBallSetsWaveGrowsOnlyWhereTheShaftCanMoveAtTheBearings) {
   // the balls' rolling speeds around the races and so the wave. Springs of 1e11 N/m from each bearing's shaft node
   // to the housing (10^4 x the bearings' own stiffness at speed, tilt left free) break that loop: at 60,000 rpm the
   // largest growth rate falls from 118 1/s to 2.5 1/s (measured), so below a tenth of the free shaft's.
-  constexpr double kSpeed = 60000 * kRpm, kHold = 1e11;
+  constexpr double kSpeed = 60000 * kRpmToRadPerS, kHold = 1e11;
   const MachineSpec free = reference_ball();
   MachineSpec held = free;
   for (const BearingSpec& ball : free.bearings) {
@@ -189,17 +187,17 @@ TEST(Stability, TheContinuationHalvesAStepThatFindsNoSteadyState) {
   // length. The regular steps are unchanged: the example's state at 95,000 rpm is the one before (the other tests).
   MachineSpec spec = reference_ball();
   for (BearingSpec& b : spec.bearings) b.ball.preload = 200.0;
-  const StabilityPoint p = analyse_stability(spec, 20000 * kRpm);
+  const StabilityPoint p = analyse_stability(spec, 20000 * kRpmToRadPerS);
   EXPECT_LT(p.residual, 1e-6);
   ASSERT_FALSE(p.modes.empty());
-  EXPECT_NEAR(p.frame_speed / (20000 * kRpm), 0.378, 0.01);  // the cage speed ratio at 200 N
+  EXPECT_NEAR(p.frame_speed / (20000 * kRpmToRadPerS), 0.378, 0.01);  // the cage speed ratio at 200 N
 }
 
 TEST(Stability, TheWhirlIsTheBearingsOwnAndRoundOffAtHighFrequencyIsDropped) {
   // A shaft 430 times stiffer (E = 9e13 Pa): the growing whirl near the cage frequency stays (docs/ball-bearing.md:
   // 630 Hz, 307 1/s at 95,000 rpm), so it is the bearings' own; the stiff shaft's bending modes at MHz, whose damping
   // ratios are round-off of -1e-5 to -6e-5, are not reported.
-  constexpr double kSpeed = 95000 * kRpm, kFrequencyMax = 4.0 * kSpeed / (2.0 * kPi);
+  constexpr double kSpeed = 95000 * kRpmToRadPerS, kFrequencyMax = 4.0 * kSpeed / (2.0 * kPi);
   MachineSpec spec = reference_ball();
   for (auto& [name, m] : spec.materials) {
     m.youngs_modulus = 9e13;
@@ -219,7 +217,7 @@ TEST(Stability, BallBearingsInADamperWhoseFilmIsTheSameInEveryDirection) {
   // examples/reference_ball_sfd.toml without its feed hole and supply pressure: the damper rings rest at the
   // centre, so the balls and cages turn as in the fixed-ring bearing (the same cage speed to round-off); the
   // example itself (a feed hole at the top, 4 bar) has no steady turning state and is refused.
-  constexpr double kSpeed = 60000 * kRpm;
+  constexpr double kSpeed = 60000 * kRpmToRadPerS;
   MachineSpec sfd = load_model(testing::source_dir() + "/examples/reference_ball_sfd.toml");
   EXPECT_THROW(analyse_stability(sfd, kSpeed), std::invalid_argument);
   for (BearingSpec& b : sfd.bearings) {
@@ -241,9 +239,9 @@ TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {
   // continuation from rest reaches at 60,000 rpm, and so are its modes (frequencies to 1e-6, growth rates to a tenth
   // of what the analysis counts as round-off, a damping ratio of 1e-6). A point of another machine is refused.
   const MachineSpec spec = reference_ball();
-  const StabilityPoint low = analyse_stability(spec, 45000 * kRpm);
-  const StabilityPoint rest = analyse_stability(spec, 60000 * kRpm),
-                       continued = analyse_stability(spec, 60000 * kRpm, {}, &low);
+  const StabilityPoint low = analyse_stability(spec, 45000 * kRpmToRadPerS);
+  const StabilityPoint rest = analyse_stability(spec, 60000 * kRpmToRadPerS),
+                       continued = analyse_stability(spec, 60000 * kRpmToRadPerS, {}, &low);
   EXPECT_NEAR(continued.frame_speed / rest.frame_speed, 1.0, 1e-9);
   EXPECT_LT(continued.residual, 1e-6);
   std::vector<const StabilityMode*> a, b;
@@ -270,15 +268,15 @@ TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {
   // same as `rest`, and marked.
   StabilityPoint spoilt = low;
   std::fill(spoilt.steady_state.begin(), spoilt.steady_state.end(), std::numeric_limits<double>::quiet_NaN());
-  const StabilityPoint anew = analyse_stability(spec, 60000 * kRpm, {}, &spoilt);
+  const StabilityPoint anew = analyse_stability(spec, 60000 * kRpmToRadPerS, {}, &spoilt);
   EXPECT_TRUE(anew.restarted);
   EXPECT_EQ(anew.frame_speed, rest.frame_speed);
   EXPECT_EQ(anew.modes.size(), rest.modes.size());
   const StabilityPoint other = analyse_stability(load_model(testing::source_dir() + "/tests/data/stability/"
                                                             "rigid_cross_coupled.toml"),
-                                                 10000 * kRpm);
-  EXPECT_THROW(analyse_stability(spec, 60000 * kRpm, {}, &other), std::logic_error);
-  EXPECT_THROW(analyse_stability(spec, 30000 * kRpm, {}, &low), std::logic_error);  // not below
+                                                 10000 * kRpmToRadPerS);
+  EXPECT_THROW(analyse_stability(spec, 60000 * kRpmToRadPerS, {}, &other), std::logic_error);
+  EXPECT_THROW(analyse_stability(spec, 30000 * kRpmToRadPerS, {}, &low), std::logic_error);  // not below
 }
 
 TEST(Stability, TheOnsetsHalvingsSayWhichFoundTheirSteadyStateAnewFromRest) {
@@ -288,21 +286,21 @@ TEST(Stability, TheOnsetsHalvingsSayWhichFoundTheirSteadyStateAnewFromRest) {
   // continue from it, and the onset is the same.
   const MachineSpec spec = reference_ball();
   const StabilityModeFilter filter{0.01, 0.0};
-  const StabilityPoint stable = analyse_stability(spec, 45000 * kRpm);
+  const StabilityPoint stable = analyse_stability(spec, 45000 * kRpmToRadPerS);
   ASSERT_FALSE(grows_counted(stable, filter));
   std::string error;
   std::vector<double> restarted;
-  const double onset = refine_stability_onset(spec, stable, 60000 * kRpm, filter, &error, &restarted);
+  const double onset = refine_stability_onset(spec, stable, 60000 * kRpmToRadPerS, filter, &error, &restarted);
   EXPECT_TRUE(error.empty()) << error;
   EXPECT_TRUE(restarted.empty());
-  EXPECT_GT(onset, 52500 * kRpm);
-  EXPECT_LT(onset, 56000 * kRpm);
+  EXPECT_GT(onset, 52500 * kRpmToRadPerS);
+  EXPECT_LT(onset, 56000 * kRpmToRadPerS);
   StabilityPoint spoilt = stable;
   std::fill(spoilt.steady_state.begin(), spoilt.steady_state.end(), std::numeric_limits<double>::quiet_NaN());
-  const double again = refine_stability_onset(spec, spoilt, 60000 * kRpm, filter, &error, &restarted);
+  const double again = refine_stability_onset(spec, spoilt, 60000 * kRpmToRadPerS, filter, &error, &restarted);
   EXPECT_TRUE(error.empty()) << error;
   ASSERT_EQ(restarted.size(), 1u);
-  EXPECT_DOUBLE_EQ(restarted[0], 52500 * kRpm);
+  EXPECT_DOUBLE_EQ(restarted[0], 52500 * kRpmToRadPerS);
   EXPECT_DOUBLE_EQ(again, onset);
 }
 
@@ -332,8 +330,9 @@ TEST(Stability, WithThePapersFrictionTheSteadyStateDoesNotDependOnTheContinuatio
   StabilityOptions half, twice;
   half.continuation_step_factor = 0.5;
   twice.continuation_step_factor = 2.0;  // the regular steps
-  const StabilityPoint p = analyse_stability(spec, 10000 * kRpm), q = analyse_stability(spec, 10000 * kRpm, half),
-                       r = analyse_stability(spec, 10000 * kRpm, twice);
+  const double speed = 10000 * kRpmToRadPerS;
+  const StabilityPoint p = analyse_stability(spec, speed), q = analyse_stability(spec, speed, half),
+                       r = analyse_stability(spec, speed, twice);
   const auto top = [](const StabilityPoint& x) { return x.modes.empty() ? 0.0 : x.modes.front().growth_rate; };
   std::printf("[ design 27, Eq. 23, 10,000 rpm ] cage ratio %.6f (half the steps %.6f, twice %.6f); largest growth "
               "rate %.1f 1/s (%.1f, %.1f)\n",
@@ -341,7 +340,7 @@ TEST(Stability, WithThePapersFrictionTheSteadyStateDoesNotDependOnTheContinuatio
   EXPECT_NEAR(p.frame_speed / q.frame_speed, 1.0, 1e-6);
   EXPECT_NEAR(top(p), top(q), 1.0);
   EXPECT_LT(top(p), 100.0);  // no divergence of the balls' slip
-  EXPECT_THROW(analyse_stability(spec, 10000 * kRpm, StabilityOptions{0.0, 0.0, 0.0}), std::logic_error);
+  EXPECT_THROW(analyse_stability(spec, 10000 * kRpmToRadPerS, StabilityOptions{0.0, 0.0, 0.0}), std::logic_error);
 }
 
 TEST(Stability, EachSpeedAndASweepFindTheBranchOfTheRollingStateARunTakes) {
@@ -360,12 +359,12 @@ TEST(Stability, EachSpeedAndASweepFindTheBranchOfTheRollingStateARunTakes) {
   const auto ratio = [](const StabilityPoint& p) { return p.frame_speed / p.speed; };
   std::vector<StabilityPoint> sweep;
   for (const double rpm : {10000.0, 20000.0, 30000.0, 40000.0, 50000.0})
-    sweep.push_back(analyse_stability(spec, rpm * kRpm, {}, sweep.empty() ? nullptr : &sweep.back()));
+    sweep.push_back(analyse_stability(spec, rpm * kRpmToRadPerS, {}, sweep.empty() ? nullptr : &sweep.back()));
   for (std::size_t k = 3; k < sweep.size(); ++k) {
     const StabilityPoint alone = analyse_stability(spec, sweep[k].speed);
-    std::printf("[ branch ] %.0f rpm: cage / rotor speed %.5f in the sweep, %.5f on its own\n", sweep[k].speed / kRpm,
-                ratio(sweep[k]), ratio(alone));
-    EXPECT_NEAR(ratio(alone), ratio(sweep[k]), 1e-6) << sweep[k].speed / kRpm << " rpm";
+    std::printf("[ branch ] %.0f rpm: cage / rotor speed %.5f in the sweep, %.5f on its own\n",
+                sweep[k].speed / kRpmToRadPerS, ratio(sweep[k]), ratio(alone));
+    EXPECT_NEAR(ratio(alone), ratio(sweep[k]), 1e-6) << sweep[k].speed / kRpmToRadPerS << " rpm";
   }
   EXPECT_NEAR(ratio(sweep[3]), 0.3886, 0.0005);  // 40,000 rpm; the other branch 0.3843
   EXPECT_NEAR(ratio(sweep[4]), 0.3910, 0.0005);  // 50,000 rpm; the other branch 0.3809
@@ -375,7 +374,7 @@ TEST(Stability, EachSpeedAndASweepFindTheBranchOfTheRollingStateARunTakes) {
 TEST(Stability, ElementsWithoutASteadyTurningStateAreRefused) {
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_floating_ring.toml");
   try {
-    analyse_stability(spec, 50000 * kRpm);
+    analyse_stability(spec, 50000 * kRpmToRadPerS);
     ADD_FAILURE() << "no error for floating rings";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("bearing '"), std::string::npos) << e.what();

@@ -24,8 +24,6 @@
 namespace turbodyn {
 namespace {
 
-constexpr double kRpm = kRpmToRadPerS;
-
 // Every point of every piece against the linear response at its speed: wheel radii (the major semi-axis of the
 // circular orbit) and phases, bearing forces.
 void expect_linear_response(const UnbalanceWhirl& nl, const Rotor& lin, double tolerance, double* worst) {
@@ -35,13 +33,14 @@ void expect_linear_response(const UnbalanceWhirl& nl, const Rotor& lin, double t
       for (std::size_t d = 0; d < lin.disks.size(); ++d) {
         const std::complex<double> x = r.q(lin.dof(lin.disks[d].node, kX)), y = r.q(lin.dof(lin.disks[d].node, kY));
         const double radius = major_semi_axis(x, y);
-        EXPECT_NEAR(p.disk_radius[d] / radius, 1.0, tolerance) << "disk " << d << " at " << p.speed / kRpm << " rpm";
+        EXPECT_NEAR(p.disk_radius[d] / radius, 1.0, tolerance)
+            << "disk " << d << " at " << p.speed / kRpmToRadPerS << " rpm";
         EXPECT_NEAR(std::remainder(p.disk_phase[d] - std::arg(x), 2 * M_PI), 0.0, tolerance);
         *worst = std::max(*worst, std::abs(p.disk_radius[d] / radius - 1.0));
       }
       for (std::size_t b = 0; b < lin.bearings.size(); ++b) {
         const double f = std::abs(r.bearing_fx[b]);
-        EXPECT_NEAR(p.bearing_force[b] / f, 1.0, tolerance) << "bearing " << b << " at " << p.speed / kRpm;
+        EXPECT_NEAR(p.bearing_force[b] / f, 1.0, tolerance) << "bearing " << b << " at " << p.speed / kRpmToRadPerS;
       }
     }
 }
@@ -57,8 +56,8 @@ TEST(UnbalanceWhirl, OnLinearBearingsItIsTheLinearResponse) {
   spec.bearings.at(1).linear.c[2] = {-50.0};  // cyx
   const Rotor rotor = build_rotor(spec);
   UnbalanceWhirlOptions o;
-  o.start_speed = 5000 * kRpm;
-  o.end_speed = 150000 * kRpm;
+  o.start_speed = 5000 * kRpmToRadPerS;
+  o.end_speed = 150000 * kRpmToRadPerS;
   const UnbalanceWhirl nl = nonlinear_unbalance_response(spec, rotor, o);
   ASSERT_EQ(nl.pieces.size(), 1u) << nl.pieces[0].stopped;
   EXPECT_TRUE(nl.covers_range);
@@ -67,7 +66,7 @@ TEST(UnbalanceWhirl, OnLinearBearingsItIsTheLinearResponse) {
   EXPECT_NEAR(nl.pieces[0].points.back().speed / o.end_speed, 1.0, 1e-12);
   double worst = 0.0;
   expect_linear_response(nl, rotor, 1e-6, &worst);
-  for (const UnbalanceWhirlPoint& p : nl.pieces[0].points) EXPECT_TRUE(p.stable) << p.speed / kRpm << " rpm";
+  for (const UnbalanceWhirlPoint& p : nl.pieces[0].points) EXPECT_TRUE(p.stable) << p.speed / kRpmToRadPerS << " rpm";
   std::printf("[ linear ] %zu points, largest difference %.2e\n", nl.pieces[0].points.size(), worst);
 }
 
@@ -84,8 +83,8 @@ TEST(UnbalanceWhirl, BallBearingsAtASmallUnbalanceAreTheLinearisedResponse) {
   Rotor lin = build_rotor(spec);
   add_ball_bearing_linearisations(spec, lin);
   UnbalanceWhirlOptions o;
-  o.start_speed = 10000 * kRpm;
-  o.end_speed = 80000 * kRpm;
+  o.start_speed = 10000 * kRpmToRadPerS;
+  o.end_speed = 80000 * kRpmToRadPerS;
   const UnbalanceWhirl nl = nonlinear_unbalance_response(spec, rotor, o);
   EXPECT_TRUE(nl.covers_range);
   // Undamped, the curve still climbs each resonance to large whirls (then a second piece comes down from the top
@@ -124,8 +123,8 @@ TEST(UnbalanceWhirl, ARigidSymmetricRotorFollowsItsBearingsLoadDeflectionCurve) 
   const Rotor rotor = build_rotor(spec);
   const double m = rotor.total_mass, U = 2 * 390e-9;
   UnbalanceWhirlOptions o;
-  o.start_speed = 20000 * kRpm;
-  o.end_speed = 100000 * kRpm;
+  o.start_speed = 20000 * kRpmToRadPerS;
+  o.end_speed = 100000 * kRpmToRadPerS;
   const UnbalanceWhirl nl = nonlinear_unbalance_response(spec, rotor, o);
   int checked = 0;
   double worst = 0.0, largest = 0.0;
@@ -137,9 +136,9 @@ TEST(UnbalanceWhirl, ARigidSymmetricRotorFollowsItsBearingsLoadDeflectionCurve) 
       const double a = std::cos(p.disk_phase[0] - M_PI / 2) > 0.0 ? r : -r;
       const double force = qs.load_deflection(p.speed, {r}).back().load;
       const double expected = 2.0 * force * (a / r) / (m * a + U);  // Omega^2
-      ASSERT_GT(expected, 0.0) << "at " << p.speed / kRpm << " rpm, radius " << r;
+      ASSERT_GT(expected, 0.0) << "at " << p.speed / kRpmToRadPerS << " rpm, radius " << r;
       const double e = std::sqrt(expected) / p.speed - 1.0;
-      EXPECT_NEAR(e, 0.0, 2e-3) << "at " << p.speed / kRpm << " rpm, radius " << r * 1e6 << " um";
+      EXPECT_NEAR(e, 0.0, 2e-3) << "at " << p.speed / kRpmToRadPerS << " rpm, radius " << r * 1e6 << " um";
       worst = std::max(worst, std::abs(e));
       largest = std::max(largest, r);
       ++checked;
@@ -161,8 +160,8 @@ TEST(UnbalanceWhirl, VariantTwosFirstCriticalFoldsIntoAHysteresisLoop) {
   const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball.toml");
   const Rotor rotor = build_rotor(spec);
   UnbalanceWhirlOptions o;
-  o.start_speed = 10000 * kRpm;
-  o.end_speed = 40000 * kRpm;
+  o.start_speed = 10000 * kRpmToRadPerS;
+  o.end_speed = 40000 * kRpmToRadPerS;
   const UnbalanceWhirl nl = nonlinear_unbalance_response(spec, rotor, o);
   ASSERT_FALSE(nl.pieces.empty());
   EXPECT_TRUE(nl.covers_range);

@@ -29,7 +29,7 @@ struct ExampleDamper {
 };
 
 ExampleDamper example_damper() {
-  const MachineSpec spec = load_model(testing::source_dir() + "/examples/reference_ball_sfd.toml");
+  const MachineSpec spec = load_model(turbodyn::testing::source_dir() + "/examples/reference_ball_sfd.toml");
   const DamperSpec& d = spec.bearings.at(0).damper;
   ExampleDamper e;
   e.geometry = film_geometry(d, e.options);

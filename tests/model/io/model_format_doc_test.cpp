@@ -20,10 +20,11 @@
 namespace turbodyn {
 namespace {
 
-std::string source_dir() { return TURBODYN_SOURCE_DIR; }
+// The repository (docs/, examples/).
+const std::string kSourceDir = TURBODYN_SOURCE_DIR;
 
 std::string read_doc() {
-  std::ifstream in(source_dir() + "/docs/model-format.md");
+  std::ifstream in(kSourceDir + "/docs/model-format.md");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -139,14 +140,14 @@ std::string lines(const std::vector<std::string>& v) {
 }
 
 TEST(ModelFormatDoc, EveryAcceptedKeyIsDocumented) {
-  const std::vector<std::string> accepted = accepted_model_keys(source_dir() + "/examples");
+  const std::vector<std::string> accepted = accepted_model_keys(kSourceDir + "/examples");
   const std::vector<std::string> missing = undocumented(accepted, read_doc());
   EXPECT_TRUE(missing.empty()) << "keys the loader accepts but docs/model-format.md does not document:"
                                << lines(missing);
 }
 
 TEST(ModelFormatDoc, EveryDocumentedKeyIsAccepted) {
-  const std::vector<std::string> accepted = accepted_model_keys(source_dir() + "/examples");
+  const std::vector<std::string> accepted = accepted_model_keys(kSourceDir + "/examples");
   const std::vector<std::string> stale = not_accepted(accepted, read_doc());
   EXPECT_TRUE(stale.empty()) << "keys docs/model-format.md documents but the loader does not accept there:"
                              << lines(stale);
@@ -155,7 +156,7 @@ TEST(ModelFormatDoc, EveryDocumentedKeyIsAccepted) {
 // The recorded keys reach every kind of table: if the examples stop covering one, this says so instead of the
 // check above passing on fewer keys.
 TEST(ModelFormatDoc, RecordedKeysCoverEveryTableAndBearingType) {
-  const std::vector<std::string> accepted = accepted_model_keys(source_dir() + "/examples");
+  const std::vector<std::string> accepted = accepted_model_keys(kSourceDir + "/examples");
   std::set<std::string> tables;
   for (const std::string& path : accepted) tables.insert(split_key(path).first);
   for (const char* t : {"", "materials.NAME", "shaft[]", "mesh", "damping", "disks.NAME", "bearings.NAME[type=linear]",
@@ -171,7 +172,7 @@ TEST(ModelFormatDoc, RecordedKeysCoverEveryTableAndBearingType) {
 // The check fails when a key is taken out of the documentation: drop the row of the ball bearing's preload and
 // the floating ring's drill-hole row, and the checker names exactly the keys of those rows.
 TEST(ModelFormatDoc, RemovingARowFromTheDocumentationIsCaught) {
-  const std::vector<std::string> accepted = accepted_model_keys(source_dir() + "/examples");
+  const std::vector<std::string> accepted = accepted_model_keys(kSourceDir + "/examples");
   const std::string doc = read_doc();
   ASSERT_TRUE(undocumented(accepted, doc).empty());
   std::istringstream in(doc);

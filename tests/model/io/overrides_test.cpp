@@ -20,12 +20,11 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-std::string example(const std::string& name) { return testing::source_dir() + "/examples/" + name; }
+using testing::example;
 
 // The message of the ModelError `f` throws ("" if none).
 template <class F>
-std::string error_of(F&& f) {
+std::string override_error_of(F&& f) {
   try {
     f();
   } catch (const ModelError& e) {
@@ -73,13 +72,13 @@ TEST(Overrides, GrammarDottedKeysAndIndices) {
   const std::vector<OverrideStep> d = override_steps({"bearings.compressor.damper.clearance", "60 um"});
   ASSERT_EQ(d.size(), 4u);
   EXPECT_EQ(d[3].key, "clearance");
-  EXPECT_THAT(error_of([] { parse_override("no-equals-sign"); }), HasSubstr("expected PATH=VALUE"));
-  EXPECT_THAT(error_of([] { parse_override("=1"); }), HasSubstr("path before '=' is empty"));
-  EXPECT_THAT(error_of([] { parse_override("speed.end="); }), HasSubstr("value after '=' is empty"));
+  EXPECT_THAT(override_error_of([] { parse_override("no-equals-sign"); }), HasSubstr("expected PATH=VALUE"));
+  EXPECT_THAT(override_error_of([] { parse_override("=1"); }), HasSubstr("path before '=' is empty"));
+  EXPECT_THAT(override_error_of([] { parse_override("speed.end="); }), HasSubstr("value after '=' is empty"));
 }
 
 TEST(Overrides, BadIndicesNameTheOverrideAndTheCause) {
-  auto steps_error = [](const std::string& path) { return error_of([&] { override_steps({path, "1"}); }); };
+  auto steps_error = [](const std::string& path) { return override_error_of([&] { override_steps({path, "1"}); }); };
   EXPECT_THAT(steps_error("shaft[x].length"), AllOf(HasSubstr("--set shaft[x].length=1"), HasSubstr("not a whole number")));
   EXPECT_THAT(steps_error("shaft[-1].length"), AllOf(HasSubstr("--set shaft[-1].length=1"), HasSubstr("negative")));
   EXPECT_THAT(steps_error("shaft[].length"), HasSubstr("no index"));
@@ -93,11 +92,11 @@ TEST(Overrides, BadIndicesNameTheOverrideAndTheCause) {
   const std::string f = example("reference_linear.toml");
   for (auto&& run : {std::function<void()>([&] { load_model(f, {{"shaft[1].length", "1"}}); }),
                      std::function<void()>([&] { patched_model(f, {{"shaft[1].length", "1"}}, ""); })})
-    EXPECT_THAT(error_of(run), AllOf(HasSubstr("--set shaft[1].length=1"), HasSubstr("index 1 is out of range"),
-                                     HasSubstr("has 1 entries")));
-  EXPECT_THAT(error_of([&] { patched_model(f, {{"speed[0].end", "1"}}, ""); }),
+    EXPECT_THAT(override_error_of(run), AllOf(HasSubstr("--set shaft[1].length=1"),
+                                              HasSubstr("index 1 is out of range"), HasSubstr("has 1 entries")));
+  EXPECT_THAT(override_error_of([&] { patched_model(f, {{"speed[0].end", "1"}}, ""); }),
               AllOf(HasSubstr("--set speed[0].end=1"), HasSubstr("'speed' is not an array")));
-  EXPECT_THAT(error_of([&] { load_model(f, {{"shaft[x].length", "1"}}); }), HasSubstr("not a whole number"));
+  EXPECT_THAT(override_error_of([&] { load_model(f, {{"shaft[x].length", "1"}}); }), HasSubstr("not a whole number"));
 }
 
 TEST(Overrides, WriterKeepsCommentsAndLayout) {
@@ -144,7 +143,7 @@ TEST(Overrides, PatchedFileLoadsToTheSameMachine) {
     EXPECT_EQ(values_of(patched), values_of(direct));
     EXPECT_EQ(names_of(patched), names_of(direct));
   }
-  EXPECT_THAT(error_of([&] { write_patched_model(base, {}, "", dir / "no_such_dir" / "x.toml"); }),
+  EXPECT_THAT(override_error_of([&] { write_patched_model(base, {}, "", dir / "no_such_dir" / "x.toml"); }),
               HasSubstr("cannot write"));
 }
 

@@ -109,7 +109,7 @@ void expect_channels(const TimeSeriesData& data, const std::vector<Channel>& exp
   }
 }
 
-std::string error_of(const std::function<void()>& f) {
+std::string timeseries_error_of(const std::function<void()>& f) {
   try {
     f();
   } catch (const TimeSeriesError& e) {
@@ -360,14 +360,14 @@ TEST_F(TimeSeriesFile, CsvColumnNames) {
 
 TEST_F(TimeSeriesFile, CsvErrors) {
   const std::vector<Channel> channels = {{"x", "m", ""}};
-  EXPECT_THAT(error_of([&] { write_csv(path("a.csv"), channels, {0.0, 1.0}, {{1.0}}); }),
+  EXPECT_THAT(timeseries_error_of([&] { write_csv(path("a.csv"), channels, {0.0, 1.0}, {{1.0}}); }),
               AllOf(HasSubstr("a.csv"), HasSubstr("column 0 ('x') has 1 rows, time has 2")));
-  EXPECT_THAT(error_of([&] { write_csv(path("a.csv"), channels, {0.0}, {}); }),
+  EXPECT_THAT(timeseries_error_of([&] { write_csv(path("a.csv"), channels, {0.0}, {}); }),
               HasSubstr("1 channels but 0 columns"));
-  EXPECT_THAT(error_of([&] { write_csv("/nonexistent/dir/x.csv", channels, {0.0}, {{1.0}}); }),
+  EXPECT_THAT(timeseries_error_of([&] { write_csv("/nonexistent/dir/x.csv", channels, {0.0}, {{1.0}}); }),
               AllOf(HasSubstr("'/nonexistent/dir/x.csv'"), HasSubstr("cannot create the file"),
                     HasSubstr("does not exist")));
-  EXPECT_THAT(error_of([&] { write_csv(path("a.csv"), {{"x,y", "m", ""}}, {0.0}, {{1.0}}); }),
+  EXPECT_THAT(timeseries_error_of([&] { write_csv(path("a.csv"), {{"x,y", "m", ""}}, {0.0}, {{1.0}}); }),
               HasSubstr("contains ','"));
 }
 
@@ -375,12 +375,12 @@ TEST_F(TimeSeriesFile, CsvErrors) {
 // Errors
 
 TEST_F(TimeSeriesFile, UnwritablePath) {
-  EXPECT_THAT(error_of([] { Hdf5TimeSeriesWriter writer("/nonexistent/dir/x.h5", three_channels()); }),
+  EXPECT_THAT(timeseries_error_of([] { Hdf5TimeSeriesWriter writer("/nonexistent/dir/x.h5", three_channels()); }),
               AllOf(HasSubstr("'/nonexistent/dir/x.h5'"), HasSubstr("cannot create the file"),
                     HasSubstr("directory '/nonexistent/dir' does not exist")));
   // A path that is a directory: HDF5's own error stack explains it, and nothing is printed on stderr.
   ::testing::internal::CaptureStderr();
-  const std::string message = error_of([&] { Hdf5TimeSeriesWriter writer(dir_, three_channels()); });
+  const std::string message = timeseries_error_of([&] { Hdf5TimeSeriesWriter writer(dir_, three_channels()); });
   const std::string printed = ::testing::internal::GetCapturedStderr();
   EXPECT_THAT(message, AllOf(HasSubstr(dir_.string()), HasSubstr("cannot create the file"), HasSubstr("H5Fcreate")));
   EXPECT_EQ(printed, "");
@@ -390,8 +390,8 @@ TEST_F(TimeSeriesFile, HdfErrorPrintingIsRestored) {
   H5E_auto2_t before_func = nullptr;
   void* before_data = nullptr;
   ASSERT_GE(H5Eget_auto2(H5E_DEFAULT, &before_func, &before_data), 0);
-  error_of([] { Hdf5TimeSeriesWriter writer("/nonexistent/dir/x.h5", three_channels()); });
-  error_of([&] { read_hdf5_timeseries(path("missing.h5")); });
+  timeseries_error_of([] { Hdf5TimeSeriesWriter writer("/nonexistent/dir/x.h5", three_channels()); });
+  timeseries_error_of([&] { read_hdf5_timeseries(path("missing.h5")); });
   H5E_auto2_t after_func = nullptr;
   void* after_data = nullptr;
   ASSERT_GE(H5Eget_auto2(H5E_DEFAULT, &after_func, &after_data), 0);
@@ -401,7 +401,7 @@ TEST_F(TimeSeriesFile, HdfErrorPrintingIsRestored) {
 
 TEST_F(TimeSeriesFile, InvalidChannelNames) {
   auto error_for = [&](const std::string& name) {
-    return error_of([&] {
+    return timeseries_error_of([&] {
       Hdf5TimeSeriesWriter writer(path("x.h5"), {{"ok", "m", ""}, {name, "m", ""}});
     });
   };
@@ -418,14 +418,14 @@ TEST_F(TimeSeriesFile, InvalidChannelNames) {
 }
 
 TEST_F(TimeSeriesFile, DuplicateChannelNames) {
-  EXPECT_THAT(error_of([&] {
+  EXPECT_THAT(timeseries_error_of([&] {
                 Hdf5TimeSeriesWriter writer(path("x.h5"), {{"a", "m", ""}, {"b", "m", ""}, {"a", "N", ""}});
               }),
               HasSubstr("duplicate channel name 'a' (channels 0 and 2)"));
 }
 
 TEST_F(TimeSeriesFile, ZeroBufferRows) {
-  EXPECT_THAT(error_of([&] { Hdf5TimeSeriesWriter writer(path("x.h5"), three_channels(), 0); }),
+  EXPECT_THAT(timeseries_error_of([&] { Hdf5TimeSeriesWriter writer(path("x.h5"), three_channels(), 0); }),
               HasSubstr("buffer_rows must be at least 1"));
 }
 
@@ -434,33 +434,35 @@ TEST_F(TimeSeriesFile, UseAfterFinish) {
   append_samples(writer, 0, 5);
   writer.finish(true);
   const std::array<double, 3> row = {1.0, 2.0, 3.0};
-  EXPECT_THAT(error_of([&] { writer.append(1.0, row.data()); }),
+  EXPECT_THAT(timeseries_error_of([&] { writer.append(1.0, row.data()); }),
               AllOf(HasSubstr("x.h5"), HasSubstr("append() after finish()")));
-  EXPECT_THAT(error_of([&] { writer.flush(); }), HasSubstr("flush() after finish()"));
-  EXPECT_THAT(error_of([&] { writer.finish(true); }), HasSubstr("finish() after finish()"));
-  EXPECT_THAT(error_of([&] { writer.set_attribute("a", 1.0); }), HasSubstr("set_attribute() after finish()"));
+  EXPECT_THAT(timeseries_error_of([&] { writer.flush(); }), HasSubstr("flush() after finish()"));
+  EXPECT_THAT(timeseries_error_of([&] { writer.finish(true); }), HasSubstr("finish() after finish()"));
+  EXPECT_THAT(timeseries_error_of([&] { writer.set_attribute("a", 1.0); }),
+              HasSubstr("set_attribute() after finish()"));
   EXPECT_EQ(read_hdf5_timeseries(path("x.h5")).time.size(), 5u);
 }
 
 TEST_F(TimeSeriesFile, ReservedAttributeNames) {
   Hdf5TimeSeriesWriter writer(path("x.h5"), three_channels());
-  EXPECT_THAT(error_of([&] { writer.set_attribute("complete", 1.0); }), HasSubstr("'complete' is reserved"));
-  EXPECT_THAT(error_of([&] { writer.set_attribute("software", "other"); }), HasSubstr("'software' is reserved"));
-  EXPECT_THAT(error_of([&] { writer.set_attribute("", "x"); }), HasSubstr("must not be empty"));
+  EXPECT_THAT(timeseries_error_of([&] { writer.set_attribute("complete", 1.0); }), HasSubstr("'complete' is reserved"));
+  EXPECT_THAT(timeseries_error_of([&] { writer.set_attribute("software", "other"); }),
+              HasSubstr("'software' is reserved"));
+  EXPECT_THAT(timeseries_error_of([&] { writer.set_attribute("", "x"); }), HasSubstr("must not be empty"));
 }
 
 TEST_F(TimeSeriesFile, ReadErrors) {
-  EXPECT_THAT(error_of([&] { read_hdf5_timeseries(path("missing.h5")); }),
+  EXPECT_THAT(timeseries_error_of([&] { read_hdf5_timeseries(path("missing.h5")); }),
               AllOf(HasSubstr("missing.h5"), HasSubstr("does not exist")));
 
   std::ofstream(path("text.h5")) << "time_s,x_m\n0,1\n";
-  EXPECT_THAT(error_of([&] { read_hdf5_timeseries(path("text.h5")); }),
+  EXPECT_THAT(timeseries_error_of([&] { read_hdf5_timeseries(path("text.h5")); }),
               AllOf(HasSubstr("text.h5"), HasSubstr("cannot open the file as HDF5"), HasSubstr("H5Fopen")));
 
   const hid_t other = H5Fcreate(path("other.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   ASSERT_GE(other, 0);
   H5Fclose(other);
-  EXPECT_THAT(error_of([&] { read_hdf5_timeseries(path("other.h5")); }), HasSubstr("no dataset '/time'"));
+  EXPECT_THAT(timeseries_error_of([&] { read_hdf5_timeseries(path("other.h5")); }), HasSubstr("no dataset '/time'"));
 }
 
 }  // namespace

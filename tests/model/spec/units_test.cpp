@@ -37,7 +37,7 @@ void expect_parses_close(std::initializer_list<Parse> cases) {
 }
 
 // The message of the UnitError parse_quantity throws; fails the test if it throws nothing.
-std::string error_of(std::string_view text, const Dimension& expected) {
+std::string unit_error_of(std::string_view text, const Dimension& expected) {
   try {
     const double value = parse_quantity(text, expected);
     ADD_FAILURE() << "'" << text << "' parsed as " << value << ", expected a UnitError";
@@ -216,8 +216,8 @@ TEST(AngleRule, RadiansToCycles) {
 
 TEST(AngleRule, OnlyBetweenRatesOfTime) {
   // A torsional stiffness written "N*m" or a plain number written in degrees is a mistake, not a count of turns.
-  EXPECT_THAT(error_of("1 N*m", dim::rotational_stiffness), HasSubstr("expected a rotational stiffness"));
-  EXPECT_THAT(error_of("90 deg", dim::dimensionless), HasSubstr("expected a dimensionless number"));
+  EXPECT_THAT(unit_error_of("1 N*m", dim::rotational_stiffness), HasSubstr("expected a rotational stiffness"));
+  EXPECT_THAT(unit_error_of("90 deg", dim::dimensionless), HasSubstr("expected a dimensionless number"));
   expect_close(parse_quantity("1 rev", dim::angle), 2 * pi);
   expect_close(parse_quantity("60 rpm/s", dim::angular_acceleration), 2 * pi);
 }
@@ -234,78 +234,79 @@ TEST(AngleRule, QuantitiesWithoutAnglesUnchanged) {
 // Errors
 
 TEST(ParseQuantityErrors, Empty) {
-  EXPECT_THAT(error_of("", dim::length), AllOf(HasSubstr("empty"), HasSubstr("''"), HasSubstr("a length (m)")));
-  EXPECT_THAT(error_of("   ", dim::length), AllOf(HasSubstr("empty"), HasSubstr("a length (m)")));
+  EXPECT_THAT(unit_error_of("", dim::length), AllOf(HasSubstr("empty"), HasSubstr("''"), HasSubstr("a length (m)")));
+  EXPECT_THAT(unit_error_of("   ", dim::length), AllOf(HasSubstr("empty"), HasSubstr("a length (m)")));
 }
 
 TEST(ParseQuantityErrors, MissingNumber) {
-  EXPECT_THAT(error_of("um", dim::length),
+  EXPECT_THAT(unit_error_of("um", dim::length),
               AllOf(HasSubstr("missing number"), HasSubstr("'um'"), HasSubstr("a length (m)")));
-  EXPECT_THAT(error_of("N/m", dim::stiffness),
+  EXPECT_THAT(unit_error_of("N/m", dim::stiffness),
               AllOf(HasSubstr("missing number"), HasSubstr("'N/m'"), HasSubstr("a stiffness (N/m)")));
 }
 
 TEST(ParseQuantityErrors, Garbage) {
-  EXPECT_THAT(error_of("fifteen um", dim::length),
+  EXPECT_THAT(unit_error_of("fifteen um", dim::length),
               AllOf(HasSubstr("'fifteen um'"), HasSubstr("does not start with a number"), HasSubstr("a length (m)")));
-  EXPECT_THAT(error_of("++3", dim::length), AllOf(HasSubstr("'++3'"), HasSubstr("a length (m)")));
-  EXPECT_THAT(error_of("+-3", dim::length), AllOf(HasSubstr("'+-3'"), HasSubstr("a length (m)")));
-  EXPECT_THAT(error_of("- 3", dim::length), HasSubstr("'- 3'"));
-  EXPECT_THAT(error_of("15 m$", dim::length), AllOf(HasSubstr("unexpected '$'"), HasSubstr("'15 m$'")));
-  EXPECT_THAT(error_of("15 N m", dim::moment),
+  EXPECT_THAT(unit_error_of("++3", dim::length), AllOf(HasSubstr("'++3'"), HasSubstr("a length (m)")));
+  EXPECT_THAT(unit_error_of("+-3", dim::length), AllOf(HasSubstr("'+-3'"), HasSubstr("a length (m)")));
+  EXPECT_THAT(unit_error_of("- 3", dim::length), HasSubstr("'- 3'"));
+  EXPECT_THAT(unit_error_of("15 m$", dim::length), AllOf(HasSubstr("unexpected '$'"), HasSubstr("'15 m$'")));
+  EXPECT_THAT(unit_error_of("15 N m", dim::moment),
               AllOf(HasSubstr("missing '*' or '/'"), HasSubstr("'15 N m'"), HasSubstr("a moment (N*m)")));
-  EXPECT_THAT(error_of("15 m*", dim::area), AllOf(HasSubstr("unit missing after '*'"), HasSubstr("'15 m*'")));
-  EXPECT_THAT(error_of("15 m/", dim::length), AllOf(HasSubstr("unit missing after '/'"), HasSubstr("'15 m/'")));
-  EXPECT_THAT(error_of("15 m**m", dim::area), HasSubstr("unexpected '*'"));
-  EXPECT_THAT(error_of("15 1", dim::dimensionless), HasSubstr("leading 1 must be followed by '/'"));
-  EXPECT_THAT(error_of("3 m2", dim::area), AllOf(HasSubstr("'3 m2'"), HasSubstr("m^2")));
-  EXPECT_THAT(error_of("15 um um", dim::length), HasSubstr("missing '*' or '/'"));
+  EXPECT_THAT(unit_error_of("15 m*", dim::area), AllOf(HasSubstr("unit missing after '*'"), HasSubstr("'15 m*'")));
+  EXPECT_THAT(unit_error_of("15 m/", dim::length), AllOf(HasSubstr("unit missing after '/'"), HasSubstr("'15 m/'")));
+  EXPECT_THAT(unit_error_of("15 m**m", dim::area), HasSubstr("unexpected '*'"));
+  EXPECT_THAT(unit_error_of("15 1", dim::dimensionless), HasSubstr("leading 1 must be followed by '/'"));
+  EXPECT_THAT(unit_error_of("3 m2", dim::area), AllOf(HasSubstr("'3 m2'"), HasSubstr("m^2")));
+  EXPECT_THAT(unit_error_of("15 um um", dim::length), HasSubstr("missing '*' or '/'"));
 }
 
 TEST(ParseQuantityErrors, NonFinite) {
   for (const char* text : {"nan", "inf", "-inf", "infinity", "nan m", "inf um"}) {
-    EXPECT_THAT(error_of(text, dim::length),
+    EXPECT_THAT(unit_error_of(text, dim::length),
                 AllOf(HasSubstr("'" + std::string(text) + "'"), HasSubstr("finite"), HasSubstr("a length (m)")))
         << text;
   }
-  EXPECT_THAT(error_of("1e999 m", dim::length), AllOf(HasSubstr("out of range"), HasSubstr("'1e999 m'")));
-  EXPECT_THAT(error_of("1e300 GPa^2", dim::pressure * dim::pressure), HasSubstr("out of range"));
+  EXPECT_THAT(unit_error_of("1e999 m", dim::length), AllOf(HasSubstr("out of range"), HasSubstr("'1e999 m'")));
+  EXPECT_THAT(unit_error_of("1e300 GPa^2", dim::pressure * dim::pressure), HasSubstr("out of range"));
 }
 
 TEST(ParseQuantityErrors, UnknownUnitSuggestsCloseOnes) {
-  const std::string message = error_of("15 umm", dim::length);
+  const std::string message = unit_error_of("15 umm", dim::length);
   EXPECT_THAT(message,
               AllOf(HasSubstr("unknown unit 'umm'"), HasSubstr("'15 umm'"), HasSubstr("a length (m)"),
                     HasSubstr("'um'"), HasSubstr("'mm'"), HasSubstr("known units: m, "), Not(HasSubstr("'um*m'"))));
 
-  EXPECT_THAT(error_of("150000 rmp", dim::angular_speed), AllOf(HasSubstr("'rmp'"), HasSubstr("did you mean 'rpm'")));
-  EXPECT_THAT(error_of("3 mpa", dim::pressure), HasSubstr("did you mean 'mPa'"));
-  EXPECT_THAT(error_of("3 HZ", dim::frequency), HasSubstr("did you mean 'Hz'"));
-  EXPECT_THAT(error_of("1000 Nm", dim::moment), HasSubstr("did you mean 'N*m'"));
-  EXPECT_THAT(error_of("3 RPM", dim::angular_speed), HasSubstr("did you mean 'rpm'"));
-  EXPECT_THAT(error_of("0.2 kgmm", dim::unbalance), HasSubstr("did you mean 'kg*mm'"));
-  EXPECT_THAT(error_of("2 cg", dim::mass), AllOf(HasSubstr("unknown unit 'cg'"), HasSubstr("c only in cm")));
-  EXPECT_THAT(error_of("2 kmin", dim::time), HasSubstr("unknown unit 'kmin'"));  // no prefixes on minutes
+  EXPECT_THAT(unit_error_of("150000 rmp", dim::angular_speed),
+              AllOf(HasSubstr("'rmp'"), HasSubstr("did you mean 'rpm'")));
+  EXPECT_THAT(unit_error_of("3 mpa", dim::pressure), HasSubstr("did you mean 'mPa'"));
+  EXPECT_THAT(unit_error_of("3 HZ", dim::frequency), HasSubstr("did you mean 'Hz'"));
+  EXPECT_THAT(unit_error_of("1000 Nm", dim::moment), HasSubstr("did you mean 'N*m'"));
+  EXPECT_THAT(unit_error_of("3 RPM", dim::angular_speed), HasSubstr("did you mean 'rpm'"));
+  EXPECT_THAT(unit_error_of("0.2 kgmm", dim::unbalance), HasSubstr("did you mean 'kg*mm'"));
+  EXPECT_THAT(unit_error_of("2 cg", dim::mass), AllOf(HasSubstr("unknown unit 'cg'"), HasSubstr("c only in cm")));
+  EXPECT_THAT(unit_error_of("2 kmin", dim::time), HasSubstr("unknown unit 'kmin'"));  // no prefixes on minutes
   // The message quotes the unit as written, micro sign included.
-  EXPECT_THAT(error_of("15 \u00B5mm", dim::length), HasSubstr("unknown unit '\u00B5mm'"));
-  EXPECT_THAT(error_of("15 xyzzy", dim::length),
+  EXPECT_THAT(unit_error_of("15 \u00B5mm", dim::length), HasSubstr("unknown unit '\u00B5mm'"));
+  EXPECT_THAT(unit_error_of("15 xyzzy", dim::length),
               AllOf(HasSubstr("unknown unit 'xyzzy'"), Not(HasSubstr("did you mean"))));
 }
 
 TEST(ParseQuantityErrors, DimensionMismatch) {
-  EXPECT_EQ(error_of("15 kg", dim::length), "'15 kg' is a mass (kg), expected a length (m)");
-  EXPECT_EQ(error_of("2e7 N", dim::stiffness), "'2e7 N' is a force (N), expected a stiffness (N/m)");
-  EXPECT_EQ(error_of("3 rad", dim::angular_speed), "'3 rad' is an angle (rad), expected an angular speed (rad/s)");
-  EXPECT_EQ(error_of("90 degC", dim::length), "'90 degC' is a temperature (K), expected a length (m)");
-  EXPECT_EQ(error_of("1 Hz", dim::dimensionless),
+  EXPECT_EQ(unit_error_of("15 kg", dim::length), "'15 kg' is a mass (kg), expected a length (m)");
+  EXPECT_EQ(unit_error_of("2e7 N", dim::stiffness), "'2e7 N' is a force (N), expected a stiffness (N/m)");
+  EXPECT_EQ(unit_error_of("3 rad", dim::angular_speed), "'3 rad' is an angle (rad), expected an angular speed (rad/s)");
+  EXPECT_EQ(unit_error_of("90 degC", dim::length), "'90 degC' is a temperature (K), expected a length (m)");
+  EXPECT_EQ(unit_error_of("1 Hz", dim::dimensionless),
             "'1 Hz' is an angular speed (rad/s), expected a dimensionless number (1)");
-  EXPECT_EQ(error_of("1 m*K", dim::length), "'1 m*K' is a quantity in m*K, expected a length (m)");
+  EXPECT_EQ(unit_error_of("1 m*K", dim::length), "'1 m*K' is a quantity in m*K, expected a length (m)");
 }
 
 TEST(ParseQuantityErrors, CelsiusOnlyAsWholeUnit) {
   for (const char* text : {"1 degC/s", "1 N/degC", "1 degC^2", "1 1/degC", "1 \u00B0C/s"}) {
     EXPECT_THAT(
-        error_of(text, dim::temperature / dim::time),
+        unit_error_of(text, dim::temperature / dim::time),
         AllOf(HasSubstr("only allowed as the whole unit"), HasSubstr("'" + std::string(text) + "'"), HasSubstr("in K")))
         << text;
   }
@@ -313,7 +314,7 @@ TEST(ParseQuantityErrors, CelsiusOnlyAsWholeUnit) {
 
 TEST(ParseQuantityErrors, ExponentMustBeInteger) {
   for (const char* text : {"1 m^2.5", "1 m^x", "1 m^", "1 m^2,5", "1 m^1000", "1 m^+-2", "1 m^ 2"}) {
-    EXPECT_THAT(error_of(text, dim::area), AllOf(HasSubstr("must be an integer"),
+    EXPECT_THAT(unit_error_of(text, dim::area), AllOf(HasSubstr("must be an integer"),
                                                  HasSubstr("'" + std::string(text) + "'"), HasSubstr("an area (m^2)")))
         << text;
   }

@@ -12,13 +12,13 @@
 #include "model/io/model_file.h"
 #include "tests/support/ball_bearing_fixtures.h"
 #include "tests/support/test_support.h"
+#include "model/spec/constants.h"
 
 namespace turbodyn {
 namespace {
 
 using testing::deep_groove_reference;
 
-constexpr double kRpm = 2.0 * M_PI / 60.0;
 
 // The bearing of examples/reference_ball.toml (the compressor-side one; the turbine side is its mirror image).
 BallBearingSpec example_bearing() {
@@ -171,7 +171,7 @@ TEST(BallBearingQuasiStatic, MatchesAnIndependentJonesHarrisCalculation) {
   const BallBearingElement e("ref", s, 0, 0.0);
   const BallBearingQuasiStatic qs(e);
   const JonesHarris jh{s, e.inner_contact().stiffness, e.outer_contact().stiffness};
-  const std::vector<BallBearingEquilibrium> sw = qs.sweep({0.0, 100000 * kRpm}, Eigen::Vector3d::Zero());
+  const std::vector<BallBearingEquilibrium> sw = qs.sweep({0.0, 100000 * kRpmToRadPerS}, Eigen::Vector3d::Zero());
   for (int k = 0; k < 2; ++k) {
     const BallBearingEquilibrium& r = sw[k];
     const double tol = k == 0 ? kAtRest : kAtSpeed;
@@ -189,14 +189,14 @@ TEST(BallBearingQuasiStatic, MatchesAnIndependentJonesHarrisCalculation) {
     EXPECT_NEAR(-s.side * r.outer_ring_axial / ref.travel, 1.0, tol);
     std::printf("[ jones-harris ] %6.0f rpm: Q_i %.3f (%.3f) N, Q_o %.3f (%.3f) N, a_i %.3f (%.3f) deg, a_o %.3f"
                 " (%.3f) deg, k_xx %.5g (%.5g) N/m, k_yy %.5g, outer travel %.4f (%.4f) um, cage ratio %.5f\n",
-                r.speed / kRpm, r.balls[0].inner_load, ref.balls[0].Qi, r.balls[0].outer_load, ref.balls[0].Qo,
+                r.speed / kRpmToRadPerS, r.balls[0].inner_load, ref.balls[0].Qi, r.balls[0].outer_load, ref.balls[0].Qo,
                 r.balls[0].inner_angle * 180 / M_PI, ref.balls[0].ai * 180 / M_PI, r.balls[0].outer_angle * 180 / M_PI,
                 ref.balls[0].ao * 180 / M_PI, r.stiffness(0, 0), k_ref, r.stiffness(1, 1),
                 -s.side * r.outer_ring_axial * 1e6, ref.travel * 1e6, r.speed > 0 ? r.cage_speed / r.speed : 0.0);
   }
   // Under a radial load the balls differ: 100 N along +x at 100,000 rpm, ball by ball, at the solver's inner-ring
   // displacement and tilt (an angular-contact bearing tilts under a radial load when free to).
-  const BallBearingEquilibrium r = qs.solve(100000 * kRpm, Eigen::Vector3d(100.0, 0.0, 0.0));
+  const BallBearingEquilibrium r = qs.solve(100000 * kRpmToRadPerS, Eigen::Vector3d(100.0, 0.0, 0.0));
   const JonesHarris::Result centred = jh.solve(r.speed, 0.0);
   const JonesHarris::Result ref = jh.solve(r.speed, r.displacement[0], &centred.unknowns, r.displacement[4]);
   EXPECT_NEAR(-ref.fx / 100.0, 1.0, kAtSpeed) << "Jones/Harris radial force at the solver's displacement";
@@ -228,7 +228,7 @@ TEST(BallBearingQuasiStatic, LoadDeflectionCurveMatchesTheReferencesAndHardens) 
   const BallBearingQuasiStatic qs(e);
   const JonesHarris jh{s, e.inner_contact().stiffness, e.outer_contact().stiffness};
   const std::vector<double> travel = {0.0, 2e-6, 10e-6, 30e-6, 50e-6};
-  for (const double w : {0.0, 100000 * kRpm}) {
+  for (const double w : {0.0, 100000 * kRpmToRadPerS}) {
     const double tol = w == 0.0 ? 0.01 : 0.02;
     const BallBearingEquilibrium centred = qs.solve(w, Eigen::Vector3d::Zero());
     const std::vector<LoadDeflectionPoint> c = qs.load_deflection(w, travel, &centred);
@@ -241,8 +241,9 @@ TEST(BallBearingQuasiStatic, LoadDeflectionCurveMatchesTheReferencesAndHardens) 
       ref = jh.solve(w, travel[i], &ref.unknowns);
       std::printf("[ load-deflection ] %6.0f rpm, %4.1f um: %8.2f N (Jones/Harris %8.2f), secant %.4g, tangent %.4g "
                   "N/m, Q_max %.1f N\n",
-                  w / kRpm, travel[i] * 1e6, c[i].load, -ref.fx, c[i].secant, c[i].tangent, c[i].max_contact_load);
-      EXPECT_NEAR(c[i].load / -ref.fx, 1.0, tol) << travel[i] * 1e6 << " um at " << w / kRpm << " rpm";
+                  w / kRpmToRadPerS, travel[i] * 1e6, c[i].load, -ref.fx, c[i].secant, c[i].tangent,
+                  c[i].max_contact_load);
+      EXPECT_NEAR(c[i].load / -ref.fx, 1.0, tol) << travel[i] * 1e6 << " um at " << w / kRpmToRadPerS << " rpm";
       EXPECT_NEAR(c[i].secant, c[i].load / travel[i], 1e-9 * c[i].secant);
       EXPECT_NEAR(c[i].cross_load, 0.0, 1e-6 * c[i].load);
     }
@@ -253,7 +254,7 @@ TEST(BallBearingQuasiStatic, LoadDeflectionCurveMatchesTheReferencesAndHardens) 
     }
   }
   // A travel below the differencing step (1 nm) is differenced centrally too: its tangent is the centred one.
-  const std::vector<LoadDeflectionPoint> tiny = qs.load_deflection(46000 * kRpm, {0.0, 1e-9});
+  const std::vector<LoadDeflectionPoint> tiny = qs.load_deflection(46000 * kRpmToRadPerS, {0.0, 1e-9});
   EXPECT_NEAR(tiny[1].tangent / tiny[0].tangent, 1.0, 1e-3);
   EXPECT_THROW(qs.load_deflection(0.0, {2e-6, 1e-6}), std::invalid_argument);
   const BallBearingEquilibrium loaded = qs.solve(0.0, Eigen::Vector3d(50.0, 0.0, 0.0));
