@@ -28,7 +28,7 @@ constexpr double kDeg = 180.0 / M_PI;
 constexpr double kPerMetreToPerMicrometre = 1e-6;  // pictures show stiffness in N/µm
 const char* const kDofNames[5] = {"x", "y", "z", "theta_x", "theta_y"};
 
-std::string trim(std::string s) {
+std::string trim_blanks(std::string s) {
   s.erase(0, s.find_first_not_of(" \t"));
   s.erase(s.find_last_not_of(" \t") + 1);
   return s;
@@ -286,7 +286,7 @@ std::vector<double> parse_load(const std::string& text) {
   std::stringstream ss(text);
   for (std::string p; std::getline(ss, p, ',');) {
     try {
-      out.push_back(parse_quantity(trim(p), dim::force));
+      out.push_back(parse_quantity(trim_blanks(p), dim::force));
     } catch (const UnitError& e) {
       throw ModelError("--load '" + text + "': " + e.what() + " (expected \"Fx,Fy\" or \"Fx,Fy,Fz\" in N)");
     }

@@ -2,6 +2,7 @@
 // maxima in µm, command, warnings, pictures) and a study's (incomplete and failed runs marked, numbers tied to
 // results.json).
 #include "post/report.h"
+#include "tests/support/temp_dir.h"
 #include "tests/support/text_checks.h"
 
 #include <filesystem>
@@ -16,22 +17,10 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string read(const std::filesystem::path& f) {
-  std::ifstream in(f);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("turbodyn_report_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path report_dir(const std::string& name) { return testing::fresh_temp_dir("report_test_" + name); }
 
 TEST(Report, RunReportFromASummary) {
-  const auto dir = fresh_dir("run");
+  const auto dir = report_dir("run");
   nlohmann::json j;
   j["complete"] = false;
   j["message"] = "gave up at t = 0.2 s";
@@ -47,7 +36,7 @@ TEST(Report, RunReportFromASummary) {
   j["pictures"] = {"spectrogram_disk.c.x.png"};
   j["warnings"] = {"no spectrogram of y"};
   write_run_report(dir, j, {});
-  const std::string html = read(dir / "report.html");
+  const std::string html = testing::read_file(dir / "report.html");
   turbodyn::testing::expect_contains(html, {
       "Rotor &amp; &lt;co&gt;",
       "INCOMPLETE",
@@ -61,7 +50,7 @@ TEST(Report, RunReportFromASummary) {
 }
 
 TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
-  const auto dir = fresh_dir("study");
+  const auto dir = report_dir("study");
   nlohmann::json j;
   j["study"] = "s";
   j["model"] = "m.toml";
@@ -75,7 +64,7 @@ TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
   j["runs_failed"] = 1;
   j["sensitivity"] = nlohmann::json::object();
   write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}});
-  const std::string html = read(dir / "report.html");
+  const std::string html = testing::read_file(dir / "report.html");
   turbodyn::testing::expect_contains(html, {
       "INCOMPLETE STUDY: 2 of 3 runs",
       "0 run(s) incomplete",
@@ -89,7 +78,7 @@ TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
 
 TEST(Report, StudyReportNamesTheSpeedsItsStabilityMetricsAnalysed) {
   // A stability metric's grid (results.json's speeds_rpm, onset_resolution_rpm) and the caveat that goes with it.
-  const auto dir = fresh_dir("study_stability");
+  const auto dir = report_dir("study_stability");
   nlohmann::json j;
   j["study"] = "s";
   j["model"] = "m.toml";
@@ -103,7 +92,7 @@ TEST(Report, StudyReportNamesTheSpeedsItsStabilityMetricsAnalysed) {
   j["runs_recorded"] = 1;
   j["runs_failed"] = 0;
   write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}});
-  const std::string html = read(dir / "report.html");
+  const std::string html = testing::read_file(dir / "report.html");
   turbodyn::testing::expect_contains(html, {
       "Stability metrics",
       "onset: the linearised model analysed at 3 speeds from",
@@ -117,7 +106,7 @@ TEST(Report, StudyReportNamesTheSpeedsItsStabilityMetricsAnalysed) {
   // A hand-edited file with something else in the list: shown as missing, not a crash.
   j["metrics"][0]["speeds_rpm"] = {"fast", nullptr};
   EXPECT_NO_THROW(write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}}));
-  EXPECT_THAT(read(dir / "report.html"), HasSubstr("onset: the linearised model analysed at 2 speeds from"));
+  EXPECT_THAT(testing::read_file(dir / "report.html"), HasSubstr("onset: the linearised model analysed at 2 speeds from"));
   std::filesystem::remove_all(dir);
 }
 

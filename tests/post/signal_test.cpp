@@ -19,7 +19,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 // Hann response to a tone halfway between two bins: sinc(1/2) / (1 - 1/4) = 8 / (3 pi) = 0.8488, the largest
 // scalloping loss of the window (15.1 %, 1.42 dB).
 constexpr double hann_worst = 8.0 / (3.0 * pi);

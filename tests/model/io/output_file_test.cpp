@@ -16,13 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 fs::path fresh_dir(const std::string& name) {
   return turbodyn::testing::fresh_temp_dir("output_file_test_" + name + "_" +
                                            std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
@@ -31,15 +24,15 @@ fs::path fresh_dir(const std::string& name) {
 TEST(OutputFile, WritesAndReplacesASymlinkInsteadOfFollowingIt) {
   const fs::path dir = fresh_dir("symlink");
   write_output_file(dir / "a.json", "{}\n");
-  EXPECT_EQ(read(dir / "a.json"), "{}\n");
+  EXPECT_EQ(testing::read_file(dir / "a.json"), "{}\n");
   EXPECT_FALSE(fs::exists(dir / "a.json.tmp"));
   // A link at the target: the file it points to keeps its content, the link becomes the result file.
   { std::ofstream(dir / "precious.txt") << "keep me"; }
   fs::create_symlink(dir / "precious.txt", dir / "summary.json");
   write_output_file(dir / "summary.json", "result");
-  EXPECT_EQ(read(dir / "precious.txt"), "keep me");
+  EXPECT_EQ(testing::read_file(dir / "precious.txt"), "keep me");
   EXPECT_FALSE(fs::is_symlink(dir / "summary.json"));
-  EXPECT_EQ(read(dir / "summary.json"), "result");
+  EXPECT_EQ(testing::read_file(dir / "summary.json"), "result");
   fs::remove_all(dir);
 }
 
@@ -49,10 +42,10 @@ TEST(OutputFile, StreamedFilesReplaceASymlinkInsteadOfWritingThroughIt) {
   fs::create_symlink(dir / "precious.txt", dir / "timeseries.csv");
   remove_symlink(dir / "timeseries.csv");
   EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "timeseries.csv")));
-  EXPECT_EQ(read(dir / "precious.txt"), "keep me");
+  EXPECT_EQ(testing::read_file(dir / "precious.txt"), "keep me");
   remove_symlink(dir / "precious.txt");  // a regular file is left alone, a missing one is no error
   remove_symlink(dir / "missing.txt");
-  EXPECT_EQ(read(dir / "precious.txt"), "keep me");
+  EXPECT_EQ(testing::read_file(dir / "precious.txt"), "keep me");
   fs::remove_all(dir);
 }
 
@@ -74,7 +67,7 @@ TEST(OutputFile, AFailedWriteIsAnErrorNamingTheFileAndLeavesTheOldOne) {
     OutputFile out(dir / "b.csv");
     out.stream() << "half a fi";
   }
-  EXPECT_EQ(read(dir / "b.csv"), "old");
+  EXPECT_EQ(testing::read_file(dir / "b.csv"), "old");
   EXPECT_FALSE(fs::exists(dir / "b.csv.tmp"));
   // A full device: every write fails.
   if (fs::exists("/dev/full")) {

@@ -15,7 +15,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Relative tolerance 1e-12, for values whose computation and expectation may round differently.
 void expect_close(double actual, double expected) { EXPECT_NEAR(actual, expected, 1e-12 * std::abs(expected)); }
