@@ -205,8 +205,7 @@ int run_stability_command(const StabilityCommandOptions& options) {
                 << " the steady state's branch from the speed before ended (a fold); the state there was found anew "
                    "from rest, on another branch (docs/ball-bearing.md, \"A sweep over speeds\").\n";
   for (double w : halving_restarted)
-    std::cout << "Note: the onset's halving at " << rpm_text(w)
-              << " found its steady state anew from rest: the branch from the stable speed below ended before it.\n";
+    std::cout << "Note: the onset's halving at " << rpm_text(w) << " " << kHalvingRestartedText << "\n";
   if (onset.is_null())
     std::cout << "No mode with at least " << options.min_rotor_share << " of its motion in the rotor grows at the "
               << "speeds analysed.\n";

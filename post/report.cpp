@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "model/engine/stability.h"
 #include "post/html_page.h"
 #include "post/run_pictures.h"
 
@@ -262,8 +263,7 @@ void write_stability_report(const std::filesystem::path& dir, const nlohmann::js
          << ".";
     if (const auto r = o->find("halving_restarted_rpm"); r != o->end())
       for (const nlohmann::json& rpm : *r)
-        os << " The halving at " << rpm.get<double>()
-           << " rpm found its steady state anew from rest: the branch from the stable speed below ended before it.";
+        os << " The halving at " << rpm.get<double>() << " rpm " << kHalvingRestartedText;
     page.paragraph(os.str());
   } else if (o != j.end()) {
     page.paragraph("No mode with rotor motion grows at the speeds analysed.");

@@ -130,6 +130,10 @@ double refine_stability_onset(const MachineSpec& spec, const StabilityPoint& sta
                               const StabilityModeFilter& filter, std::string* error,
                               std::vector<double>* restarted = nullptr, const StabilityOptions& options = {});
 
+/// What the command's output and the report say after "the halving at N rpm" of each of StabilityOnset::restarted.
+inline constexpr const char* kHalvingRestartedText =
+    "found its steady state anew from rest: the branch from the stable speed below ended before it.";
+
 /// Where a counted mode first grows over speeds analysed in ascending order.
 struct StabilityOnset {
   bool found = false;           ///< some counted mode grows at one of the speeds

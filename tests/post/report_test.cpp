@@ -2,6 +2,7 @@
 // maxima in µm, command, warnings, pictures) and a study's (incomplete and failed runs marked, numbers tied to
 // results.json).
 #include "post/report.h"
+#include "model/engine/stability.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_checks.h"
 
@@ -73,6 +74,23 @@ TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
       "max_x [µm]",
       "boom &lt;x&gt;",
   });
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Report, StabilityReportNamesTheOnsetsHalvingsFoundAnewFromRest) {
+  // stability.json's onset with a halving whose steady state was found anew from rest (a fold below it).
+  const auto dir = report_dir("stability_restart");
+  nlohmann::json j;
+  j["model"] = {{"name", "m"}, {"source", "m.toml"}};
+  j["min_rotor_share"] = 0.5;
+  j["onset"] = {{"speed_rpm", 61000.0}, {"resolution_rpm", 312.5}, {"halvings", 6}, {"at_first_speed", false},
+                {"halving_restarted_rpm", {60500.0}}};
+  j["assumptions"] = nlohmann::json::array();
+  j["results"] = nlohmann::json::array();
+  write_stability_report(dir, j, {"turbodyn stability m.toml", {}, {}, {}});
+  turbodyn::testing::expect_contains(
+      testing::read_file(dir / "report.html"),
+      {"61000 rpm, within 312.5 rpm below", std::string("The halving at 60500 rpm ") + kHalvingRestartedText});
   std::filesystem::remove_all(dir);
 }
 
