@@ -250,7 +250,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
 }
 
 void write_bearing_pictures(const std::string& title, const std::vector<BallBearingEquilibrium>& results,
-                    const std::filesystem::path& dir) {
+                            const std::filesystem::path& dir) {
   using plot::Series;
   std::vector<double> rpm;
   for (const BallBearingEquilibrium& r : results) rpm.push_back(r.speed * kRadPerSToRpm);

@@ -26,7 +26,7 @@ namespace {
 constexpr double kDampingFloor = 1e-6;
 
 void write_stability_pictures(const std::string& name, const std::vector<StabilityPoint>& points, double min_share,
-                    const std::filesystem::path& dir) {
+                              const std::filesystem::path& dir) {
   using plot::Series;
   Series stable{"stable", {}, {}, Series::Style::Points, "#1f77b4", 1.0};
   Series unstable{"growing (unstable)", {}, {}, Series::Style::Crosses, "#d62728", 1.4};

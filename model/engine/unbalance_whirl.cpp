@@ -22,7 +22,7 @@ namespace {
 // last point of the curve, so that a step of the same size is a like change of the whirl at 10 nm and at 500 um.
 constexpr double kTiltLength = 0.01;           // m
 constexpr double kSmallestScale = 1e-10;       // m
-constexpr double kWhirlMaxSpeedStep = 0.01;         // relative change of the speed per step
+constexpr double kWhirlMaxSpeedStep = 0.01;    // relative change of the speed per step
 constexpr double kMaxDeflectionStep = 0.2;     // relative change of the deflection per step
 // Newton's corrections: relative to the deflection and the speed, or an absolute 1e-13 m on the deflection, where
 // the balls' equilibria leave their reaction exact to about 1e-9 N (a ball at the edge of a contact: Newton on it

@@ -7,8 +7,6 @@
 #include "tests/support/text_checks.h"
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -124,7 +122,8 @@ TEST(Report, StudyReportNamesTheSpeedsItsStabilityMetricsAnalysed) {
   // A hand-edited file with something else in the list: shown as missing, not a crash.
   j["metrics"][0]["speeds_rpm"] = {"fast", nullptr};
   EXPECT_NO_THROW(write_study_report(dir, j, "sweep", {"turbodyn sweep s.toml", {}, {"results.csv"}, {}}));
-  EXPECT_THAT(testing::read_file(dir / "report.html"), HasSubstr("onset: the linearised model analysed at 2 speeds from"));
+  EXPECT_THAT(testing::read_file(dir / "report.html"),
+              HasSubstr("onset: the linearised model analysed at 2 speeds from"));
   std::filesystem::remove_all(dir);
 }
 
