@@ -152,6 +152,8 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
   bool ascending = true;
   for (std::size_t i = 1; i < speed_hz.size(); ++i) ascending = ascending && speed_hz[i] >= speed_hz[i - 1];
   const double fmax = spectrogram_frequency_max(out, top_speed);
+  const signal::StftOptions so = stft_options(out);
+  const std::size_t margin = signal::leakage_margin_bins(so.window, so.segment_length, kSubsynchronousLeakage);
 
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
     const ProbeChannel& ch = r.channels[c];
@@ -171,6 +173,21 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
                            {"unit", ch.unit},
                            {"frequency_hz", hm->y[peak.row]},
                            {ascending ? "speed_hz" : "time_s", hm->x[peak.column]}};
+    if (peak.value > 0.0) {
+      // The largest sub-synchronous line, over the run and in its last segment (what persists at the end).
+      const signal::Spectrogram sg = signal::stft(r.columns[c], fs, so);
+      const auto line_json = [&](const signal::SpectralLine& l) {
+        return nlohmann::json{{"amplitude", l.amplitude},
+                              {"frequency_hz", l.frequency_hz},
+                              {"order", l.frequency_hz / l.speed_hz},
+                              {"speed_hz", l.speed_hz},
+                              {"time_s", l.time_s}};
+      };
+      if (const auto l = signal::largest_subsynchronous_line(sg, speed_hz, fs, fmax, margin))
+        spectral[ch.name]["subsynchronous"] = line_json(*l);
+      if (const auto l = signal::largest_subsynchronous_line(sg, speed_hz, fs, fmax, margin, sg.n_segments() - 1))
+        spectral[ch.name]["subsynchronous_at_end"] = line_json(*l);
+    }
     if (hm->x.size() < 2 || peak.value <= 0.0) {
       warnings.push_back("no spectrogram of " + ch.name + ": nothing to show");
       continue;

@@ -44,6 +44,10 @@ double spectrogram_frequency_max(const OutputSpec& out, double top_speed_hz);
 plot::Heatmap spectrogram_heatmap(const signal::Spectrogram& sg, const std::vector<double>& x, double frequency_max,
                                   double amplitude_factor, double x_factor = 1.0);
 
+/// The leakage level of signal::leakage_margin_bins for the sub-synchronous lines of a run (-60 dB: where a bin
+/// counts, a 1x whirl of 500 um leaks less than 0.5 um).
+inline constexpr double kSubsynchronousLeakage = 1e-3;
+
 /// The largest cell of a heat map (the first one in z order); value 0 when no cell is positive.
 struct HeatmapPeak {
   double value = 0.0;
@@ -70,7 +74,10 @@ std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const s
 /// fall, else against time), the 1x order track of every x/y probe pair, the orbits of every rotor x/y pair at the
 /// [output] orbit speeds (else at 1/4 .. 4/4 of the top speed), and for floating rings the operating point against
 /// speed (ring_speed_ratio.png; with thermal films film_temperatures.png, film_power_loss.png). Appends the file
-/// names to `written` and what was not drawn to `warnings`; `spectral` receives, per spectrogram, its largest amplitude (SI) and where it lies;
+/// names to `written` and what was not drawn to `warnings`; `spectral` receives, per spectrogram, its largest
+/// amplitude (SI) and where it lies, and its largest sub-synchronous line over the run and in the last segment
+/// (signal::largest_subsynchronous_line with kSubsynchronousLeakage; "subsynchronous", "subsynchronous_at_end":
+/// amplitude, frequency_hz, order, speed_hz, time_s);
 /// `campbell` (rotor speed [Hz], frequency [Hz]) series are drawn on the spectrograms against speed. Throws
 /// plot::PlotError when gnuplot fails.
 /// `order_overlays` are drawn on the 1x order track of the probe pair named by their stem ("disk.compressor"):

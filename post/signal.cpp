@@ -210,24 +210,33 @@ std::string to_string(Window w) {
   return "unknown";
 }
 
+namespace {
+
+// Cosine-sum coefficients a_j of a window w = sum_j (-1)^j a_j cos(j x).
+std::vector<double> cosine_sum_terms(Window w) {
+  switch (w) {
+    case Window::Rectangular: return {1.0};
+    case Window::Hann: return {0.5, 0.5};
+    case Window::Hamming: return {0.54, 0.46};
+    case Window::Blackman: return {0.42, 0.5, 0.08};
+    case Window::FlatTop: {
+      // HFT95 (Heinzel, Ruediger & Schilling 2002), scaled to a peak of 1.
+      std::vector<double> a = {1.0, 1.9383379, 1.3045202, 0.4028270, 0.0350665};
+      const double peak = a[0] + a[1] + a[2] + a[3] + a[4];
+      for (double& v : a) v /= peak;
+      return a;
+    }
+  }
+  return {1.0};
+}
+
+}  // namespace
+
 std::vector<double> window_coefficients(Window w, std::size_t n) {
   if (n == 0) return {};
   if (n == 1) return {1.0};
-  // Cosine-sum coefficients a_j of w = sum_j (-1)^j a_j cos(j x).
-  std::vector<double> a;
-  switch (w) {
-    case Window::Rectangular: return std::vector<double>(n, 1.0);
-    case Window::Hann: a = {0.5, 0.5}; break;
-    case Window::Hamming: a = {0.54, 0.46}; break;
-    case Window::Blackman: a = {0.42, 0.5, 0.08}; break;
-    case Window::FlatTop: {
-      // HFT95 (Heinzel, Ruediger & Schilling 2002), scaled to a peak of 1.
-      a = {1.0, 1.9383379, 1.3045202, 0.4028270, 0.0350665};
-      const double peak = a[0] + a[1] + a[2] + a[3] + a[4];
-      for (double& v : a) v /= peak;
-      break;
-    }
-  }
+  if (w == Window::Rectangular) return std::vector<double>(n, 1.0);
+  const std::vector<double> a = cosine_sum_terms(w);
   std::vector<double> out(n);
   for (std::size_t i = 0; i < n; ++i) {
     double v = a[0];
@@ -315,6 +324,68 @@ std::vector<double> values_at_segment_centres(const Spectrogram& s, const std::v
     out[i] = frac > 0.0 ? series[i0] + frac * (series[i0 + 1] - series[i0]) : series[i0];
   }
   return out;
+}
+
+double window_leakage(Window w, std::size_t n, double nu) {
+  // sum_{i<n} exp(-2 pi i mu i / n) = exp(-i pi mu (n - 1) / n) sin(pi mu) / sin(pi mu / n): the Dirichlet kernel,
+  // n at mu = 0. A term cos(2 pi j i / n) of the window shifts it to mu = nu - j and nu + j, halved.
+  const double nd = static_cast<double>(n);
+  const auto kernel = [nd](double mu) {
+    const double den = std::sin(pi * mu / nd);
+    const double magnitude = std::abs(den) < 1e-14 ? nd : std::sin(pi * mu) / den;
+    return std::polar(magnitude, -pi * mu * (nd - 1.0) / nd);
+  };
+  const std::vector<double> a = cosine_sum_terms(w);
+  std::complex<double> at_nu = a[0] * kernel(nu);
+  const double at_zero = a[0] * nd;  // W(0) = n a_0: the other terms sum to zero over a period
+  double sign = -1.0;
+  for (std::size_t j = 1; j < a.size(); ++j, sign = -sign) {
+    const double jd = static_cast<double>(j);
+    at_nu += 0.5 * sign * a[j] * (kernel(nu - jd) + kernel(nu + jd));
+  }
+  return std::abs(at_nu) / at_zero;
+}
+
+std::size_t leakage_margin_bins(Window w, std::size_t n, double level) {
+  if (n < 8) throw std::invalid_argument("leakage_margin_bins: n must be at least 8, got " + std::to_string(n));
+  if (!(level > 0.0 && level < 1.0))
+    throw std::invalid_argument("leakage_margin_bins: level must lie in (0, 1), got " + number(level));
+  // From the far end inwards: the margin is the first whole bin above the last grid point that leaks more.
+  constexpr int kSteps = 16;
+  const auto last = static_cast<long>(n / 2) * kSteps;
+  for (long k = last; k >= 0; --k)
+    if (window_leakage(w, n, static_cast<double>(k) / kSteps) > level)
+      return static_cast<std::size_t>(k / kSteps + 1);
+  return 0;
+}
+
+std::optional<SpectralLine> largest_subsynchronous_line(const Spectrogram& s,
+                                                        const std::vector<double>& rotor_frequency, double sample_rate,
+                                                        double frequency_max, std::size_t margin_bins,
+                                                        std::size_t first_segment) {
+  check_sample_rate("largest_subsynchronous_line", sample_rate);
+  const std::size_t ns = s.n_segments(), n = s.segment_length;
+  if (ns == 0 || first_segment >= ns) return std::nullopt;
+  if (rotor_frequency.size() < (ns - 1) * s.hop + n)
+    throw std::invalid_argument("largest_subsynchronous_line: the rotor frequency has " +
+                                std::to_string(rotor_frequency.size()) + " samples, the spectrogram's last segment "
+                                "ends at sample " + std::to_string((ns - 1) * s.hop + n));
+  const std::vector<double> centre_speed = values_at_segment_centres(s, rotor_frequency, sample_rate);
+  const double df = sample_rate / static_cast<double>(n);
+  const double margin = static_cast<double>(margin_bins) * df;
+  std::optional<SpectralLine> best;
+  for (std::size_t seg = first_segment; seg < ns; ++seg) {
+    double slowest = std::abs(rotor_frequency[seg * s.hop]);
+    for (std::size_t i = seg * s.hop; i < seg * s.hop + n; ++i)
+      slowest = std::min(slowest, std::abs(rotor_frequency[i]));
+    const double top = std::min(slowest - margin, frequency_max);
+    for (std::size_t k = 0; k < s.n_bins() && s.frequencies[k] <= top; ++k) {
+      if (s.frequencies[k] < margin) continue;
+      const double v = s.at(seg, k);
+      if (!best || v > best->amplitude) best = SpectralLine{v, s.frequencies[k], s.times[seg], centre_speed[seg], seg};
+    }
+  }
+  return best;
 }
 
 OrderTrack track_order(const std::vector<double>& signal, const std::vector<double>& rotor_angle,

@@ -16,6 +16,7 @@
 // complex transform. Plans (twiddles, chirps, work buffers) are built once per stft() call and reused for every
 // segment, so any segment_length >= 8 costs O(N log N) per segment.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,43 @@ Spectrogram stft(const std::vector<double>& signal, double sample_rate, const St
 /// Throws std::invalid_argument if sample_rate <= 0 or the series does not reach the last segment centre.
 std::vector<double> values_at_segment_centres(const Spectrogram& s, const std::vector<double>& series,
                                               double sample_rate);
+
+/// The leakage of a window: |W(nu)| / W(0), the magnitude of its discrete-time Fourier transform nu bins (of fs / n)
+/// from its centre relative to its peak, in closed form (each cosine term is a sum of two shifted Dirichlet kernels).
+/// A tone's line in a spectrogram spreads over the neighbouring bins by this factor.
+double window_leakage(Window w, std::size_t n, double nu);
+
+/// The smallest whole number of bins m beyond which a window of length n leaks at most `level` of a line's amplitude:
+/// window_leakage(w, n, nu) <= level for every nu >= m up to n / 2 (checked on a grid of 1/16 bin). At level 1e-3
+/// (-60 dB) and n = 4096: Hann 7 bins, Hamming 47, Blackman 5, FlatTop 5 (its main lobe), Rectangular 322.
+/// Throws std::invalid_argument unless n >= 8 and 0 < level < 1.
+std::size_t leakage_margin_bins(Window w, std::size_t n, double level);
+
+/// One line of a spectrogram: a bin of one segment.
+struct SpectralLine {
+  double amplitude = 0.0;     ///< in the signal's unit
+  double frequency_hz = 0.0;  ///< the bin's frequency
+  double time_s = 0.0;        ///< the segment's centre
+  double speed_hz = 0.0;      ///< the rotor frequency at the segment's centre (interpolated)
+  std::size_t segment = 0;
+};
+
+/// The largest sub-synchronous line of a spectrogram taken with any window: the largest amplitude among the bins
+/// that lie below the rotor speed of their segment and clear of the 1x order and of the slow drift. How the
+/// vibration of a turbocharger is sorted (the oil whirl of floating rings, a rolling bearing's cage and ball-set
+/// whirl, the 0.5x of a rub all lie below the rotor speed; the synchronous response to unbalance on it).
+///
+/// The rotor speed sweeps within a segment, and a window spreads a line over neighbouring bins, so a bin f of
+/// segment s counts only if  m df <= f <= min f_d(s) - m df  and f <= frequency_max, where df = fs / N,
+/// min f_d(s) is the smallest |rotor_frequency| over the segment's N samples, and m = margin_bins (of
+/// leakage_margin_bins: then the 1x line's leakage into a counted bin is below its level from the edge of the
+/// sweep on). Segments from `first_segment` on are searched (the last one alone: what persists at the end).
+/// std::nullopt when no bin of those segments qualifies (a rotor slower than 2 m df throughout, say).
+/// Throws std::invalid_argument if sample_rate <= 0 or rotor_frequency does not cover the last segment.
+std::optional<SpectralLine> largest_subsynchronous_line(const Spectrogram& s,
+                                                        const std::vector<double>& rotor_frequency, double sample_rate,
+                                                        double frequency_max, std::size_t margin_bins,
+                                                        std::size_t first_segment = 0);
 
 struct OrderTrackOptions {
   double order = 1.0;        ///< n: tracks the component at n x rotor speed (> 0)

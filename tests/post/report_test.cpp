@@ -48,6 +48,32 @@ TEST(Report, RunReportFromASummary) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Report, RunReportListsTheLargestSubsynchronousLines) {
+  const auto dir = report_dir("run_subsynchronous");
+  nlohmann::json j;
+  j["complete"] = true;
+  j["model"] = {{"name", "m"}, {"source", "m.toml"}};
+  j["options"] = {{"integrator", "cvode-bdf"}, {"t_end_s", 4.0}};
+  j["t_reached_s"] = 4.0;
+  j["probes"] = nlohmann::json::object();
+  const nlohmann::json line = {{"amplitude", 3.43e-5}, {"frequency_hz", 698.2}, {"order", 0.4283},
+                               {"speed_hz", 1630.0}, {"time_s", 2.6}};
+  const nlohmann::json at_end = {{"amplitude", 2.1e-6}, {"frequency_hz", 1001.0}, {"order", 0.4004},
+                                 {"speed_hz", 2500.0}, {"time_s", 3.95}};
+  j["spectrogram_maxima"] = {
+      {"disk.c.x", {{"amplitude", 5.18e-4}, {"unit", "m"}, {"frequency_hz", 775.5}, {"speed_hz", 775.5},
+                    {"subsynchronous", line}, {"subsynchronous_at_end", at_end}}},
+      {"bearing.c.fx", {{"amplitude", 2880.0}, {"unit", "N"}, {"frequency_hz", 775.5}, {"speed_hz", 775.5}}}};
+  write_run_report(dir, j, {});
+  const std::string html = testing::read_file(dir / "report.html");
+  turbodyn::testing::expect_contains(html, {"Largest sub-synchronous lines", ">34.30 µm</span>", ">698.2 Hz</span>",
+                                            ">0.43 x</span>", ">97800 rpm</span>", ">2.100 µm</span>",
+                                            ">0.40 x</span>"});
+  // A spectrogram without such a line (bearing.c.fx) gets no row.
+  EXPECT_EQ(html.find("<code>bearing.c.fx</code>", html.find("Largest sub-synchronous lines")), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Report, StudyReportMarksIncompleteAndFailedRuns) {
   const auto dir = report_dir("study");
   nlohmann::json j;

@@ -15,10 +15,11 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 
-// A run-up from 0 to 100 Hz in 2 s sampled at 2 kHz, with a disk whirling forward at 1x with radius 1 µm.
-RunupResult synthetic_runup() {
-  constexpr double kFs = 2000.0, kDuration = 2.0, kTop = 100.0;  // Hz, s, Hz
-  constexpr double kRadius = 1e-6;                               // m
+// A run-up from 0 to `top` (100 Hz) in 2 s sampled at `fs` (2 kHz), with a disk whirling forward at 1x with radius
+// 1 µm and, from 1 s on, with `whirl` at 0.4x.
+RunupResult synthetic_runup(double fs = 2000.0, double top = 100.0, double whirl = 0.0) {
+  constexpr double kDuration = 2.0;  // s
+  constexpr double kRadius = 1e-6;   // m
   RunupResult r;
   r.complete = true;
   r.channels = {{"speed", "Hz", "rotor speed", ProbeChannel::Kind::Speed, 0, 0},
@@ -26,15 +27,15 @@ RunupResult synthetic_runup() {
                 {"disk.a.x", "m", "", ProbeChannel::Kind::RotorDof, 0, 0},
                 {"disk.a.y", "m", "", ProbeChannel::Kind::RotorDof, 1, 0}};
   r.columns.resize(4);
-  const auto n = static_cast<std::size_t>(kDuration * kFs) + 1;
+  const auto n = static_cast<std::size_t>(kDuration * fs) + 1;
   for (std::size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / kFs;
-    const double speed = kTop * t / kDuration, angle = M_PI * kTop * t * t / kDuration;
+    const double t = static_cast<double>(i) / fs;
+    const double speed = top * t / kDuration, angle = M_PI * top * t * t / kDuration, w = t >= 1.0 ? whirl : 0.0;
     r.time.push_back(t);
     r.columns[0].push_back(speed);
     r.columns[1].push_back(angle);
-    r.columns[2].push_back(kRadius * std::cos(angle));
-    r.columns[3].push_back(kRadius * std::sin(angle));
+    r.columns[2].push_back(kRadius * std::cos(angle) + w * std::cos(0.4 * angle));
+    r.columns[3].push_back(kRadius * std::sin(angle) + w * std::sin(0.4 * angle));
   }
   return r;
 }
@@ -128,6 +129,37 @@ TEST(RunPictures, DrawsSpectrogramsOrderTracksAndOrbits) {
   EXPECT_NEAR(spectral["disk.a.x"]["amplitude"].get<double>(), 1e-6, 0.2e-6);
   EXPECT_NEAR(spectral["disk.a.x"]["frequency_hz"].get<double>(), spectral["disk.a.x"]["speed_hz"].get<double>(),
               2 * 2000.0 / 256);
+}
+
+TEST(RunPictures, SpectralMaximaNameTheLargestSubsynchronousLines) {
+  if (!plot::gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const fs::path dir = turbodyn::testing::fresh_temp_dir("run_pictures_test_subsynchronous");
+  MachineSpec spec;
+  spec.output.sample_rate = 8000.0;
+  spec.output.spectrogram_segment = 1024;
+  for (const double whirl : {0.0, 0.2e-6}) {
+    std::vector<std::string> written, warnings;
+    nlohmann::json spectral = nlohmann::json::object();
+    // 0 to 1,000 Hz at 8 kHz: without a whirl the sub-synchronous lines are the 1x line's leakage.
+    draw_run_pictures(spec, synthetic_runup(8000.0, 1000.0, whirl), dir, written, warnings, spectral);
+    ASSERT_TRUE(spectral["disk.a.x"].contains("subsynchronous")) << spectral.dump();
+    const nlohmann::json& all = spectral["disk.a.x"]["subsynchronous"];
+    const nlohmann::json& end = spectral["disk.a.x"]["subsynchronous_at_end"];
+    if (whirl == 0.0) {
+      EXPECT_LT(all["amplitude"].get<double>(), kSubsynchronousLeakage * 1e-6);
+      EXPECT_LT(end["amplitude"].get<double>(), kSubsynchronousLeakage * 1e-6);
+    } else {
+      for (const nlohmann::json* l : {&all, &end}) {
+        EXPECT_GT((*l)["amplitude"].get<double>(), 0.5 * whirl) << l->dump();
+        EXPECT_LE((*l)["amplitude"].get<double>(), whirl) << l->dump();
+        EXPECT_NEAR((*l)["order"].get<double>(), 0.4, 0.03) << l->dump();
+        EXPECT_NEAR((*l)["speed_hz"].get<double>(), 500.0 * (*l)["time_s"].get<double>(), 1e-6);
+      }
+      EXPECT_GE(all["time_s"].get<double>(), 1.0);
+      EXPECT_GT(end["time_s"].get<double>(), 1.9);
+    }
+  }
+  fs::remove_all(dir);
 }
 
 // The synthetic run-up with two floating rings' slow channels: ring speed ratios 0.30 and 0.25 with a whirl ripple

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -405,6 +406,119 @@ TEST(Stft, RunUpSpectrogramShowsTheOneTimesOrderLine) {
     const auto from = static_cast<std::size_t>(0.75 * speed[seg] / bin);
     EXPECT_NEAR(s.frequencies[peak_bin(s, seg, from)], speed[seg], 64.0 + bin) << "segment " << seg;
   }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Window leakage and sub-synchronous lines
+
+TEST(WindowLeakage, IsTheDiscreteFourierTransformOfTheWindow) {
+  for (const Window w : {Window::Rectangular, Window::Hann, Window::Hamming, Window::Blackman, Window::FlatTop})
+    for (const std::size_t n : {std::size_t{64}, std::size_t{4096}}) {
+      const std::vector<double> c = window_coefficients(w, n);
+      double sum = 0.0;
+      for (double v : c) sum += v;
+      for (const double nu : {0.0, 0.37, 1.0, 2.5, 3.75, 10.2, 31.0}) {
+        std::complex<double> direct = 0.0;
+        for (std::size_t i = 0; i < n; ++i)
+          direct += c[i] * std::polar(1.0, -2.0 * pi * nu * static_cast<double>(i) / static_cast<double>(n));
+        EXPECT_NEAR(window_leakage(w, n, nu), std::abs(direct) / sum, 1e-12)
+            << to_string(w) << " n " << n << " nu " << nu;
+      }
+    }
+}
+
+TEST(WindowLeakage, HighestSidelobesAreHarrisValues) {
+  // Harris, "On the use of windows for harmonic analysis with the discrete Fourier transform", Proc. IEEE 66(1),
+  // 1978, Table 1: highest sidelobe level -13 dB (rectangular), -32 dB (Hann), -43 dB (Hamming), -58 dB (Blackman).
+  const auto highest_sidelobe_db = [](Window w, double from) {
+    double top = 0.0;
+    for (double nu = from; nu < 40.0; nu += 1.0 / 64.0) top = std::max(top, window_leakage(w, 4096, nu));
+    return 20.0 * std::log10(top);
+  };
+  EXPECT_NEAR(highest_sidelobe_db(Window::Rectangular, 1.0), -13.26, 0.05);
+  EXPECT_NEAR(highest_sidelobe_db(Window::Hann, 2.0), -31.47, 0.05);
+  EXPECT_NEAR(highest_sidelobe_db(Window::Hamming, 2.0), -42.7, 0.3);
+  EXPECT_NEAR(highest_sidelobe_db(Window::Blackman, 3.0), -58.1, 0.3);
+  // The main lobe ends at 1, 2, 2 and 3 bins: zeros of the transform.
+  EXPECT_LT(window_leakage(Window::Rectangular, 4096, 1.0), 1e-12);
+  EXPECT_LT(window_leakage(Window::Hann, 4096, 2.0), 1e-12);
+  EXPECT_LT(window_leakage(Window::Blackman, 4096, 3.0), 1e-12);
+}
+
+TEST(WindowLeakage, MarginIsWhereTheLeakageStaysBelowTheLevel) {
+  for (const Window w : {Window::Rectangular, Window::Hann, Window::Hamming, Window::Blackman, Window::FlatTop}) {
+    const std::size_t m = leakage_margin_bins(w, 4096, 1e-3);
+    ASSERT_GT(m, 0u) << to_string(w);
+    for (double nu = static_cast<double>(m); nu <= 2048.0; nu += 1.0 / 16.0)
+      ASSERT_LE(window_leakage(w, 4096, nu), 1e-3) << to_string(w) << " at " << nu;
+    double above = 0.0;
+    for (double nu = static_cast<double>(m) - 1.0; nu < static_cast<double>(m); nu += 1.0 / 16.0)
+      above = std::max(above, window_leakage(w, 4096, nu));
+    EXPECT_GT(above, 1e-3) << to_string(w) << ": the margin is not the smallest";
+  }
+  EXPECT_EQ(leakage_margin_bins(Window::Hann, 4096, 1e-3), 7u);
+  EXPECT_EQ(leakage_margin_bins(Window::Hamming, 4096, 1e-3), 47u);
+  EXPECT_EQ(leakage_margin_bins(Window::Rectangular, 4096, 1e-3), 322u);  // 1 / (pi 321.5) < 1e-3
+  EXPECT_THAT(signal_error_of([] { leakage_margin_bins(Window::Hann, 4096, 0.0); }), HasSubstr("level"));
+  EXPECT_THAT(signal_error_of([] { leakage_margin_bins(Window::Hann, 4, 1e-3); }), HasSubstr("at least 8"));
+}
+
+// A run-up at 625 Hz/s (the paper's 150,000 rpm in 4 s) with a strong 1x line of amplitude 100 and, from 2 s on,
+// a whirl of amplitude 0.5 at 0.42 x the rotor speed.
+struct RunUpWithWhirl {
+  static constexpr double fs = 20000.0, rate = 625.0;
+  std::vector<double> x, f_d;
+  explicit RunUpWithWhirl(double whirl) {
+    x = sampled(80000, fs, [&](double t) {
+      const double phi = 2 * pi * 0.5 * rate * t * t;
+      return 100.0 * std::cos(phi) + (t >= 2.0 ? whirl * std::cos(0.42 * phi) : 0.0);
+    });
+    f_d = sampled(80000, fs, [&](double t) { return rate * t; });
+  }
+};
+
+TEST(SubsynchronousLine, FindsTheWhirlBesideAStrongSynchronousLine) {
+  const RunUpWithWhirl r(0.5);
+  const Spectrogram s = stft(r.x, r.fs);
+  const std::size_t m = leakage_margin_bins(Window::Hann, 4096, 1e-3);
+  const auto line = largest_subsynchronous_line(s, r.f_d, r.fs, 1e9, m);
+  ASSERT_TRUE(line.has_value());
+  // The whirl sweeps 0.42 x 128 Hz in a segment: its amplitude is spread, read as at least half of it.
+  EXPECT_GT(line->amplitude, 0.25);
+  EXPECT_LT(line->amplitude, 0.5);
+  EXPECT_GE(line->time_s, 2.0);
+  EXPECT_NEAR(line->frequency_hz / line->speed_hz, 0.42, 0.03);
+  EXPECT_NEAR(line->speed_hz, r.rate * line->time_s, 1e-9);
+  // At the end: the last segment's whirl, at its speed.
+  const auto end = largest_subsynchronous_line(s, r.f_d, r.fs, 1e9, m, s.n_segments() - 1);
+  ASSERT_TRUE(end.has_value());
+  EXPECT_EQ(end->segment, s.n_segments() - 1);
+  EXPECT_NEAR(end->frequency_hz / end->speed_hz, 0.42, 0.03);
+  EXPECT_GT(end->amplitude, 0.25);
+}
+
+TEST(SubsynchronousLine, TheSynchronousLineAloneLeavesNothingAboveTheLeakageLevel) {
+  const RunUpWithWhirl r(0.0);
+  const Spectrogram s = stft(r.x, r.fs);
+  const auto line = largest_subsynchronous_line(s, r.f_d, r.fs, 1e9, leakage_margin_bins(Window::Hann, 4096, 1e-3));
+  ASSERT_TRUE(line.has_value());
+  EXPECT_LT(line->amplitude, 100.0 * 1e-3);
+  // Without the margin the 1x line's own spread counts.
+  EXPECT_GT(largest_subsynchronous_line(s, r.f_d, r.fs, 1e9, 0)->amplitude, 1.0);
+}
+
+TEST(SubsynchronousLine, NoBinQualifiesBelowTwiceTheMarginOrAboveTheFrequencyRange) {
+  const RunUpWithWhirl r(0.5);
+  const Spectrogram s = stft(r.x, r.fs);
+  const std::vector<double> slow(r.f_d.size(), 60.0);  // 60 Hz < 2 x 7 bins of 4.88 Hz
+  EXPECT_FALSE(largest_subsynchronous_line(s, slow, r.fs, 1e9, 7).has_value());
+  const auto capped = largest_subsynchronous_line(s, r.f_d, r.fs, 300.0, 7);
+  ASSERT_TRUE(capped.has_value());
+  EXPECT_LE(capped->frequency_hz, 300.0);
+  EXPECT_FALSE(largest_subsynchronous_line(s, r.f_d, r.fs, 1e9, 7, s.n_segments()).has_value());
+  const std::vector<double> short_speed(r.f_d.begin(), r.f_d.begin() + 79000);  // the last segment ends at 79,872
+  EXPECT_THAT(signal_error_of([&] { largest_subsynchronous_line(s, short_speed, r.fs, 1e9, 7); }),
+              HasSubstr("rotor frequency has 79000 samples"));
 }
 
 TEST(Stft, InvalidInputsAreRejectedWithAClearMessage) {
