@@ -312,6 +312,18 @@ int run_run_command(const RunCommandOptions& options) {
               << " rpm\n"
               << std::defaultfloat;
   }
+  // What persists below the rotor speed at the end (the rotor's probes; every spectrogram's in summary.json).
+  for (const ProbeChannel& c : r.channels) {
+    if (c.kind != ProbeChannel::Kind::RotorDof || !spectral.contains(c.name) ||
+        !spectral[c.name].contains("subsynchronous_at_end"))
+      continue;
+    const nlohmann::json& l = spectral[c.name]["subsynchronous_at_end"];
+    const post::Display d = post::display_of(c.unit);
+    std::cout << "  largest sub-synchronous line at the end, " << c.name << ": " << std::setprecision(4)
+              << l["amplitude"].get<double>() * d.factor << " " << d.unit << " at " << l["frequency_hz"].get<double>()
+              << " Hz (" << std::setprecision(2) << l["order"].get<double>() << "x)\n"
+              << std::defaultfloat;
+  }
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   std::cout << "Wrote " << (options.output_dir / "timeseries.h5").string() << ", summary.json, report.html"
             << (spec.output.csv ? ", timeseries.csv" : "") << ", " << pictures.size() << " pictures\n";

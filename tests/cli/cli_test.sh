@@ -86,6 +86,8 @@ EOF2
     grep -q '"complete": true' "$out/summary.json" || fail "summary not complete"
     expect_files "$out" timeseries.h5 spectrogram_disk.compressor.x.png order1x_disk.compressor.png \
       orbits_disk.compressor.png
+    grep -q "largest sub-synchronous line at the end, disk.compressor.x: .* Hz (0\.[0-9]*x)" "$out/log" ||
+      fail "no sub-synchronous line in the output: $(cat "$out/log")"
     # The largest spectral line of each spectrogram drawn: here the vibration at the first forward natural
     # frequency (512 Hz in the Campbell diagram) while and just after the rotor passes it.
     python3 - "$out/summary.json" <<'EOF2' || fail "spectrogram_maxima: $(grep -A3 spectrogram_maxima "$out/summary.json")"
