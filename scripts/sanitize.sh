@@ -2,7 +2,7 @@
 # The test suite under AddressSanitizer and UndefinedBehaviorSanitizer (issue 20): builds turbodyn with
 # -fsanitize=address,undefined (-O1 -g, frame pointers) in build-asan/ and runs CTest there. Any sanitizer report
 # fails the test it happens in (halt_on_error, and UBSan reports are made fatal). Slower than the Release suite
-# (about 3x in time; the build takes most of it). Usage:
+# (about 3x in time; the build takes most of it; a unity build, as scripts/build.sh). Usage:
 #   scripts/sanitize.sh            # every rung
 #   scripts/sanitize.sh -L io      # extra arguments go to ctest (here: one rung)
 set -euo pipefail
@@ -12,7 +12,7 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
 if [[ ! -f build-asan/CMakeCache.txt ]]; then
-  cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNITY_BUILD=ON \
     -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
 fi
 cmake --build build-asan --parallel "$(nproc)"

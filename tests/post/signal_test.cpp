@@ -428,7 +428,7 @@ TEST(WindowLeakage, IsTheDiscreteFourierTransformOfTheWindow) {
 }
 
 TEST(WindowLeakage, HighestSidelobesAreHarrisValues) {
-  // Harris, "On the use of windows for harmonic analysis with the discrete Fourier transform", Proc. IEEE 66(1),
+  // docs/references.md §10: Harris, "On the use of windows for harmonic analysis with the DFT", Proc. IEEE 66(1),
   // 1978, Table 1: highest sidelobe level -13 dB (rectangular), -32 dB (Hann), -43 dB (Hamming), -58 dB (Blackman).
   const auto highest_sidelobe_db = [](Window w, double from) {
     double top = 0.0;
