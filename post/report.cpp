@@ -158,39 +158,33 @@ void write_run_report(const std::filesystem::path& dir, const nlohmann::json& j,
     page.heading("Largest spectral lines");
     page.paragraph("The largest amplitude of each spectrogram (the way the paper quotes its maxima).");
     rows.clear();
+    std::vector<Row> subsynchronous;
     for (const auto& [name, m] : j["spectrogram_maxima"].items()) {
       const Display d = display_of(text(m, "unit"));
       const std::string at = json_pointer("/spectrogram_maxima", name);
-      rows.push_back({"<code>" + html_escape(name) + "</code>",
-                      HtmlPage::number(F, j, at + "/amplitude", d.factor, d.unit),
+      const std::string probe = "<code>" + html_escape(name) + "</code>";
+      rows.push_back({probe, HtmlPage::number(F, j, at + "/amplitude", d.factor, d.unit),
                       HtmlPage::number(F, j, at + "/frequency_hz", 1.0, "Hz"),
                       m.contains("speed_hz") ? HtmlPage::number(F, j, at + "/speed_hz", kHzToRpm, "rpm", 5)
                                              : HtmlPage::number(F, j, at + "/time_s", 1.0, "s")});
+      if (m.contains("subsynchronous"))
+        subsynchronous.push_back({probe, HtmlPage::number(F, j, at + "/subsynchronous/amplitude", d.factor, d.unit),
+                                  HtmlPage::number(F, j, at + "/subsynchronous/frequency_hz", 1.0, "Hz"),
+                                  HtmlPage::number(F, j, at + "/subsynchronous/order", 1.0, "x", 2),
+                                  HtmlPage::number(F, j, at + "/subsynchronous/speed_hz", kHzToRpm, "rpm", 5),
+                                  HtmlPage::number(F, j, at + "/subsynchronous_at_end/amplitude", d.factor, d.unit),
+                                  HtmlPage::number(F, j, at + "/subsynchronous_at_end/frequency_hz", 1.0, "Hz"),
+                                  HtmlPage::number(F, j, at + "/subsynchronous_at_end/order", 1.0, "x", 2)});
     }
     page.table("spectral", {"probe", "amplitude", "frequency", "at rotor speed (or time)"}, rows);
-
-    rows.clear();
-    for (const auto& [name, m] : j["spectrogram_maxima"].items()) {
-      if (!m.contains("subsynchronous")) continue;
-      const Display d = display_of(text(m, "unit"));
-      const std::string at = json_pointer("/spectrogram_maxima", name);
-      rows.push_back({"<code>" + html_escape(name) + "</code>",
-                      HtmlPage::number(F, j, at + "/subsynchronous/amplitude", d.factor, d.unit),
-                      HtmlPage::number(F, j, at + "/subsynchronous/frequency_hz", 1.0, "Hz"),
-                      HtmlPage::number(F, j, at + "/subsynchronous/order", 1.0, "x", 2),
-                      HtmlPage::number(F, j, at + "/subsynchronous/speed_hz", kHzToRpm, "rpm", 5),
-                      HtmlPage::number(F, j, at + "/subsynchronous_at_end/amplitude", d.factor, d.unit),
-                      HtmlPage::number(F, j, at + "/subsynchronous_at_end/frequency_hz", 1.0, "Hz"),
-                      HtmlPage::number(F, j, at + "/subsynchronous_at_end/order", 1.0, "x", 2)});
-    }
-    if (!rows.empty()) {
+    if (!subsynchronous.empty()) {
       page.heading("Largest sub-synchronous lines");
       page.paragraph("Lines below the rotor speed (oil whirl, a cage's or ball set's whirl, a rub's 0.5x), clear of "
                      "the 1x line's sweep within a segment and of its window's leakage (below 1e-3 of it), over the "
                      "run and in its last segment.");
       page.table("subsynchronous",
                  {"probe", "amplitude", "frequency", "order", "at rotor speed", "at the end", "frequency", "order"},
-                 rows);
+                 subsynchronous);
     }
   }
   std::vector<std::string> warnings = in.warnings;

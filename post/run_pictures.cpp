@@ -86,18 +86,16 @@ HeatmapPeak heatmap_peak(const plot::Heatmap& map) {
   return p;
 }
 
-std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupResult& r, std::size_t channel,
-                                             bool against_time) {
-  const int speed_col = column_of(r, ProbeChannel::Kind::Speed);
-  const signal::StftOptions so = stft_options(out);
-  if (speed_col < 0 || r.time.size() < so.segment_length) return std::nullopt;
-  const std::vector<double>& speed_hz = r.columns[static_cast<std::size_t>(speed_col)];
+namespace {
+
+// run_spectrogram's picture from the channel's STFT `sg` (taken with stft_options(out)); the run has a speed channel.
+plot::Heatmap spectrogram_picture(const OutputSpec& out, const RunupResult& r, std::size_t channel,
+                                  const signal::Spectrogram& sg, bool against_time) {
+  const std::vector<double>& speed_hz = r.columns[static_cast<std::size_t>(column_of(r, ProbeChannel::Kind::Speed))];
   const double top = *std::max_element(speed_hz.begin(), speed_hz.end());
-  const double fs = out.sample_rate;
-  const signal::Spectrogram sg = signal::stft(r.columns[channel], fs, so);
   const Display disp = display_of(r.channels[channel].unit);
   plot::Heatmap hm = spectrogram_heatmap(
-      sg, against_time ? sg.times : signal::values_at_segment_centres(sg, speed_hz, fs),
+      sg, against_time ? sg.times : signal::values_at_segment_centres(sg, speed_hz, out.sample_rate),
       spectrogram_frequency_max(out, top), disp.factor);
   hm.zlabel = "amplitude [" + disp.unit + "]";
   hm.ylabel = "frequency f [Hz]";
@@ -110,6 +108,23 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
         {"0.5x", {x0, x1}, {0.5 * x0, 0.5 * x1}, plot::Series::Style::Dashed, plot::style::kOrderHalfOnDark, 1.0});
   }
   return hm;
+}
+
+nlohmann::json spectral_line_json(const signal::SpectralLine& l) {
+  return {{"amplitude", l.amplitude},
+          {"frequency_hz", l.frequency_hz},
+          {"order", l.frequency_hz / l.speed_hz},
+          {"speed_hz", l.speed_hz},
+          {"time_s", l.time_s}};
+}
+
+}  // namespace
+
+std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupResult& r, std::size_t channel,
+                                             bool against_time) {
+  const signal::StftOptions so = stft_options(out);
+  if (column_of(r, ProbeChannel::Kind::Speed) < 0 || r.time.size() < so.segment_length) return std::nullopt;
+  return spectrogram_picture(out, r, channel, signal::stft(r.columns[channel], out.sample_rate, so), against_time);
 }
 
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
@@ -161,51 +176,43 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     // Powers and losses (W) are read as time series, not as vibration: no spectrogram (they stay in the file).
     if (ch.unit == "W") continue;
     // Spectrogram against rotor speed (paper Figs. 4-6), with the 1x and 0.5x order lines.
-    std::optional<plot::Heatmap> hm = run_spectrogram(out, r, c, !ascending);
-    if (!hm) {
+    if (r.time.size() < so.segment_length) {
       warnings.push_back("no spectrogram of " + ch.name + ": the run has fewer samples than one STFT segment");
       continue;
     }
-    hm->title = "Spectrogram: " + pretty_name(ch);
-    const HeatmapPeak peak = heatmap_peak(*hm);
-    if (peak.value > 0.0)
+    const signal::Spectrogram sg = signal::stft(r.columns[c], fs, so);
+    plot::Heatmap hm = spectrogram_picture(out, r, c, sg, !ascending);
+    hm.title = "Spectrogram: " + pretty_name(ch);
+    const HeatmapPeak peak = heatmap_peak(hm);
+    if (peak.value > 0.0) {
       spectral[ch.name] = {{"amplitude", peak.value / display_of(ch.unit).factor},
                            {"unit", ch.unit},
-                           {"frequency_hz", hm->y[peak.row]},
-                           {ascending ? "speed_hz" : "time_s", hm->x[peak.column]}};
-    if (peak.value > 0.0) {
+                           {"frequency_hz", hm.y[peak.row]},
+                           {ascending ? "speed_hz" : "time_s", hm.x[peak.column]}};
       // The largest sub-synchronous line, over the run and in its last segment (what persists at the end).
-      const signal::Spectrogram sg = signal::stft(r.columns[c], fs, so);
-      const auto line_json = [&](const signal::SpectralLine& l) {
-        return nlohmann::json{{"amplitude", l.amplitude},
-                              {"frequency_hz", l.frequency_hz},
-                              {"order", l.frequency_hz / l.speed_hz},
-                              {"speed_hz", l.speed_hz},
-                              {"time_s", l.time_s}};
-      };
       if (const auto l = signal::largest_subsynchronous_line(sg, speed_hz, fs, fmax, margin))
-        spectral[ch.name]["subsynchronous"] = line_json(*l);
+        spectral[ch.name]["subsynchronous"] = spectral_line_json(*l);
       if (const auto l = signal::largest_subsynchronous_line(sg, speed_hz, fs, fmax, margin, sg.n_segments() - 1))
-        spectral[ch.name]["subsynchronous_at_end"] = line_json(*l);
+        spectral[ch.name]["subsynchronous_at_end"] = spectral_line_json(*l);
     }
-    if (hm->x.size() < 2 || peak.value <= 0.0) {
+    if (hm.x.size() < 2 || peak.value <= 0.0) {
       warnings.push_back("no spectrogram of " + ch.name + ": nothing to show");
       continue;
     }
-    hm->zrange = std::make_pair(peak.value * 1e-3, peak.value);
+    hm.zrange = std::make_pair(peak.value * 1e-3, peak.value);
     if (ascending) {
-      const double x0 = hm->x.front(), x1 = hm->x.back();
+      const double x0 = hm.x.front(), x1 = hm.x.back();
       for (const plot::Series& m : campbell) {
         plot::Series s = m;
         s.x.clear();
         s.y.clear();
         for (std::size_t i = 0; i < m.x.size(); ++i)
           if (m.x[i] >= x0 && m.x[i] <= x1 && m.y[i] <= fmax) s.x.push_back(m.x[i]), s.y.push_back(m.y[i]);
-        if (!s.x.empty()) hm->overlays.push_back(s);
+        if (!s.x.empty()) hm.overlays.push_back(s);
       }
     }
     const std::string file = "spectrogram_" + ch.name + ".png";
-    plot::render_png(*hm, dir / file);
+    plot::render_png(hm, dir / file);
     written.push_back(file);
   }
 
