@@ -295,6 +295,13 @@ int run_run_command(const RunCommandOptions& options) {
     } catch (const std::exception& e) {
       warnings.push_back(std::string("pictures: ") + e.what());
     }
+  } else if (r.time.size() > 1) {
+    // Without pictures the spectrograms' maxima and sub-synchronous lines are still measured.
+    try {
+      spectral = post::spectrogram_maxima(spec, r);
+    } catch (const std::exception& e) {
+      warnings.push_back(std::string("spectrogram maxima: ") + e.what());
+    }
   }
   j["pictures"] = pictures;
   j["spectrogram_maxima"] = spectral;

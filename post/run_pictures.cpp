@@ -118,6 +118,49 @@ nlohmann::json spectral_line_json(const signal::SpectralLine& l) {
           {"time_s", l.time_s}};
 }
 
+// Whether a run's channel gets a spectrogram: not the speed and angle, and not powers and losses (W), which are read
+// as time series, not as vibration (they stay in the file).
+bool gets_spectrogram(const ProbeChannel& ch) {
+  return ch.kind != ProbeChannel::Kind::Speed && ch.kind != ProbeChannel::Kind::Angle && ch.unit != "W";
+}
+
+// What every spectrogram of a run shares: the rotor speed, whether it never falls (the spectrograms are then drawn
+// against it, else against time), the frequency range, the STFT and the leakage margin of the sub-synchronous lines.
+struct RunSpectrograms {
+  const std::vector<double>& speed_hz;
+  bool ascending = true;
+  double fmax = 0.0;
+  signal::StftOptions stft;
+  std::size_t margin = 0;
+
+  RunSpectrograms(const OutputSpec& out, const RunupResult& r)
+      : speed_hz(r.columns[static_cast<std::size_t>(column_of(r, ProbeChannel::Kind::Speed))]),
+        stft(stft_options(out)) {
+    for (std::size_t i = 1; i < speed_hz.size(); ++i) ascending = ascending && speed_hz[i] >= speed_hz[i - 1];
+    fmax = spectrogram_frequency_max(out, *std::max_element(speed_hz.begin(), speed_hz.end()));
+    margin = signal::leakage_margin_bins(stft.window, stft.segment_length, kSubsynchronousLeakage);
+  }
+};
+
+// The spectrogram `hm` (with its largest cell `peak`) of channel `ch`, from the STFT `sg`: its largest amplitude
+// (SI) and where it lies, and its largest sub-synchronous line over the run and in its last segment, into
+// spectral[ch.name]; nothing when no cell is positive.
+void add_spectral_maxima(const RunSpectrograms& run, double sample_rate, const ProbeChannel& ch,
+                         const signal::Spectrogram& sg, const plot::Heatmap& hm, const HeatmapPeak& peak,
+                         nlohmann::json& spectral) {
+  if (!(peak.value > 0.0)) return;
+  spectral[ch.name] = {{"amplitude", peak.value / display_of(ch.unit).factor},
+                       {"unit", ch.unit},
+                       {"frequency_hz", hm.y[peak.row]},
+                       {run.ascending ? "speed_hz" : "time_s", hm.x[peak.column]}};
+  // The largest sub-synchronous line, over the run and in its last segment (what persists at the end).
+  if (const auto l = signal::largest_subsynchronous_line(sg, run.speed_hz, sample_rate, run.fmax, run.margin))
+    spectral[ch.name]["subsynchronous"] = spectral_line_json(*l);
+  if (const auto l = signal::largest_subsynchronous_line(sg, run.speed_hz, sample_rate, run.fmax, run.margin,
+                                                         sg.n_segments() - 1))
+    spectral[ch.name]["subsynchronous_at_end"] = spectral_line_json(*l);
+}
+
 }  // namespace
 
 std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupResult& r, std::size_t channel,
@@ -125,6 +168,21 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
   const signal::StftOptions so = stft_options(out);
   if (column_of(r, ProbeChannel::Kind::Speed) < 0 || r.time.size() < so.segment_length) return std::nullopt;
   return spectrogram_picture(out, r, channel, signal::stft(r.columns[channel], out.sample_rate, so), against_time);
+}
+
+nlohmann::json spectrogram_maxima(const MachineSpec& spec, const RunupResult& r) {
+  nlohmann::json spectral = nlohmann::json::object();
+  const OutputSpec& out = spec.output;
+  if (column_of(r, ProbeChannel::Kind::Speed) < 0 || r.time.size() < stft_options(out).segment_length)
+    return spectral;
+  const RunSpectrograms run(out, r);
+  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+    if (!gets_spectrogram(r.channels[c])) continue;
+    const signal::Spectrogram sg = signal::stft(r.columns[c], out.sample_rate, run.stft);
+    const plot::Heatmap hm = spectrogram_picture(out, r, c, sg, !run.ascending);
+    add_spectral_maxima(run, out.sample_rate, r.channels[c], sg, hm, heatmap_peak(hm), spectral);
+  }
+  return spectral;
 }
 
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
@@ -160,41 +218,26 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
                        const std::vector<OrderOverlay>& order_overlays) {
   const OutputSpec& out = spec.output;
   const double fs = out.sample_rate;
-  const int speed_col = column_of(r, ProbeChannel::Kind::Speed), angle_col = column_of(r, ProbeChannel::Kind::Angle);
-  const std::vector<double>& speed_hz = r.columns[speed_col];
-  const std::vector<double>& angle = r.columns[angle_col];
+  const RunSpectrograms run(out, r);
+  const std::vector<double>& speed_hz = run.speed_hz;
+  const std::vector<double>& angle = r.columns[static_cast<std::size_t>(column_of(r, ProbeChannel::Kind::Angle))];
   const double top_speed = *std::max_element(speed_hz.begin(), speed_hz.end());
-  bool ascending = true;
-  for (std::size_t i = 1; i < speed_hz.size(); ++i) ascending = ascending && speed_hz[i] >= speed_hz[i - 1];
-  const double fmax = spectrogram_frequency_max(out, top_speed);
-  const signal::StftOptions so = stft_options(out);
-  const std::size_t margin = signal::leakage_margin_bins(so.window, so.segment_length, kSubsynchronousLeakage);
+  const bool ascending = run.ascending;
+  const double fmax = run.fmax;
 
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
     const ProbeChannel& ch = r.channels[c];
-    if (ch.kind == ProbeChannel::Kind::Speed || ch.kind == ProbeChannel::Kind::Angle) continue;
-    // Powers and losses (W) are read as time series, not as vibration: no spectrogram (they stay in the file).
-    if (ch.unit == "W") continue;
+    if (!gets_spectrogram(ch)) continue;
     // Spectrogram against rotor speed (paper Figs. 4-6), with the 1x and 0.5x order lines.
-    if (r.time.size() < so.segment_length) {
+    if (r.time.size() < run.stft.segment_length) {
       warnings.push_back("no spectrogram of " + ch.name + ": the run has fewer samples than one STFT segment");
       continue;
     }
-    const signal::Spectrogram sg = signal::stft(r.columns[c], fs, so);
+    const signal::Spectrogram sg = signal::stft(r.columns[c], fs, run.stft);
     plot::Heatmap hm = spectrogram_picture(out, r, c, sg, !ascending);
     hm.title = "Spectrogram: " + pretty_name(ch);
     const HeatmapPeak peak = heatmap_peak(hm);
-    if (peak.value > 0.0) {
-      spectral[ch.name] = {{"amplitude", peak.value / display_of(ch.unit).factor},
-                           {"unit", ch.unit},
-                           {"frequency_hz", hm.y[peak.row]},
-                           {ascending ? "speed_hz" : "time_s", hm.x[peak.column]}};
-      // The largest sub-synchronous line, over the run and in its last segment (what persists at the end).
-      if (const auto l = signal::largest_subsynchronous_line(sg, speed_hz, fs, fmax, margin))
-        spectral[ch.name]["subsynchronous"] = spectral_line_json(*l);
-      if (const auto l = signal::largest_subsynchronous_line(sg, speed_hz, fs, fmax, margin, sg.n_segments() - 1))
-        spectral[ch.name]["subsynchronous_at_end"] = spectral_line_json(*l);
-    }
+    add_spectral_maxima(run, fs, ch, sg, hm, peak, spectral);
     if (hm.x.size() < 2 || peak.value <= 0.0) {
       warnings.push_back("no spectrogram of " + ch.name + ": nothing to show");
       continue;

@@ -92,4 +92,9 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
                        nlohmann::json& spectral, const std::vector<plot::Series>& campbell = {},
                        const std::vector<OrderOverlay>& order_overlays = {});
 
+/// The `spectral` of draw_run_pictures without drawing a picture (for runs without pictures): per spectrogram its
+/// largest amplitude and where it lies, and its largest sub-synchronous lines. Empty when the run has no speed channel
+/// or fewer samples than one STFT segment.
+nlohmann::json spectrogram_maxima(const MachineSpec& spec, const RunupResult& r);
+
 }  // namespace turbodyn::post

@@ -117,6 +117,17 @@ import json, sys
 a, b = (json.load(open(f)) for f in sys.argv[1:3])
 assert a["pictures"] == b["pictures"] and a["spectrogram_maxima"] == b["spectrogram_maxima"]
 EOF2
+    # A run without pictures measures the same maxima and sub-synchronous lines.
+    "$exe" run "$src/examples/reference_linear.toml" --set "speed.end=40000 rpm" --set speed.duration=0.5 --no-plots \
+      -o "$out/np" > "$out/log" 2>&1 || fail "run --no-plots: exit $?: $(cat "$out/log")"
+    grep -q "largest sub-synchronous line at the end, disk.compressor.x" "$out/log" ||
+      fail "run --no-plots: no sub-synchronous line in the output: $(cat "$out/log")"
+    ! ls "$out/np/"*.png > /dev/null 2>&1 || fail "run --no-plots drew pictures"
+    python3 - "$out/summary.orig.json" "$out/np/summary.json" <<'EOF2' || fail "maxima without pictures differ"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert b["pictures"] == [] and a["spectrogram_maxima"] == b["spectrogram_maxima"], b["spectrogram_maxima"]
+EOF2
     # With the natural frequencies of the linear model drawn on the spectrograms; a foreign file is refused.
     "$exe" modal "$src/examples/reference_linear.toml" --no-plots -o "$out/modal" > "$out/log" 2>&1 || fail "modal"
     "$exe" plot "$out/run" --campbell "$out/modal/campbell.csv" > "$out/log" 2>&1 || fail "plot --campbell: $(cat "$out/log")"

@@ -162,6 +162,36 @@ TEST(RunPictures, SpectralMaximaNameTheLargestSubsynchronousLines) {
   fs::remove_all(dir);
 }
 
+TEST(RunPictures, SpectrogramMaximaWithoutPicturesAreThoseOfThePictures) {
+  MachineSpec spec;
+  spec.output.sample_rate = 8000.0;
+  spec.output.spectrogram_segment = 1024;
+  const RunupResult r = synthetic_runup(8000.0, 1000.0, 0.2e-6);
+  const nlohmann::json m = spectrogram_maxima(spec, r);
+  // Both probes, not the speed and the angle; the 1x whirl of 1 µm at its largest (read low: it sweeps 64 Hz, eight
+  // bins, through a segment); the 0.4x whirl below it.
+  EXPECT_EQ(m.size(), 2u) << m.dump();
+  ASSERT_TRUE(m.contains("disk.a.y")) << m.dump();
+  EXPECT_GT(m["disk.a.y"]["amplitude"].get<double>(), 0.5e-6);
+  EXPECT_LE(m["disk.a.y"]["amplitude"].get<double>(), 1e-6);
+  EXPECT_NEAR(m["disk.a.y"]["subsynchronous_at_end"]["order"].get<double>(), 0.4, 0.03);
+  // Too short for one STFT segment, or no speed channel: nothing.
+  RunupResult short_run = synthetic_runup(8000.0, 1000.0);
+  for (std::vector<double>& col : short_run.columns) col.resize(1000);
+  short_run.time.resize(1000);
+  EXPECT_TRUE(spectrogram_maxima(spec, short_run).empty());
+  RunupResult no_speed = r;
+  no_speed.channels[0].kind = ProbeChannel::Kind::Element;
+  EXPECT_TRUE(spectrogram_maxima(spec, no_speed).empty());
+  if (!plot::gnuplot_available()) return;
+  const fs::path dir = turbodyn::testing::fresh_temp_dir("run_pictures_test_maxima");
+  std::vector<std::string> written, warnings;
+  nlohmann::json spectral = nlohmann::json::object();
+  draw_run_pictures(spec, r, dir, written, warnings, spectral);
+  EXPECT_EQ(m, spectral);
+  fs::remove_all(dir);
+}
+
 // The synthetic run-up with two floating rings' slow channels: ring speed ratios 0.30 and 0.25 with a whirl ripple
 // of +-0.05 at 37 Hz, and an inner-film temperature rising from 363.15 K (90 degC) by 10 K per 100 Hz of speed.
 RunupResult with_floating_rings() {
