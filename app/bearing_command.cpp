@@ -17,6 +17,7 @@
 #include "model/io/result_header.h"
 #include "model/spec/units.h"
 #include "model/spec/constants.h"
+#include "model/spec/text.h"
 #include "post/plot.h"
 #include "post/report.h"
 #include "app/command_line.h"
@@ -27,12 +28,6 @@ namespace {
 constexpr double kDeg = 180.0 / M_PI;
 constexpr double kPerMetreToPerMicrometre = 1e-6;  // pictures show stiffness in N/µm
 const char* const kDofNames[5] = {"x", "y", "z", "theta_x", "theta_y"};
-
-std::string trim_blanks(std::string s) {
-  s.erase(0, s.find_first_not_of(" \t"));
-  s.erase(s.find_last_not_of(" \t") + 1);
-  return s;
-}
 
 nlohmann::json matrix_json(const Matrix5d& m) {
   nlohmann::json rows = nlohmann::json::array();

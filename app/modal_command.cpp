@@ -25,21 +25,16 @@
 #include "model/spec/limits.h"
 #include "model/spec/units.h"
 #include "model/spec/constants.h"
+#include "model/spec/text.h"
 
 namespace turbodyn::app {
 namespace {
-
-std::string trim(std::string s) {
-  s.erase(0, s.find_first_not_of(" \t"));
-  s.erase(s.find_last_not_of(" \t") + 1);
-  return s;
-}
 
 // One value of a list option (`option` "--speeds" and so on), checked for its dimension and plausible size.
 double list_value(const std::string& text, const std::string& option, const std::string& whole, const Dimension& d) {
   double v = 0.0;
   try {
-    v = parse_quantity(trim(text), d);
+    v = parse_quantity(trim_blanks(text), d);
   } catch (const UnitError& e) {
     throw ModelError(option + " '" + whole + "': " + e.what());
   }
@@ -61,7 +56,7 @@ std::vector<double> list_values(const std::vector<std::string>& items, const std
   std::vector<double> out;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const bool bare = !unit.empty() && units[i] && units[i]->empty();
-    out.push_back(list_value(bare ? trim(items[i]) + " " + unit : items[i], option, text, d));
+    out.push_back(list_value(bare ? trim_blanks(items[i]) + " " + unit : items[i], option, text, d));
   }
   return out;
 }
@@ -370,7 +365,7 @@ std::vector<double> parse_quantity_list(const std::string& text, const std::stri
     if (parts.size() != 3) throw ModelError(what + "expected START:END:COUNT");
     const std::vector<double> ab = list_values({parts[0], parts[1]}, option, text, d);
     const double a = ab[0], b = ab[1];
-    const std::string count = trim(parts[2]);
+    const std::string count = trim_blanks(parts[2]);
     long n = 0;
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
     if (count.empty() || ec != std::errc() || end != count.data() + count.size() || n < 2 || n > max_count)

@@ -11,19 +11,13 @@
 #include "model/io/timeseries_file.h"
 #include "studies/channels.h"
 #include "model/spec/constants.h"
+#include "model/spec/text.h"
 
 namespace turbodyn::identification {
 namespace {
 
 // Time steps that differ by more than this fraction of the mean step count as uneven sampling (then resampled).
 constexpr double kUnevenSampling = 1e-3;
-
-std::string trim(const std::string& s) {
-  const std::size_t a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
-  const std::size_t b = s.find_last_not_of(" \t\r");
-  return s.substr(a, b - a + 1);
-}
 
 // A table read from a file: named columns with the unit in the header (if any) and where every value came from.
 struct Table {
@@ -75,10 +69,10 @@ std::vector<std::string> split_csv(const std::string& line, std::vector<std::siz
 
 // "x_comp [um]" -> ("x_comp", "um"); "x_comp" -> ("x_comp", "").
 std::pair<std::string, std::string> split_header(const std::string& field) {
-  const std::string f = trim(field);
+  const std::string f = trim_blanks(field);
   const std::size_t open = f.find('[');
   if (open != std::string::npos && f.back() == ']')
-    return {trim(f.substr(0, open)), trim(f.substr(open + 1, f.size() - open - 2))};
+    return {trim_blanks(f.substr(0, open)), trim_blanks(f.substr(open + 1, f.size() - open - 2))};
   return {f, ""};
 }
 
@@ -99,7 +93,7 @@ Table read_csv(const std::filesystem::path& path, const std::vector<std::string>
     ++line_no;
     // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name.
     if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
-    const std::string s = trim(line);
+    const std::string s = trim_blanks(line);
     if (s.empty() || s[0] == '#') continue;
     const std::vector<std::string> f = split_csv(line, starts);
     if (header) {
@@ -124,7 +118,7 @@ Table read_csv(const std::filesystem::path& path, const std::vector<std::string>
       throw ModelError(os.str());
     }
     for (std::size_t c : use) {
-      const std::string v = trim(f[c]);
+      const std::string v = trim_blanks(f[c]);
       double x = 0.0;
       const char* b = v.data() + (!v.empty() && v[0] == '+' ? 1 : 0);
       const auto res = std::from_chars(b, v.data() + v.size(), x);

@@ -13,6 +13,7 @@
 #include "studies/study_keys.h"
 #include "studies/table.h"
 #include "model/spec/constants.h"
+#include "model/spec/text.h"
 
 namespace turbodyn::studies {
 namespace {
@@ -20,12 +21,6 @@ namespace {
 using input::Bound;
 using input::Reader;
 using input::Sources;
-
-std::string trim(std::string s) {
-  s.erase(0, s.find_first_not_of(" \t"));
-  s.erase(s.find_last_not_of(" \t") + 1);
-  return s;
-}
 
 
 // Reads one [[parameters]] entry into a Parameter and the unit it is written in.
@@ -88,13 +83,13 @@ MetricSpec read_metric(Reader& r, const StudySpec& s) {
 }  // namespace
 
 UnitValue split_value(const std::string& text, const std::string& context) {
-  const std::string s = trim(text);
+  const std::string s = trim_blanks(text);
   double v = 0.0;
   const char* begin = s.data() + (s.size() > 0 && s[0] == '+' ? 1 : 0);
   const auto res = std::from_chars(begin, s.data() + s.size(), v);
   if (res.ec != std::errc() || !std::isfinite(v))
     throw ModelError(context + ": '" + text + "' does not start with a number");
-  return {v, trim(std::string(res.ptr, s.data() + s.size()))};
+  return {v, trim_blanks(std::string(res.ptr, s.data() + s.size()))};
 }
 
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file) {

@@ -1,4 +1,5 @@
 #include "model/spec/units.h"
+#include "model/spec/text.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -401,6 +402,13 @@ TEST(Units, QuantityUnitIsTheTextAfterTheNumberParseQuantityReads) {
   EXPECT_EQ(quantity_unit("rpm"), std::nullopt);
   EXPECT_EQ(quantity_unit(""), std::nullopt);
   EXPECT_EQ(quantity_unit("1e999 rpm"), std::nullopt);  // out of range: parse_quantity reports it
+}
+
+TEST(Text, TrimBlanksStripsSpacesTabsAndLineEndsAtBothEndsOnly) {
+  EXPECT_EQ(trim_blanks(" \t150000 rpm\r\n"), "150000 rpm");
+  EXPECT_EQ(trim_blanks("a b"), "a b");
+  EXPECT_EQ(trim_blanks(" \t\r\n"), "");
+  EXPECT_EQ(trim_blanks(""), "");
 }
 
 }  // namespace
