@@ -8,7 +8,10 @@
 #   N        runs per variant (default 1; 3 for the medians quoted in bench/README.md). The pictures of the last
 #            run are copied into docs/images/ under the names docs/validation.md uses.
 #   VARIANT  any of floating_ring ball ball_sfd linear oil_whirl (default: all five), or floating_ring_thermal:
-#            variant I with thermal films in both bearings (docs/thermal-films.md)
+#            variant I with thermal films in both bearings (docs/thermal-films.md), or ball_window: issue 17's
+#            window of variant II, 90,000 -> 99,375 rpm in 0.25 s from the balls' no-slip state, with 40-ms STFT
+#            segments (docs/ball-bearing.md; about a minute), which prints each wheel's largest sub-synchronous line
+#            at its end
 # Output: out/validation/<variant>/ (time series, summary.json, all pictures), out/validation/<variant>.timing
 # (one line per variant: median and single integration wall times, CPU times, steps, calls), and a table of all
 # variants timed so far on stdout and in out/validation/timings.txt. Expect 5-10 minutes per run of a paper
@@ -34,6 +37,7 @@ model_of() {
     linear) echo examples/reference_linear.toml ;;
     oil_whirl) echo examples/rigid_rotor_oil_whirl.toml ;;
     floating_ring_thermal) echo examples/reference_floating_ring.toml ;;
+    ball_window) echo examples/reference_ball.toml ;;
     *) echo "examples/reference_$1.toml" ;;
   esac
 }
@@ -41,6 +45,8 @@ model_of() {
 sets_of() {  # the overrides that make a variant out of its model file
   case $1 in
     floating_ring_thermal) echo "--set bearings.compressor.thermal=bulk --set bearings.turbine.thermal=bulk" ;;
+    ball_window) echo "--set speed.start=90000rpm --set speed.end=99375rpm --set speed.duration=0.25s" \
+                      "--set output.spectrogram_segment=800" ;;
   esac
 }
 
@@ -90,6 +96,10 @@ for v in "${variants[@]}"; do
   esac
   # The pictures docs/validation.md shows.
   case $v in
+    ball_window)
+      # No pictures for the document: what issue 17 measures, the lines below the rotor speed at the window's end.
+      grep "largest sub-synchronous line at the end" "out/validation/$v.log" | sed 's/^ */ball_window: /'
+      ;;
     linear)
       cp "$dir/spectrogram_disk.compressor.x.png" docs/images/runup_linear_spectrogram_compressor_x.png
       cp "$dir/spectrogram_bearing.compressor.fx.png" docs/images/runup_linear_spectrogram_compressor_force.png
@@ -127,7 +137,7 @@ done
 {
   printf "%-15s %10s %24s %24s %10s %10s %12s %9s\n" variant "wall [s]" "runs, wall [s]" "runs, CPU [s]" steps \
     "rhs calls" "elem calls" complete
-  for v in floating_ring floating_ring_thermal ball ball_sfd linear oil_whirl; do
+  for v in floating_ring floating_ring_thermal ball ball_sfd ball_window linear oil_whirl; do
     [[ -f out/validation/$v.timing ]] && cat "out/validation/$v.timing"
   done
 } | tee out/validation/timings.txt
