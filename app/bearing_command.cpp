@@ -350,6 +350,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
                   {"preload_n", s.preload},
                   {"preload_stiffness_n_per_m", s.preload_stiffness},
                   {"contact_damping_n_s_per_m", s.contact_damping},
+                  {"contact_damping_ratio_s", s.contact_damping_ratio},
                   {"hertz_law", s.hertz_coefficient > 0.0 ? "paper" : "ellipse"},
                   {"hertz_coefficient", s.hertz_coefficient},
                   {"inner_hertz_constant_n_per_m1_5", element->inner_contact().stiffness},

@@ -334,6 +334,13 @@ void read_ball_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) {
   s.cage_poisson_ratio = r.quantity_or("cage_poisson_ratio", dim::dimensionless, s.cage_poisson_ratio, Bound::NonNegative);
   s.pocket_damping = r.quantity_or("pocket_damping", dim::damping, s.pocket_damping, Bound::NonNegative);
   s.contact_damping = r.quantity_or("contact_damping", dim::damping, s.contact_damping, Bound::NonNegative);
+  // The lubricant's damping of the race contacts, beta x each contact's tangent stiffness: by default the lower end
+  // of Kraemer's range for lubricated rolling bearings; "0 s" leaves the paper's Eq. 21 alone (docs/ball-bearing.md).
+  s.contact_damping_ratio =
+      r.quantity_or("contact_damping_ratio", dim::time, kDefaultContactDampingRatio, Bound::NonNegative);
+  if (!(s.contact_damping_ratio <= kMaxContactDampingRatio))
+    r.fail("contact_damping_ratio", "must be at most 1e-3 s: a rolling bearing's damping is 0.25e-5 to 2.5e-5 s times "
+                                    "its stiffness (Kraemer)");
   // The race contacts' Hertz law: the exact ellipse of their curvatures, or the paper's Eq. 20 with its mu*
   // (docs/ball-bearing.md, "Contacts").
   if (r.choice("hertz_law", {"ellipse", "paper"}, "ellipse") == "paper") {

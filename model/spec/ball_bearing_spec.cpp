@@ -58,6 +58,7 @@ bool BallBearingSpec::IsValid(std::string* error) const {
       {"cage_poisson_ratio", cage_poisson_ratio, Rule::PoissonRatio},
       {"pocket_damping", pocket_damping, Rule::NonNegative},
       {"contact_damping", contact_damping, Rule::NonNegative},
+      {"contact_damping_ratio", contact_damping_ratio, Rule::NonNegative},
       {"friction_static", friction_static, Rule::NonNegative},
       {"friction_sliding", friction_sliding, Rule::NonNegative},
       {"friction_v1", friction_v1, Rule::Positive},
@@ -83,6 +84,9 @@ bool BallBearingSpec::IsValid(std::string* error) const {
   if (!(hertz_coefficient == 0.0 || (hertz_coefficient > 0.0 && hertz_coefficient <= 1.0)))
     return fail(error, "hertz_coefficient", "in (0, 1] (paper Eq. 20's mu*), or 0 for the exact Hertz ellipse",
                 hertz_coefficient);
+  if (!(contact_damping_ratio <= kMaxContactDampingRatio))
+    return fail(error, "contact_damping_ratio",
+                "<= 1e-3 s (rolling bearings: 0.25e-5 to 2.5e-5 s of their stiffness, Kraemer)", contact_damping_ratio);
   if (!positive(pocket_clearance) || pocket_clearance >= 0.5 * ball_diameter)
     return fail(error, "pocket_clearance", "> 0 and < ball_diameter / 2", pocket_clearance);
   if (traction_law == TractionLaw::Eyring && !positive(lubricant_viscosity))

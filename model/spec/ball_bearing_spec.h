@@ -36,6 +36,12 @@ enum class TractionLaw {
 };
 
 /// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
+/// The contact damping ratio beta of a model file that names none [s]: the lower end of Kraemer's range for lubricated
+/// rolling bearings, damping = (0.25 ... 2.5)e-5 s x stiffness (Kraemer, Dynamics of Rotors and Foundations, 1993).
+inline constexpr double kDefaultContactDampingRatio = 0.25e-5;
+/// The largest contact damping ratio a spec accepts [s], 40x the top of Kraemer's range: beyond it a unit is wrong.
+inline constexpr double kMaxContactDampingRatio = 1e-3;
+
 struct BallBearingSpec {
   // Geometry.
   int n_balls = 8;                  ///< Z, number of balls (>= 3)
@@ -74,6 +80,11 @@ struct BallBearingSpec {
   /// 0 = the exact Hertz ellipse of the contact's curvatures (the default). In (0, 1].
   double hertz_coefficient = 0.0;
   double contact_damping = 15.0;   ///< d in N s/m, ball-race contacts
+  /// beta in s: each ball-race contact's damping is d + beta k_c, k_c = dQ/d delta = 1.5 K delta^0.5 its tangent Hertz
+  /// stiffness, so that a bearing whose contacts all have it has the damping beta K of its stiffness K (Kraemer's
+  /// rule for lubricated rolling bearings, beta = 0.25e-5 to 2.5e-5 s). A spec built in code has none; a model
+  /// file's default is the rule's lower end (model/io/model_file.cpp, docs/ball-bearing.md).
+  double contact_damping_ratio = 0.0;
   double friction_static = 0.10;   ///< mu_0
   double friction_sliding = 0.05;  ///< mu_r
   double friction_v1 = 0.05;       ///< v_1 in m/s (decay of mu_0 towards mu_r)

@@ -349,6 +349,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   const double Rp = pitch_radius_, Rb = 0.5 * spec_.ball_diameter, m = m_ball_, I = i_ball_, g = gravity_;
   const double side = spec_.side;
   const double d_race = spec_.contact_damping, d_pocket = spec_.pocket_damping, cp = spec_.pocket_clearance;
+  const double beta_race = spec_.contact_damping_ratio;
   const double mu0 = spec_.friction_static, mur = spec_.friction_sliding;
   const double v1 = spec_.friction_v1, v2 = spec_.friction_v2;
   const bool eyring = spec_.traction_law == TractionLaw::Eyring;
@@ -415,7 +416,8 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     }
   };
 
-  // Ball-race contact k (0 inner, 1 outer): Hertz + damping (Eq. 21, clipped so that it never pulls), friction
+  // Ball-race contact k (0 inner, 1 outer): Hertz + damping (Eq. 21 with d + beta k_c, k_c = 1.5 K delta^0.5 the
+  // tangent Hertz stiffness; clipped so that it never pulls), friction
   // (Eqs. 22-23) at the slip velocity of the contact centre, spin moment.
   const auto race_contact = [&](int k, const Ball& bl, BallContactPart* dst) {
     if (dst) *dst = BallContactPart{};
@@ -428,7 +430,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     const double root_delta = std::sqrt(geo.delta);
     const double QH = hz.stiffness * geo.delta * root_delta;
     const double ddot = geo.u.dot(Vb - race.velocity) - geo.u_l.dot(race.tilt_rate.cross(geo.p));
-    const double Q = std::max(0.0, QH + d_race * ddot);
+    const double Q = std::max(0.0, QH + (d_race + beta_race * 1.5 * hz.stiffness * root_delta) * ddot);
     diss += (Q - QH) * ddot;
     Vec3 Fr = Q * geo.u;                 // on the ring
     Vec3 Mr = geo.p.cross(Q * geo.u_l);  // about the ring centre (generalised force of the small rotation)

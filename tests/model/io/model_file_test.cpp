@@ -22,6 +22,15 @@ using testing::example;
 std::string bad(const std::string& name) { return source_dir() + "/tests/data/bad_models/" + name; }
 
 // The message of the ModelError thrown by loading `file` with `overrides` ("" if none is thrown).
+// The text of an example without its lines that start with `key` (a key it names, to see the default).
+std::string example_without(const std::string& name, const std::string& key) {
+  std::ifstream in(example(name));
+  std::string text, line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) != 0) text += line + "\n";
+  return text;
+}
+
 std::string model_error_of(const std::string& file, const std::vector<Override>& overrides = {}) {
   try {
     load_model(file, overrides);
@@ -137,17 +146,33 @@ TEST(ModelFile, ThePapersHertzLawIsAChoiceWithItsCoefficient) {
 TEST(ModelFile, ABallBearingThatNamesNoTractionLawGetsTheLubricatedOne) {
   // The default race traction of a model file is the lubricated (EHL) law with the model's oil; the examples name
   // the paper's Eq. 23 ("coulomb") to reproduce the paper. The example without its traction_law lines:
-  std::ifstream in(example("reference_ball.toml"));
-  std::string text, line;
-  while (std::getline(in, line))
-    if (line.rfind("traction_law", 0) != 0) text += line + "\n";
-  const MachineSpec s = load_model_from_string(text, "reference_ball_without_traction_law.toml");
+  const MachineSpec s = load_model_from_string(example_without("reference_ball.toml", "traction_law"),
+                                               "reference_ball_without_traction_law.toml");
   ASSERT_EQ(s.bearings.size(), 2u);
   for (const BearingSpec& b : s.bearings) {
     EXPECT_EQ(b.ball.traction_law, TractionLaw::Eyring) << b.name;
     EXPECT_DOUBLE_EQ(b.ball.lubricant_viscosity, s.oil.viscosity_at(s.oil.temperature)) << b.name;
   }
   EXPECT_EQ(load_model(example("reference_ball.toml")).bearings[0].ball.traction_law, TractionLaw::Coulomb);
+}
+
+TEST(ModelFile, ABallBearingThatNamesNoContactDampingRatioGetsTheLubricantsDamping) {
+  // The default contact damping ratio of a model file is the lower end of Kraemer's range for lubricated rolling
+  // bearings, 0.25e-5 s; the examples name "0 s" (the paper's Eq. 21 alone). Bad values name the key.
+  const MachineSpec s = load_model_from_string(example_without("reference_ball.toml", "contact_damping_ratio"),
+                                               "reference_ball_without_contact_damping_ratio.toml");
+  ASSERT_EQ(s.bearings.size(), 2u);
+  for (const BearingSpec& b : s.bearings) EXPECT_DOUBLE_EQ(b.ball.contact_damping_ratio, 0.25e-5) << b.name;
+  const std::string f = example("reference_ball.toml");
+  EXPECT_EQ(load_model(f).bearings[0].ball.contact_damping_ratio, 0.0);
+  const MachineSpec t = load_model(f, {parse_override("bearings.turbine.contact_damping_ratio=20 us")});
+  EXPECT_DOUBLE_EQ(t.bearings[1].ball.contact_damping_ratio, 2e-5);
+  EXPECT_THAT(model_error_of(f, {parse_override("bearings.compressor.contact_damping_ratio=-1e-5")}),
+              HasSubstr("bearings.compressor.contact_damping_ratio"));
+  EXPECT_THAT(model_error_of(f, {parse_override("bearings.compressor.contact_damping_ratio=1e-5 N*s/m")}),
+              HasSubstr("bearings.compressor.contact_damping_ratio"));
+  EXPECT_THAT(model_error_of(f, {parse_override("bearings.compressor.contact_damping_ratio=0.01 s")}),
+              AllOf(HasSubstr("bearings.compressor.contact_damping_ratio"), HasSubstr("Kraemer")));
 }
 
 TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {

@@ -182,6 +182,62 @@ TEST(BallBearingQuasiStatic, LoadsWithoutEquilibriumThrow) {
   }
 }
 
+TEST(BallBearingQuasiStatic, AContactDampingRatioDampsEachContactByItsTangentStiffness) {
+  // contact_damping_ratio beta: a contact's dashpot is d + beta k_c, k_c = dQ/d delta = 1.5 K delta^0.5. Preload
+  // equilibrium at rest (no gravity: every ball alike), friction and pocket damping off, balls at rest, the shaft
+  // moving at 0.1 mm/s in x: only the inner contacts approach, at u.v, and the dissipated power is sum c_j (u_j.v)^2,
+  // so with beta alone it is beta k_c times the power with d = 1 N s/m alone.
+  constexpr double kBeta = 1e-5;
+  BallBearingSpec s = testing::reference_bearing();
+  s.friction_static = s.friction_sliding = 0.0;
+  s.pocket_damping = 0.0;
+  s.contact_damping = 1.0;
+  const BallBearingElement e0("d", s, 0, 0.0);
+  s.contact_damping = 0.0;
+  s.contact_damping_ratio = kBeta;
+  const BallBearingElement e1("beta", s, 0, 0.0);
+  std::vector<double> z(e0.n_states());
+  e0.initial_states(z.data());
+  const Eigen::Vector4d q = Eigen::Vector4d::Zero();
+  const double v[4] = {1e-4, 0.0, 0.0, 0.0};
+  const SpinState st{0.0, 0.0, 0.0, 0.0};
+  auto w0 = e0.make_workspace(), w1 = e1.make_workspace();
+  const double p0 = e0.dissipated_power(st, q.data(), v, z.data(), *w0);
+  const double p1 = e1.dissipated_power(st, q.data(), v, z.data(), *w1);
+  const QuasiStaticBall b = element_ball(e0, q, z, 0);
+  const double K = e0.inner_contact().stiffness, delta = std::pow(b.inner_load / K, 2.0 / 3.0);
+  const double k_c = 1.5 * K * std::sqrt(delta);
+  ASSERT_GT(p0, 0.0);
+  EXPECT_NEAR(p1 / p0, kBeta * k_c, 1e-9 * kBeta * k_c) << "k_c " << k_c;
+  // Every ball alike: the other balls' inner loads are ball 0's.
+  for (int j = 1; j < s.n_balls; ++j)
+    EXPECT_NEAR(element_ball(e0, q, z, j).inner_load, b.inner_load, 1e-9 * b.inner_load);
+  std::printf("[ contact ] preload %.1f N: inner contact %.3f N, k_c %.4g N/m, beta k_c %.1f N s/m\n", s.preload,
+              b.inner_load, k_c, kBeta * k_c);
+}
+
+TEST(BallBearingQuasiStatic, AContactDampingRatioGivesTheBearingThatRatioOfItsStiffness) {
+  // Kraemer's rule, damping = beta x stiffness for the whole bearing, follows from beta at every contact: dashpots
+  // proportional to their springs stay so in series and in parallel. It holds for the contacts' part of K; the rest,
+  // the loads' turning with the contact angles (Q d^2 delta / dq^2) and the soft preload spring in k_zz, is not
+  // damped, which sets the tolerance: 1 % in the radial terms, 10 % in the tilt terms, where the preload's turning
+  // with the tilt counts more (at rest, preload only and with 20 N radial).
+  constexpr double kBeta = 1e-5;
+  BallBearingSpec s = testing::reference_bearing();
+  s.contact_damping = 0.0;
+  s.contact_damping_ratio = kBeta;
+  const BallBearingElement e("ref", s, 0, 0.0);
+  for (const double radial : {0.0, 20.0}) {
+    const BallBearingEquilibrium r = BallBearingQuasiStatic(e).solve(0.0, Eigen::Vector3d(radial, 0.0, 0.0));
+    for (const int k : {0, 1, 3, 4}) {
+      EXPECT_NEAR(r.damping(k, k) / (kBeta * r.stiffness(k, k)), 1.0, k < 3 ? 0.01 : 0.1)
+          << "radial " << radial << " N, k " << k;
+      std::printf("[ bearing ] %3.0f N radial, dof %d: c / (beta k) = %.4f\n", radial, k,
+                  r.damping(k, k) / (kBeta * r.stiffness(k, k)));
+    }
+  }
+}
+
 TEST(BallBearingQuasiStatic, StiffnessIsSymmetricAtRestAndMatchesTheElementsStaticStiffness) {
   // At rest the bearing is conservative: K symmetric. Its radial stiffness is the element's own static value
   // (StaticStiffnessMatchesAnIndependentRigidRingCalculation, 4.958e7 N/m: Newton on the element's equations).
