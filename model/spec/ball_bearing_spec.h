@@ -35,13 +35,13 @@ enum class TractionLaw {
   Eyring,
 };
 
-/// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
 /// The contact damping ratio beta of a model file that names none [s]: the lower end of Kraemer's range for lubricated
 /// rolling bearings, damping = (0.25 ... 2.5)e-5 s x stiffness (Kraemer, Dynamics of Rotors and Foundations, 1993).
 inline constexpr double kDefaultContactDampingRatio = 0.25e-5;
 /// The largest contact damping ratio a spec accepts [s], 40x the top of Kraemer's range: beyond it a unit is wrong.
 inline constexpr double kMaxContactDampingRatio = 1e-3;
 
+/// Data of one ball bearing, SI units. Defaults: docs/reference-machine.md, variant II.
 struct BallBearingSpec {
   // Geometry.
   int n_balls = 8;                  ///< Z, number of balls (>= 3)
