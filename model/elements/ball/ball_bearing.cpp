@@ -348,8 +348,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     throw std::logic_error("ball bearing '" + name() + "': partial evaluation without a contact cache of 3 Z parts");
   const double Rp = pitch_radius_, Rb = 0.5 * spec_.ball_diameter, m = m_ball_, I = i_ball_, g = gravity_;
   const double side = spec_.side;
-  const double d_race = spec_.contact_damping, d_pocket = spec_.pocket_damping, cp = spec_.pocket_clearance;
-  const double beta_race = spec_.contact_damping_ratio;
+  const double d_pocket = spec_.pocket_damping, cp = spec_.pocket_clearance;
   const double mu0 = spec_.friction_static, mur = spec_.friction_sliding;
   const double v1 = spec_.friction_v1, v2 = spec_.friction_v2;
   const bool eyring = spec_.traction_law == TractionLaw::Eyring;
@@ -430,7 +429,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
     const double root_delta = std::sqrt(geo.delta);
     const double QH = hz.stiffness * geo.delta * root_delta;
     const double ddot = geo.u.dot(Vb - race.velocity) - geo.u_l.dot(race.tilt_rate.cross(geo.p));
-    const double Q = std::max(0.0, QH + (d_race + beta_race * 1.5 * hz.stiffness * root_delta) * ddot);
+    const double Q = std::max(0.0, QH + race_contact_damping(hz, root_delta) * ddot);
     diss += (Q - QH) * ddot;
     Vec3 Fr = Q * geo.u;                 // on the ring
     Vec3 Mr = geo.p.cross(Q * geo.u_l);  // about the ring centre (generalised force of the small rotation)

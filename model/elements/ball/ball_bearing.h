@@ -236,6 +236,12 @@ class BallBearingElement final : public ForceElement {
   /// Kinetic energy of balls, cage and the outer ring's axial motion (J).
   double core_kinetic_energy(const double* z) const;
 
+  /// The dashpot of a ball-race contact `hz` at the approach delta = root_delta^2 (N s/m): paper Eq. 21's d plus the
+  /// lubricant's beta k_c, k_c = 1.5 K delta^0.5 the contact's tangent Hertz stiffness (contact_damping_ratio).
+  double race_contact_damping(const HertzPointContact& hz, double root_delta) const {
+    return spec_.contact_damping + spec_.contact_damping_ratio * 1.5 * hz.stiffness * root_delta;
+  }
+
   /// Derived constants (for tests and documentation).
   const HertzPointContact& inner_contact() const { return hertz_inner_; }
   const HertzPointContact& outer_contact() const { return hertz_outer_; }

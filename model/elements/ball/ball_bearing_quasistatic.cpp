@@ -287,9 +287,7 @@ void BallBearingQuasiStatic::linearise(BallBearingEquilibrium& s) const {
   // condensed equilibrium (balls and z_o re-solved for each perturbed q). Damping: the contact dashpots of
   // paper Eq. 21, d + beta k_c (k_c = 1.5 K delta_c^0.5), along each closed contact's normal, with the balls
   // following the rings as in the static condensation (massless balls): C = sum_c d_c g_c g_c^T, g_c = d delta_c / dq.
-  const double Rp = element_.pitch_radius(), d = element_.spec().contact_damping;
-  const double beta = element_.spec().contact_damping_ratio;
-  const double K_inner = element_.inner_contact().stiffness, K_outer = element_.outer_contact().stiffness;
+  const double Rp = element_.pitch_radius();
   const int Z = n_balls_;
   Eigen::MatrixXd G(2 * Z, 5);
   for (int k = 0; k < 5; ++k) {
@@ -310,9 +308,12 @@ void BallBearingQuasiStatic::linearise(BallBearingEquilibrium& s) const {
   s.damping.setZero();
   for (int j = 0; j < Z; ++j) {
     const double di = s.balls[j].inner_deflection, dout = s.balls[j].outer_deflection;
-    if (di > 0.0) s.damping += (d + beta * 1.5 * K_inner * std::sqrt(di)) * G.row(2 * j).transpose() * G.row(2 * j);
+    if (di > 0.0)
+      s.damping += element_.race_contact_damping(element_.inner_contact(), std::sqrt(di)) *
+                   G.row(2 * j).transpose() * G.row(2 * j);
     if (dout > 0.0)
-      s.damping += (d + beta * 1.5 * K_outer * std::sqrt(dout)) * G.row(2 * j + 1).transpose() * G.row(2 * j + 1);
+      s.damping += element_.race_contact_damping(element_.outer_contact(), std::sqrt(dout)) *
+                   G.row(2 * j + 1).transpose() * G.row(2 * j + 1);
   }
 }
 
