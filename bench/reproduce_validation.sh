@@ -10,7 +10,7 @@
 #   VARIANT  any of floating_ring ball ball_sfd linear oil_whirl (default: all five), or floating_ring_thermal:
 #            variant I with thermal films in both bearings (docs/thermal-films.md), or ball_window: issue 17's
 #            window of variant II, 90,000 -> 99,375 rpm in 0.25 s from the balls' no-slip state, with 40-ms STFT
-#            segments (docs/ball-bearing.md; about a minute), which prints each wheel's largest sub-synchronous line
+#            segments (docs/ball-bearing.md; about 10 s), which prints each wheel's largest sub-synchronous line
 #            at its end
 # Output: out/validation/<variant>/ (time series, summary.json, all pictures), out/validation/<variant>.timing
 # (one line per variant: median and single integration wall times, CPU times, steps, calls), and a table of all

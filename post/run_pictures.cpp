@@ -129,6 +129,7 @@ bool gets_spectrogram(const ProbeChannel& ch) {
 struct RunSpectrograms {
   const std::vector<double>& speed_hz;
   bool ascending = true;
+  double top_speed = 0.0;  // Hz
   double fmax = 0.0;
   signal::StftOptions stft;
   std::size_t margin = 0;
@@ -137,7 +138,8 @@ struct RunSpectrograms {
       : speed_hz(r.columns[static_cast<std::size_t>(column_of(r, ProbeChannel::Kind::Speed))]),
         stft(stft_options(out)) {
     for (std::size_t i = 1; i < speed_hz.size(); ++i) ascending = ascending && speed_hz[i] >= speed_hz[i - 1];
-    fmax = spectrogram_frequency_max(out, *std::max_element(speed_hz.begin(), speed_hz.end()));
+    top_speed = *std::max_element(speed_hz.begin(), speed_hz.end());
+    fmax = spectrogram_frequency_max(out, top_speed);
     margin = signal::leakage_margin_bins(stft.window, stft.segment_length, kSubsynchronousLeakage);
   }
 };
@@ -221,7 +223,7 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
   const RunSpectrograms run(out, r);
   const std::vector<double>& speed_hz = run.speed_hz;
   const std::vector<double>& angle = r.columns[static_cast<std::size_t>(column_of(r, ProbeChannel::Kind::Angle))];
-  const double top_speed = *std::max_element(speed_hz.begin(), speed_hz.end());
+  const double top_speed = run.top_speed;
   const bool ascending = run.ascending;
   const double fmax = run.fmax;
 

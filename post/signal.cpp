@@ -326,7 +326,10 @@ std::vector<double> values_at_segment_centres(const Spectrogram& s, const std::v
   return out;
 }
 
-double window_leakage(Window w, std::size_t n, double nu) {
+namespace {
+
+// window_leakage of the window with cosine-sum terms `a` (cosine_sum_terms).
+double cosine_sum_leakage(const std::vector<double>& a, std::size_t n, double nu) {
   // sum_{i<n} exp(-2 pi i mu i / n) = exp(-i pi mu (n - 1) / n) sin(pi mu) / sin(pi mu / n): the Dirichlet kernel,
   // n at mu = 0. A term cos(2 pi j i / n) of the window shifts it to mu = nu - j and nu + j, halved.
   const double nd = static_cast<double>(n);
@@ -335,7 +338,6 @@ double window_leakage(Window w, std::size_t n, double nu) {
     const double magnitude = std::abs(den) < 1e-14 ? nd : std::sin(pi * mu) / den;
     return std::polar(magnitude, -pi * mu * (nd - 1.0) / nd);
   };
-  const std::vector<double> a = cosine_sum_terms(w);
   std::complex<double> at_nu = a[0] * kernel(nu);
   const double at_zero = a[0] * nd;  // W(0) = n a_0: the other terms sum to zero over a period
   double sign = -1.0;
@@ -346,6 +348,10 @@ double window_leakage(Window w, std::size_t n, double nu) {
   return std::abs(at_nu) / at_zero;
 }
 
+}  // namespace
+
+double window_leakage(Window w, std::size_t n, double nu) { return cosine_sum_leakage(cosine_sum_terms(w), n, nu); }
+
 std::size_t leakage_margin_bins(Window w, std::size_t n, double level) {
   if (n < 8) throw std::invalid_argument("leakage_margin_bins: n must be at least 8, got " + std::to_string(n));
   if (!(level > 0.0 && level < 1.0))
@@ -353,8 +359,9 @@ std::size_t leakage_margin_bins(Window w, std::size_t n, double level) {
   // From the far end inwards: the margin is the first whole bin above the last grid point that leaks more.
   constexpr int kSteps = 16;
   const auto last = static_cast<long>(n / 2) * kSteps;
+  const std::vector<double> a = cosine_sum_terms(w);
   for (long k = last; k >= 0; --k)
-    if (window_leakage(w, n, static_cast<double>(k) / kSteps) > level)
+    if (cosine_sum_leakage(a, n, static_cast<double>(k) / kSteps) > level)
       return static_cast<std::size_t>(k / kSteps + 1);
   return 0;
 }

@@ -89,7 +89,7 @@ UnitValue split_value(const std::string& text, const std::string& context) {
   const auto res = std::from_chars(begin, s.data() + s.size(), v);
   if (res.ec != std::errc() || !std::isfinite(v))
     throw ModelError(context + ": '" + text + "' does not start with a number");
-  return {v, trim_blanks(std::string(res.ptr, s.data() + s.size()))};
+  return {v, trim_blanks(std::string_view(res.ptr, s.data() + s.size() - res.ptr))};
 }
 
 StudyCommon read_study_common(input::Reader& r, const std::filesystem::path& file) {
