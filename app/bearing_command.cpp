@@ -367,13 +367,40 @@ int run_bearing_command(const BearingCommandOptions& options) {
       "paper Eq. 21 along each loaded contact normal, the balls following as in the static condensation"};
   j["load_n"] = load;
   j["dofs"] = {"x", "y", "z", "theta_x", "theta_y"};
-  nlohmann::json points = nlohmann::json::array();
+  j["static_contact_pressure_limit_pa"] = kStaticContactPressureLimit;
+  // Hertz pressures p_0 of each ball's contacts, and each speed's largest (against ISO 76's static limit).
+  const auto inner_pressure = [&](const QuasiStaticBall& q) {
+    return HertzPeakPressure(element->inner_contact(), q.inner_load);
+  };
+  const auto outer_pressure = [&](const QuasiStaticBall& q) {
+    return HertzPeakPressure(element->outer_contact(), q.outer_load);
+  };
+  std::vector<double> max_pressure;
+  std::vector<std::string> warnings;
   for (const BallBearingEquilibrium& r : results) {
+    double p = 0.0;
+    for (const QuasiStaticBall& q : r.balls) p = std::max({p, inner_pressure(q), outer_pressure(q)});
+    max_pressure.push_back(p);
+    if (p > kStaticContactPressureLimit) {
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(0) << "at " << r.speed * kRadPerSToRpm
+         << " rpm the largest contact pressure is " << p * 1e-6 << " MPa, above ISO 76's static limit of "
+         << kStaticContactPressureLimit * 1e-6 << " MPa: the balls and races would take a permanent deformation of "
+         << "more than 1/10,000 of the ball diameter, which this rigid-body Hertz model does not describe";
+      warnings.push_back(os.str());
+    }
+  }
+  j["warnings"] = warnings;
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const BallBearingEquilibrium& r = results[i];
     nlohmann::json balls = nlohmann::json::array();
     for (const QuasiStaticBall& q : r.balls)
       balls.push_back({{"azimuth_deg", q.azimuth * kDeg},
                        {"inner_load_n", q.inner_load},
                        {"outer_load_n", q.outer_load},
+                       {"inner_pressure_pa", inner_pressure(q)},
+                       {"outer_pressure_pa", outer_pressure(q)},
                        {"inner_contact_angle_deg", q.inner_angle * kDeg},
                        {"outer_contact_angle_deg", q.outer_angle * kDeg},
                        {"inner_deflection_m", q.inner_deflection},
@@ -391,6 +418,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
                       {"force_on_inner_ring", std::vector<double>(r.shaft_force.data(), r.shaft_force.data() + 5)},
                       {"cage_speed_rad_s", r.cage_speed},
                       {"cage_speed_ratio", r.speed != 0.0 ? r.cage_speed / r.speed : 0.0},
+                      {"max_contact_pressure_pa", max_pressure[i]},
                       {"stiffness", matrix_json(r.stiffness)},
                       {"damping", matrix_json(r.damping)},
                       {"newton_iterations", r.iterations},
@@ -456,14 +484,14 @@ int run_bearing_command(const BearingCommandOptions& options) {
     OutputFile file(options.output_dir / "bearing_balls.csv");
     std::ostream& csv = file.stream();
     csv << "speed_rpm,ball,azimuth_deg,inner_load_n,outer_load_n,inner_contact_angle_deg,outer_contact_angle_deg,"
-           "orbital_speed_rad_s,gyroscopic_moment_n_m\n"
+           "orbital_speed_rad_s,gyroscopic_moment_n_m,inner_pressure_pa,outer_pressure_pa\n"
         << std::setprecision(10);
     for (const BallBearingEquilibrium& r : results)
       for (std::size_t i = 0; i < r.balls.size(); ++i) {
         const QuasiStaticBall& q = r.balls[i];
         csv << r.speed * kRadPerSToRpm << ',' << i << ',' << q.azimuth * kDeg << ',' << q.inner_load << ','
             << q.outer_load << ',' << q.inner_angle * kDeg << ',' << q.outer_angle * kDeg << ',' << q.orbital_speed
-            << ',' << q.gyroscopic_moment << '\n';
+            << ',' << q.gyroscopic_moment << ',' << inner_pressure(q) << ',' << outer_pressure(q) << '\n';
       }
     file.commit();
   }
@@ -471,8 +499,9 @@ int run_bearing_command(const BearingCommandOptions& options) {
   std::cout << spec.name << ": ball bearing " << b.name << ", load (" << load[0] << ", " << load[1] << ", " << load[2]
             << ") N" << (b.damper.enabled ? ", outer ring held at the damper's centre" : "") << "\n";
   std::cout << "     speed [rpm]  cage/shaft  a_i ball 0  a_o ball 0   Q_max [N]   k_xx [N/m]   k_yy [N/m]  "
-               "k_tilt [N m/rad]\n";
-  for (const BallBearingEquilibrium& r : results) {
+               "k_tilt [N m/rad]  p_max [MPa]\n";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const BallBearingEquilibrium& r = results[i];
     double qmax = 0.0;
     for (const QuasiStaticBall& q : r.balls) qmax = std::max({qmax, q.inner_load, q.outer_load});
     std::cout << std::fixed << std::setw(16) << std::setprecision(0) << r.speed * kRadPerSToRpm << std::setw(12)
@@ -480,7 +509,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
               << std::setprecision(2) << r.balls[0].inner_angle * kDeg << std::setw(12) << r.balls[0].outer_angle * kDeg
               << std::setw(12) << qmax << std::scientific << std::setprecision(4) << std::setw(13)
               << r.stiffness(0, 0) << std::setw(13) << r.stiffness(1, 1) << std::setw(13) << r.stiffness(3, 3)
-              << "\n";
+              << std::fixed << std::setprecision(0) << std::setw(13) << max_pressure[i] * 1e-6 << "\n";
   }
   for (std::size_t i = 0; i < curves.size(); ++i) {
     std::cout << "  load-deflection at " << std::fixed << std::setprecision(0) << results[i].speed * kRadPerSToRpm
@@ -522,7 +551,8 @@ int run_bearing_command(const BearingCommandOptions& options) {
                                                                         "bearing_balls.csv"}
                                              : std::vector<std::string>{"bearing.json", "bearing.csv",
                                                                         "bearing_balls.csv", "load_deflection.csv"},
-                              {}});
+                              warnings});
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, bearing_balls.csv"
             << (curves.empty() ? "" : ", load_deflection.csv") << ", report.html"

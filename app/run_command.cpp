@@ -200,7 +200,7 @@ int run_plot_command(const PlotCommandOptions& options) {
     r.channels.push_back(c);
     r.columns.push_back(data.columns[k]);
   }
-  std::vector<std::string> pictures, warnings;
+  std::vector<std::string> pictures, warnings = probe_limit_warnings(j);
   nlohmann::json spectral = nlohmann::json::object();
   if (r.time.size() > 1) post::draw_run_pictures(spec, r, options.run_dir, pictures, warnings, spectral, campbell,
                                                    order_overlays);
@@ -287,7 +287,7 @@ int run_run_command(const RunCommandOptions& options) {
   nlohmann::json j = run_summary(spec, *model, ro, r, options.overrides);
   const nlohmann::json& probes = j["probes"];
 
-  std::vector<std::string> pictures, warnings;
+  std::vector<std::string> pictures, warnings = probe_limit_warnings(j);
   nlohmann::json spectral = nlohmann::json::object();
   if (options.plots && r.time.size() > 1) {
     try {

@@ -461,9 +461,14 @@ void write_bearing_report(const std::filesystem::path& dir, const nlohmann::json
                     HtmlPage::number(F, j, at + "/stiffness/0/0", k.factor, k.unit),
                     HtmlPage::number(F, j, at + "/stiffness/1/1", k.factor, k.unit),
                     HtmlPage::number(F, j, at + "/stiffness/2/2", k.factor, k.unit),
-                    HtmlPage::number(F, j, at + "/stiffness/3/3", 1.0, "N m/rad")});
+                    HtmlPage::number(F, j, at + "/stiffness/3/3", 1.0, "N m/rad"),
+                    HtmlPage::number(F, j, at + "/max_contact_pressure_pa", 1e-6, "MPa", 4)});
   }
-  page.table("bearing", {"rotor speed", "cage / shaft speed", "k_xx", "k_yy", "k_zz", "k_θxθx"}, rows);
+  page.table("bearing",
+             {"rotor speed", "cage / shaft speed", "k_xx", "k_yy", "k_zz", "k_θxθx", "largest contact pressure"},
+             rows);
+  if (!in.warnings.empty()) page.heading("Warnings");
+  page.warnings(in.warnings);
   pictures_and_files(page, in);
   page.write(dir);
 }

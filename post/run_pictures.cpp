@@ -120,8 +120,11 @@ nlohmann::json spectral_line_json(const signal::SpectralLine& l) {
 
 // Whether a run's channel gets a spectrogram: not the speed and angle, and not powers and losses (W), which are read
 // as time series, not as vibration (they stay in the file).
+// Not the speed, the angle, powers, or a probe with a limit (read as its level against the limit: the
+// contact-pressure picture).
 bool gets_spectrogram(const ProbeChannel& ch) {
-  return ch.kind != ProbeChannel::Kind::Speed && ch.kind != ProbeChannel::Kind::Angle && ch.unit != "W";
+  return ch.kind != ProbeChannel::Kind::Speed && ch.kind != ProbeChannel::Kind::Angle && ch.unit != "W" &&
+         !std::isfinite(ch.limit);
 }
 
 // What every spectrogram of a run shares: the rotor speed, whether it never falls (the spectrograms are then drawn
@@ -188,7 +191,7 @@ nlohmann::json spectrogram_maxima(const MachineSpec& spec, const RunupResult& r)
 }
 
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
-                                                   std::size_t block, double offset) {
+                                                   std::size_t block, double offset, Block kind, double scale) {
   const int speed_col = column_of(r, ProbeChannel::Kind::Speed);
   if (speed_col < 0 || block == 0 || r.time.size() < 2 * block) return std::nullopt;
   const std::vector<double>& speed_hz = r.columns[speed_col];
@@ -204,9 +207,13 @@ std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const s
     s.label = name;
     for (std::size_t i0 = 0; i0 + block <= r.time.size(); i0 += block) {
       double w = 0.0, v = 0.0;
-      for (std::size_t i = i0; i < i0 + block; ++i) w += speed_hz[i], v += r.columns[c][i];
+      for (std::size_t i = i0; i < i0 + block; ++i) {
+        w += speed_hz[i];
+        if (kind == Block::Mean) v += r.columns[c][i];
+        else v = std::max(v, std::abs(r.columns[c][i]));
+      }
       s.x.push_back(w / static_cast<double>(block));
-      s.y.push_back(v / static_cast<double>(block) + offset);
+      s.y.push_back(((kind == Block::Mean ? v / static_cast<double>(block) : v) + offset) * scale);
     }
     chart.series.push_back(std::move(s));
   }
@@ -377,6 +384,28 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     chart->ylabel = q.ylabel;
     plot::render_png(*chart, dir / q.file);
     written.push_back(q.file);
+  }
+  // Ball bearings' largest contact pressure, 10-ms peaks, against the limit their probe carries (ISO 76's).
+  if (std::optional<plot::LineChart> chart =
+          against_speed_chart(r, {".max_contact_pressure"}, block, 0.0, Block::Peak, 1e-6)) {
+    chart->title = "Largest ball-race contact pressure against rotor speed (10-ms peaks)";
+    chart->ylabel = "Hertz pressure p_0 [MPa]";
+    for (const ProbeChannel& ch : r.channels) {
+      const std::string suffix = ".max_contact_pressure";
+      if (!std::isfinite(ch.limit) || ch.name.size() < suffix.size() ||
+          ch.name.compare(ch.name.size() - suffix.size(), suffix.size(), suffix) != 0)
+        continue;
+      plot::Series limit;
+      limit.label = "static limit (ISO 76)";
+      limit.style = plot::Series::Style::Dashed;
+      limit.color = "black";
+      limit.x = {chart->series.front().x.front(), chart->series.front().x.back()};
+      limit.y = {ch.limit * 1e-6, ch.limit * 1e-6};
+      chart->series.push_back(std::move(limit));
+      break;  // one line: every ball bearing has the same limit
+    }
+    plot::render_png(*chart, dir / "contact_pressure.png");
+    written.push_back("contact_pressure.png");
   }
 }
 

@@ -66,9 +66,12 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
 /// ".ring_speed_ratio": every floating ring's ring speed ratio): the mean over blocks of `block` samples of the
 /// value + `offset` (e.g. -273.15 for K to degC) against the block's mean rotor speed f_d [Hz], so that the whirl's
 /// ripple does not hide the operating point. Legend entries are the channel names. std::nullopt when no channel matches, the run has
-/// no speed channel or fewer than two blocks.
+/// no speed channel or fewer than two blocks. With `Block::Peak` each block gives its largest |value| instead of its
+/// mean (an envelope, e.g. of a contact pressure); the value is multiplied by `scale` (after the offset).
+enum class Block { Mean, Peak };
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
-                                                   std::size_t block, double offset = 0.0);
+                                                   std::size_t block, double offset = 0.0, Block kind = Block::Mean,
+                                                   double scale = 1.0);
 
 /// Draws the pictures of a run into `dir`: a spectrogram of every probe (against speed while the speed does not
 /// fall, else against time), the 1x order track of every x/y probe pair, the orbits of every rotor x/y pair at the

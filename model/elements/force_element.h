@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -67,9 +68,18 @@ class EvaluationKey {
 
 /// A named scalar output of an element (e.g. the force it transmits to the housing).
 struct ProbeInfo {
+  ProbeInfo(std::string name_, std::string unit_, std::string description_,
+            double limit_ = std::numeric_limits<double>::infinity(), std::string limit_note_ = {})
+      : name(std::move(name_)), unit(std::move(unit_)), description(std::move(description_)), limit(limit_),
+        limit_note(std::move(limit_note_)) {}
+
   std::string name;         ///< unique within the element, e.g. "force_x"
   std::string unit;         ///< e.g. "N"
   std::string description;  ///< e.g. "force on the housing, horizontal"
+  /// The largest |value| the element's model describes a sound machine at (same unit; infinite: none), and what
+  /// passing it means; a run reports where it is passed (summary.json, a warning).
+  double limit = std::numeric_limits<double>::infinity();
+  std::string limit_note;
 };
 
 /// The probes every bearing reports first, fx and fy (N): the force it transmits to the housing, `via` naming the
@@ -78,7 +88,7 @@ inline std::vector<ProbeInfo> housing_force_probes(const std::string& who, const
                                                    std::initializer_list<ProbeInfo> more = {}) {
   std::vector<ProbeInfo> p = {{"fx", "N", who + "force transmitted to the housing" + via + ", horizontal (x)"},
                               {"fy", "N", who + "force transmitted to the housing" + via + ", vertical (y)"}};
-  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description});
+  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description, m.limit, m.limit_note});
   return p;
 }
 
@@ -89,7 +99,7 @@ inline std::vector<ProbeInfo> damper_probes(const std::string& who, std::initial
                                                   {{"damper_x", "m", "outer ring displacement in the damper, horizontal"},
                                                    {"damper_y", "m", "outer ring displacement in the damper, vertical"},
                                                    {"damper_eccentricity", "1", "damper eccentricity ratio e/c"}});
-  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description});
+  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description, m.limit, m.limit_note});
   return p;
 }
 

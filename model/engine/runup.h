@@ -17,8 +17,10 @@
 // parallel studies can run many simulations of one model). Rhs() allocates nothing.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -32,12 +34,23 @@ namespace turbodyn {
 
 /// One output channel of a run.
 struct ProbeChannel {
+  enum class Kind { Speed, Angle, RotorDof, Element };
+  ProbeChannel() = default;
+  ProbeChannel(std::string name_, std::string unit_, std::string description_, Kind kind_, int index_,
+               int element_probe_, double limit_ = std::numeric_limits<double>::infinity(),
+               std::string limit_note_ = {})
+      : name(std::move(name_)), unit(std::move(unit_)), description(std::move(description_)), kind(kind_),
+        index(index_), element_probe(element_probe_), limit(limit_), limit_note(std::move(limit_note_)) {}
+
   std::string name;         ///< e.g. "disk.compressor.x"
   std::string unit;         ///< e.g. "m"
   std::string description;
-  enum class Kind { Speed, Angle, RotorDof, Element } kind = Kind::RotorDof;
+  Kind kind = Kind::RotorDof;
   int index = 0;            ///< rotor DOF (RotorDof) or element index (Element)
   int element_probe = 0;    ///< index among the element's probes
+  /// The element probe's limit and what passing it means (ProbeInfo::limit; infinite: none).
+  double limit = std::numeric_limits<double>::infinity();
+  std::string limit_note;
 };
 
 struct RunupWorkspace;

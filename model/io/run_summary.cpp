@@ -3,6 +3,8 @@
 #include "model/io/result_header.h"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace turbodyn {
 
@@ -48,9 +50,41 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
       }
     probes[ch.name] = {{"unit", ch.unit}, {"description", ch.description}, {"max_abs", max_abs},
                        {"time_at_max_s", time}, {"speed_at_max_hz", speed_hz}, {"speed_at_max_rpm", speed_hz * 60.0}};
+    if (std::isfinite(ch.limit)) {
+      nlohmann::json& p = probes[ch.name];
+      p["limit"] = ch.limit;
+      p["limit_note"] = ch.limit_note;
+      p["over_limit"] = nullptr;  // where |value| first passes the limit, if it does
+      for (std::size_t i = 0; i < r.columns[c].size(); ++i)
+        if (std::abs(r.columns[c][i]) > ch.limit) {
+          p["over_limit"] = {{"time_s", r.time[i]}, {"speed_rpm", r.columns[speed_col][i] * 60.0}};
+          break;
+        }
+    }
   }
   j["probes"] = probes;
   return j;
+}
+
+std::vector<std::string> probe_limit_warnings(const nlohmann::json& summary) {
+  std::vector<std::string> out;
+  if (!summary.contains("probes")) return out;
+  for (const auto& [name, p] : summary["probes"].items()) {
+    if (!p.contains("over_limit") || p["over_limit"].is_null()) continue;
+    // Pressures in MPa, everything else in its SI unit.
+    const std::string unit = p.value("unit", "");
+    const double scale = unit == "Pa" ? 1e-6 : 1.0;
+    const std::string shown = unit == "Pa" ? "MPa" : unit;
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(0) << name << " is first above its limit of "
+       << p["limit"].get<double>() * scale << " " << shown << " at " << p["over_limit"]["speed_rpm"].get<double>()
+       << " rpm (t = " << std::setprecision(4) << p["over_limit"]["time_s"].get<double>() << " s), largest "
+       << std::setprecision(0) << p["max_abs"].get<double>() * scale << " " << shown << " at "
+       << p["speed_at_max_rpm"].get<double>() << " rpm. The limit: " << p.value("limit_note", std::string())
+       << ". The run goes on as the model describes it";
+    out.push_back(os.str());
+  }
+  return out;
 }
 
 }  // namespace turbodyn

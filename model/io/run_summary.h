@@ -1,6 +1,7 @@
 // The summary of a run-up (summary.json, docs/output-format.md), shared by `turbodyn run` and the studies.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -14,5 +15,9 @@ namespace turbodyn {
 /// balance, and per probe the maximum absolute value with the time and speed where it occurs.
 nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, const RunupOptions& options,
                            const RunupResult& result, const std::vector<Override>& overrides);
+
+/// One warning per probe of `summary` (run_summary's) that passes its limit (ProbeInfo::limit): the probe, the limit,
+/// the speed and time it is first passed, the largest value and what passing it means.
+std::vector<std::string> probe_limit_warnings(const nlohmann::json& summary);
 
 }  // namespace turbodyn

@@ -272,6 +272,25 @@ assert 4.5e7 < r[0]["stiffness"][0][0] < 5.5e7, r[0]["stiffness"][0][0]
 assert r[-1]["cage_speed_ratio"] > r[1]["cage_speed_ratio"] > 0.3
 assert len(r[-1]["balls"]) == 8
 assert j["bearing"]["hertz_law"] == "ellipse" and j["bearing"]["hertz_coefficient"] == 0
+# Hertz pressures: each speed's largest is its balls' largest; about 1,000 MPa under the 40 N preload at rest (17-19 N
+# per ball, docs/ball-bearing.md), far below ISO 76's 4,200 MPa, so no warning.
+for p in r:
+    assert p["max_contact_pressure_pa"] == max(max(b["inner_pressure_pa"], b["outer_pressure_pa"]) for b in p["balls"])
+assert 0.9e9 < r[0]["max_contact_pressure_pa"] < 1.3e9, r[0]["max_contact_pressure_pa"]
+assert j["static_contact_pressure_limit_pa"] == 4.2e9 and j["warnings"] == [], j["warnings"]
+EOF2
+    head -1 "$out/bearing_balls.csv" | grep -q ",inner_pressure_pa,outer_pressure_pa$" \
+      || fail "bearing_balls.csv: $(head -1 "$out/bearing_balls.csv")"
+    # 8,000 N of thrust at rest puts about 1,700 N on each ball, above ISO 76's static limit: a warning on
+    # standard error and in bearing.json, the results still written (exit 0).
+    "$exe" bearing "$src/examples/reference_ball.toml" --speeds "0 rpm" --load "0,0,8000" --no-plots -o "$out/heavy" \
+      > "$out/heavy.log" 2>&1 || fail "exit $?: $(cat "$out/heavy.log")"
+    grep -q "warning: at 0 rpm the largest contact pressure is .* MPa, above ISO 76's static limit of 4200 MPa" \
+      "$out/heavy.log" || fail "no pressure warning: $(cat "$out/heavy.log")"
+    python3 - "$out/heavy/bearing.json" <<'EOF2' || fail "heavy: $(head -c 2000 "$out/heavy/bearing.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["results"][0]["max_contact_pressure_pa"] > 4.2e9 and len(j["warnings"]) == 1, j["warnings"]
 EOF2
     # The paper's Eq. 20 (mu* 0.171): stiffer contacts, about 4x the radial stiffness at rest (docs/ball-bearing.md).
     "$exe" bearing "$src/examples/reference_ball.toml" --bearing turbine --speeds "0 rpm" --load "20,-10" --no-plots \

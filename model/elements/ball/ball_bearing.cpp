@@ -87,6 +87,18 @@ HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y,
   return h;
 }
 
+double HertzPeakPressure(const HertzPointContact& hz, double Q) {
+  if (!(Q > 0.0)) return 0.0;
+  const double mean_radius = hz.radius_factor * std::cbrt(Q);  // sqrt(a b)
+  return 1.5 * Q / (kPi * mean_radius * mean_radius);
+}
+
+ProbeInfo MaxContactPressureProbe() {
+  return {"max_contact_pressure", "Pa", "largest Hertz pressure of the ball-race contacts", kStaticContactPressureLimit,
+          "ISO 76's static limit for ball bearings, above which balls and races take a permanent deformation of more "
+          "than 1/10,000 of the ball diameter (brinelling), which rigid bodies with Hertz contacts do not describe"};
+}
+
 double PaperHertzConstant(double curvature_sum, double modulus, double mu_star) {
   if (!(curvature_sum > 0.0 && modulus > 0.0 && mu_star > 0.0))
     throw std::invalid_argument("paper Eq. 20: curvature sum, modulus and mu* must be > 0");
@@ -369,7 +381,8 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
 
   Vec3 F_shaft = Vec3::Zero(), M_shaft = Vec3::Zero();  // housing frame
   Vec3 F_outer = Vec3::Zero(), F_cage = Vec3::Zero();
-  double T_cage = 0.0, diss = 0.0, qmax = 0.0;
+  double T_cage = 0.0, diss = 0.0;
+  double qmax[2] = {0.0, 0.0};  // largest normal force at the inner and at the outer races
   double ai_r = 0.0, ai_z = 0.0, ao_r = 0.0, ao_z = 0.0;
 
   Race inner, outer_race;
@@ -481,7 +494,7 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
         if (k == 0) loads.shaft_power_friction += Ms * geo.u.dot(race.tilt_rate);
       }
     }
-    qmax = std::max(qmax, Q);
+    qmax[k] = std::max(qmax[k], Q);
     if (k == 0) {
       if (Q > 0.0) ai_r -= geo.u.x(), ai_z -= side * geo.u.z();
     } else {
@@ -618,7 +631,9 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   loads.outer_ring[0] = F_outer.x();
   loads.outer_ring[1] = F_outer.y();
   loads.outer_ring[2] = F_outer.z();
-  loads.max_contact_force = qmax;
+  loads.max_contact_force = std::max(qmax[0], qmax[1]);
+  loads.max_race_contact_force[0] = qmax[0];
+  loads.max_race_contact_force[1] = qmax[1];
   loads.dissipated_power = diss;
   loads.inner_contact_angle = (ai_r != 0.0 || ai_z != 0.0) ? std::atan2(ai_z, ai_r) : 0.0;
   loads.outer_contact_angle = (ao_r != 0.0 || ao_z != 0.0) ? std::atan2(ao_z, ao_r) : 0.0;
@@ -741,10 +756,16 @@ void BallBearingElement::Evaluate(const SpinState& s, const double* q, const dou
   }
 }
 
+double BallBearingElement::max_contact_pressure(const BallBearingLoads& loads) const {
+  return std::max(HertzPeakPressure(hertz_inner_, loads.max_race_contact_force[0]),
+                  HertzPeakPressure(hertz_outer_, loads.max_race_contact_force[1]));
+}
+
 std::vector<ProbeInfo> BallBearingElement::probes() const {
   const std::string who = "ball bearing '" + name() + "': ";
   return housing_force_probes(who, "", {{"cage_speed_ratio", "1", "cage speed / rotor speed"},
                                         {"max_contact_force", "N", "largest ball-race normal force"},
+                                        MaxContactPressureProbe(),
                                         {"outer_ring_axial", "m", "axial displacement of the outer ring"},
                                         {"inner_contact_angle", "rad", "mean loaded inner contact angle"},
                                         {"outer_contact_angle", "rad", "mean loaded outer contact angle"},
@@ -774,16 +795,17 @@ void BallBearingElement::eval_probes(const SpinState& s, const double* q, const 
   }
   out[2] = s.speed != 0.0 ? z[cage_offset() + 7] / s.speed : 0.0;
   out[3] = loads.max_contact_force;
-  out[4] = z[outer_offset()];
-  out[5] = loads.inner_contact_angle;
-  out[6] = loads.outer_contact_angle;
-  out[7] = loads.shaft_power_normal;
-  out[8] = loads.shaft_power_friction;
-  out[9] = loads.friction_loss_inner;
-  out[10] = loads.friction_loss_outer;
-  out[11] = loads.friction_loss_pocket;
-  out[12] = z[cage_offset()];
-  out[13] = z[cage_offset() + 1];
+  out[4] = max_contact_pressure(loads);
+  out[5] = z[outer_offset()];
+  out[6] = loads.inner_contact_angle;
+  out[7] = loads.outer_contact_angle;
+  out[8] = loads.shaft_power_normal;
+  out[9] = loads.shaft_power_friction;
+  out[10] = loads.friction_loss_inner;
+  out[11] = loads.friction_loss_outer;
+  out[12] = loads.friction_loss_pocket;
+  out[13] = z[cage_offset()];
+  out[14] = z[cage_offset() + 1];
   // Mass centre of the ball set: zero for equally spaced balls on one radius; a ball set that bunches in its
   // pockets is a rotating unbalance of Z m times this offset, turning with the balls.
   double sx = 0.0, sy = 0.0;
@@ -793,7 +815,7 @@ void BallBearingElement::eval_probes(const SpinState& s, const double* q, const 
     sx += r * std::cos(b[0]);
     sy += r * std::sin(b[0]);
   }
-  out[14] = std::hypot(sx, sy) / spec_.n_balls;
+  out[15] = std::hypot(sx, sy) / spec_.n_balls;
 }
 
 double BallBearingElement::core_kinetic_energy(const double* z) const {

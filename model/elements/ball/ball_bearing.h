@@ -71,6 +71,19 @@ double eyring_traction_per_slip(const EyringLubricant& lub, const HertzPointCont
 /// negative), both > 0; modulus: E' = 2 / ((1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2) in Pa (Hamrock's E').
 HertzPointContact SolveHertzPointContact(double curvature_x, double curvature_y, double modulus);
 
+/// The largest pressure of the contact under the normal load Q (N): p_0 = 3 Q / (2 pi a b) in Pa, a b =
+/// (radius_factor Q^(1/3))^2 (Johnson 1985, §4.2); 0 for Q <= 0.
+double HertzPeakPressure(const HertzPointContact& hz, double Q);
+
+/// ISO 76:2006's basis of the static load rating of ball bearings (all but self-aligning ones): the Hertz pressure
+/// at the most heavily loaded ball-race contact at which the balls and races of bearing steel take a permanent
+/// deformation of about 1/10,000 of the ball diameter (Pa). The bearing probes' limit of `max_contact_pressure`.
+inline constexpr double kStaticContactPressureLimit = 4.2e9;
+
+/// The probe of BallBearingLoads::max_contact_pressure, with its limit kStaticContactPressureLimit (a ball bearing
+/// alone and in a damper).
+ProbeInfo MaxContactPressureProbe();
+
 /// The Hertz constant of paper Eq. 20, F = E' sqrt(3 / rho') (2 delta / (3 mu*))^1.5, in N/m^1.5: rho' the sum of
 /// the principal curvatures of both bodies (1/m), E' the modulus as HertzPointContact's, mu* the paper's coefficient
 /// (Harris & Kotzalas' dimensionless approach delta*: 1 for a sphere on a flat).
@@ -118,6 +131,9 @@ struct BallBearingLoads {
   double shaft_torque = 0.0;            ///< moment on the shaft about the spin axis (N m; a drag is < 0)
   double outer_ring[3] = {0, 0, 0};     ///< force of the balls on the outer ring, x, y, z (N)
   double max_contact_force = 0.0;       ///< largest ball-race normal force (N)
+  /// Largest normal force of the inner-race and of the outer-race contacts (N); their Hertz pressures:
+  /// BallBearingElement::max_contact_pressure.
+  double max_race_contact_force[2] = {0.0, 0.0};
   double dissipated_power = 0.0;        ///< contact damping and friction (W, >= 0)
   /// Power of the inner-race contact forces on the shaft's lateral motion (x, y and tilt rates; the spin about
   /// the axis is the drive's): normal (Hertz + damping) and tangential (friction) parts (W). Their mean over a
@@ -244,6 +260,9 @@ class BallBearingElement final : public ForceElement {
 
   /// Derived constants (for tests and documentation).
   const HertzPointContact& inner_contact() const { return hertz_inner_; }
+  /// The largest Hertz pressure of the ball-race contacts of an evaluation (Pa, HertzPeakPressure; computed here
+  /// rather than in every evaluation, which only keeps the races' largest forces).
+  double max_contact_pressure(const BallBearingLoads& loads) const;
   const HertzPointContact& outer_contact() const { return hertz_outer_; }
   double pocket_stiffness() const { return k_pocket_; }  ///< N/m^1.5
   double ball_mass() const { return m_ball_; }           ///< kg

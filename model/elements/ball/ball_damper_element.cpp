@@ -198,7 +198,8 @@ void BallDamperElement::do_calc_and_add_forces(const SpinState& s, const double*
 std::vector<ProbeInfo> BallDamperElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
   return damper_probes(who, {{"cage_speed_ratio", "1", "cage speed / rotor speed"},
-                             {"max_contact_force", "N", "largest ball-race normal force"}});
+                             {"max_contact_force", "N", "largest ball-race normal force"},
+                             MaxContactPressureProbe()});
 }
 
 void BallDamperElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
@@ -214,6 +215,7 @@ void BallDamperElement::eval_probes(const SpinState& s, const double* q, const d
   const double cage_spin = z[bearing_.cage_offset() + 7];
   out[5] = s.speed != 0.0 ? cage_spin / s.speed : 0.0;
   out[6] = e.loads.max_contact_force;
+  out[7] = bearing_.max_contact_pressure(e.loads);
 }
 
 double BallDamperElement::potential_energy(const double* q, const double* z) const {

@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include "model/spec/constants.h"
 #include "tests/support/ball_bearing_fixtures.h"
 
 namespace turbodyn {
@@ -143,17 +144,25 @@ KinematicRun run_at_speed(double speed_rpm, double revolutions) {
   const double bp = s.n_balls * f_cage;
   const double dt = 1.0 / (16.0 * bp);
   const int n = static_cast<int>(revolutions / fs / dt);
-  std::vector<double> fx(n), probes(e.probes().size());
+  const std::vector<ProbeInfo> info = e.probes();
+  std::vector<double> fx(n), probes(info.size());
+  const auto index = [&](const std::string& name) {
+    const auto it = std::find_if(info.begin(), info.end(), [&](const ProbeInfo& p) { return p.name == name; });
+    EXPECT_NE(it, info.end()) << name;
+    return static_cast<std::size_t>(it - info.begin());
+  };
+  const std::size_t i_fx = index("fx"), i_cage = index("cage_speed_ratio"), i_ai = index("inner_contact_angle"),
+                    i_ao = index("outer_contact_angle");
   auto ws = e.make_workspace();
   double cage = 0.0, orbit = 0.0, ai = 0.0, ao = 0.0;
   const double v[4] = {0, 0, 0, 0};
   for (int k = 0; k < n; ++k) {
     EXPECT_TRUE(in.advance(t_settle + (k + 1) * dt));
     e.eval_probes(SpinState{0.0, W, 0.0, 0.0}, q.data(), v, in.z(), *ws, probes.data());
-    fx[k] = probes[0];
-    cage += probes[2] / n;
-    ai += probes[5] / n;
-    ao += probes[6] / n;
+    fx[k] = probes[i_fx];
+    cage += probes[i_cage] / n;
+    ai += probes[i_ai] / n;
+    ao += probes[i_ao] / n;
     for (int j = 0; j < s.n_balls; ++j) orbit += in.z()[e.ball_offset(j) + 3] / (n * s.n_balls);
   }
   // DFT magnitude of the housing force (mean removed, Hann window).
@@ -231,6 +240,59 @@ TEST(BallBearing, HertzConstantsMatchTheDeepGrooveReference) {
               " rigid rings 1000 N -> %.4f um; element at 15.110 um -> %.2f N\n",
               hi.curvature_sum / 1000, hi.ellipticity, hi.stiffness / kNmm15, ho.curvature_sum / 1000, ho.ellipticity,
               ho.stiffness / kNmm15, Kn / kNmm15, 0.5 * (lo + hi_d) * 1e6, -f[0]);
+}
+
+TEST(BallBearing, HertzPeakPressureIsJohnsonsClosedFormAndAPublishedBallBearingExample) {
+  // A sphere of radius R on a flat: p_0 = (6 F E*^2 / (pi^3 R^2))^(1/3) (Johnson 1985, §4.2, Eq. 4.23), E* = E' / 2.
+  const double E = 210e9, nu = 0.3, Ep = 2.0 / (2.0 * (1 - nu * nu) / E), R = 2.25e-3, F = 100.0;
+  const double Es = 0.5 * Ep;
+  const double p0 = std::cbrt(6.0 * F * Es * Es / (kPi * kPi * kPi * R * R));
+  EXPECT_NEAR(HertzPeakPressure(SolveHertzPointContact(1.0 / R, 1.0 / R, Ep), F) / p0, 1.0, 1e-12);
+  EXPECT_EQ(HertzPeakPressure(SolveHertzPointContact(1.0 / R, 1.0 / R, Ep), 0.0), 0.0);
+  EXPECT_EQ(HertzPeakPressure(SolveHertzPointContact(1.0 / R, 1.0 / R, Ep), -1.0), 0.0);
+
+  // "Example - Contact Stresses in a Steel Ball Bearing" (AMESWeb, amesweb.info, HertzianContact): a ball of radius
+  // 4.90 mm on an inner race of radius 25 mm with a groove of radius 5 mm, E = 210 GPa, nu = 0.29, 1500 N on the
+  // topmost ball -> largest Hertz pressure 2193.6 MPa (semi-axes 2.101 and 0.156 mm).
+  const double nu2 = 0.29, Ep2 = 2.0 / (2.0 * (1 - nu2 * nu2) / E);
+  const HertzPointContact race =
+      SolveHertzPointContact(1.0 / 4.90e-3 + 1.0 / 25e-3, 1.0 / 4.90e-3 - 1.0 / 5e-3, Ep2);
+  const double p = HertzPeakPressure(race, 1500.0);
+  EXPECT_NEAR(p / 2193.6e6, 1.0, 0.005) << p;  // 0.5 %: the page gives its semi-axes to 3 digits
+  std::printf("[ hertz pressure ] sphere on flat %.6e Pa (closed form %.6e); AMESWeb example %.1f MPa (2193.6)\n",
+              HertzPeakPressure(SolveHertzPointContact(1.0 / R, 1.0 / R, Ep), F), p0, p * 1e-6);
+
+  // The element reports the largest pressure of its contacts: the deep-groove reference pushed 15.110 um towards
+  // the ball at 0 deg (1000 N, HertzConstantsMatchTheDeepGrooveReference) loads that ball most, and its inner
+  // contact (the smaller ellipse) carries the highest pressure.
+  const BallBearingSpec s = deep_groove_reference();
+  const BallBearingElement e("deep_groove", s, 0, 0.0);
+  std::vector<double> z(e.n_states());
+  e.initial_states(z.data());
+  const Eigen::Vector4d q(15.110e-6, 0, 0, 0), v = Eigen::Vector4d::Zero();
+  element_static_force(e, q, z);
+  BallBearingLoads loads;
+  std::vector<double> zd(z.size());
+  e.calc_bearing(SpinState{}, q.data(), v.data(), z.data(), OuterRingKinematics{}, loads, zd.data());
+  EXPECT_GT(loads.max_contact_force, 600.0);  // Stribeck's 5 Fr / Z = 714 N, rigid rings about 620 N
+  EXPECT_LT(loads.max_contact_force, 714.0);
+  const double p_max = e.max_contact_pressure(loads);
+  EXPECT_EQ(loads.max_race_contact_force[0], loads.max_contact_force);  // the inner and outer race of a ball carry
+  EXPECT_NEAR(loads.max_race_contact_force[1] / loads.max_contact_force, 1.0, 1e-6);  // the same at rest
+  EXPECT_NEAR(p_max / HertzPeakPressure(e.inner_contact(), loads.max_contact_force), 1.0, 1e-12);
+  EXPECT_GT(p_max, HertzPeakPressure(e.outer_contact(), loads.max_contact_force));
+  const std::vector<ProbeInfo> probes = e.probes();
+  const auto it = std::find_if(probes.begin(), probes.end(),
+                               [](const ProbeInfo& p) { return p.name == "max_contact_pressure"; });
+  ASSERT_NE(it, probes.end());
+  EXPECT_EQ(it->unit, "Pa");
+  EXPECT_EQ(it->limit, kStaticContactPressureLimit);
+  std::vector<double> out(probes.size());
+  std::unique_ptr<ElementWorkspace> ws = e.make_workspace();
+  e.eval_probes(SpinState{}, q.data(), v.data(), z.data(), *ws, out.data());
+  EXPECT_EQ(out[static_cast<std::size_t>(it - probes.begin())], p_max);
+  std::printf("[ hertz pressure ] deep-groove reference at 1000 N: %.1f N, %.0f MPa on the inner race\n",
+              loads.max_contact_force, p_max * 1e-6);
 }
 
 TEST(BallBearing, ThePapersEq20IsHertzForASphereOnAFlatAndSetsBothRaceContacts) {
