@@ -44,12 +44,14 @@ RunRecord evaluate_run(const StudyCommon& study, const std::vector<MetricSpec>& 
           rec.metrics[m] = evaluate_metric(metrics[m], r, summary, run.options.sample_rate);
       rec.status = r.complete ? "ok" : (cancel && cancel->load()) ? "cancelled" : "incomplete";
       rec.error = r.message;
+      rec.note = probe_limit_note(summary);
     }
     // The stability metrics analyse the model itself (no run-up): after a complete run, or alone.
     if (any_stability && rec.status == "ok") {
-      std::string error;
+      std::string error, note;
       const std::vector<double> v =
-          evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel, &rec.note);
+          evaluate_stability_metrics(load_base_model(study, overrides), metrics, &error, cancel, &note);
+      if (!note.empty()) rec.note += (rec.note.empty() ? "" : "; ") + note;
       for (std::size_t m = 0; m < metrics.size(); ++m)
         if (is_stability_metric(metrics[m].kind)) rec.metrics[m] = v[m];
       if (!error.empty()) {

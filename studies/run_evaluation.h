@@ -21,7 +21,9 @@ struct RunRecord {
   std::string status;                ///< "ok", "incomplete" (integrator gave up, or a stability analysis found no
                                      ///< steady state at a speed; metrics from the partial run), "failed"
   std::string error;                 ///< why, for incomplete and failed runs
-  std::string note;                  ///< what a complete run's metrics need said (a stability analysis's restart)
+  /// What a run's metrics need said: probes past their limit (probe_limit_note, e.g. a ball bearing's contact
+  /// pressure above ISO 76's), a stability analysis's restart; "; " between them.
+  std::string note;
   double wall_time = 0.0;            ///< s
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 namespace turbodyn {
 
@@ -66,8 +67,12 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
   return j;
 }
 
-std::vector<std::string> probe_limit_warnings(const nlohmann::json& summary) {
-  std::vector<std::string> out;
+namespace {
+
+// Each probe of the summary that passes its limit, with the statement of where (`with_time`: and when) and how far.
+std::vector<std::pair<std::string, const nlohmann::json*>> limits_passed(const nlohmann::json& summary,
+                                                                        bool with_time) {
+  std::vector<std::pair<std::string, const nlohmann::json*>> out;
   if (!summary.contains("probes")) return out;
   for (const auto& [name, p] : summary["probes"].items()) {
     if (!p.contains("over_limit") || p["over_limit"].is_null()) continue;
@@ -78,12 +83,28 @@ std::vector<std::string> probe_limit_warnings(const nlohmann::json& summary) {
     std::ostringstream os;
     os << std::fixed << std::setprecision(0) << name << " is first above its limit of "
        << p["limit"].get<double>() * scale << " " << shown << " at " << p["over_limit"]["speed_rpm"].get<double>()
-       << " rpm (t = " << std::setprecision(4) << p["over_limit"]["time_s"].get<double>() << " s), largest "
-       << std::setprecision(0) << p["max_abs"].get<double>() * scale << " " << shown << " at "
-       << p["speed_at_max_rpm"].get<double>() << " rpm. The limit: " << p.value("limit_note", std::string())
-       << ". The run goes on as the model describes it";
-    out.push_back(os.str());
+       << " rpm";
+    if (with_time) os << " (t = " << std::setprecision(4) << p["over_limit"]["time_s"].get<double>() << " s)";
+    os << ", largest " << std::setprecision(0) << p["max_abs"].get<double>() * scale << " " << shown << " at "
+       << p["speed_at_max_rpm"].get<double>() << " rpm";
+    out.emplace_back(os.str(), &p);
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> probe_limit_warnings(const nlohmann::json& summary) {
+  std::vector<std::string> out;
+  for (const auto& [text, p] : limits_passed(summary, true))
+    out.push_back(text + ". The limit: " + p->value("limit_note", std::string()) +
+                  ". The run goes on as the model describes it");
+  return out;
+}
+
+std::string probe_limit_note(const nlohmann::json& summary) {
+  std::string out;
+  for (const auto& [text, p] : limits_passed(summary, false)) out += (out.empty() ? "" : "; ") + text;
   return out;
 }
 

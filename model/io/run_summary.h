@@ -20,4 +20,8 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
 /// the speed and time it is first passed, the largest value and what passing it means.
 std::vector<std::string> probe_limit_warnings(const nlohmann::json& summary);
 
+/// The same in one line for a study's run (`note` of results.csv): each such probe, the limit, the speed where it is
+/// first passed and its largest value, joined by "; "; empty if none passes its limit.
+std::string probe_limit_note(const nlohmann::json& summary);
+
 }  // namespace turbodyn

@@ -60,6 +60,20 @@ TEST(RunEvaluation, AFailingRunIsReportedNotThrown) {
   EXPECT_THROW(run_runup(s, o), ModelError);
 }
 
+TEST(RunEvaluation, ARunWhoseBallBearingPassesTheStaticPressureLimitSaysSoInItsNote) {
+  // The reference ball bearings with 8,000 N of preload at the compressor: about 1,700 N on each of its balls,
+  // above ISO 76's 4,200 MPa from the start (docs/ball-bearing.md, "Contact pressure"); 2 ms of the ramp.
+  StudyCommon s;
+  s.model = testing::source_dir() + "/examples/reference_ball.toml";
+  s.fixed = {{"bearings.compressor.preload", "8000 N"}, {"speed.duration", "2 s"}, {"speed.end", "2000 rpm"}};
+  s.speed_window_max = 2 * kRpmToRadPerS;  // 2 ms of the 2-s ramp to 2,000 rpm
+  const RunRecord r = evaluate_run(s, {probe_metric("max", "bearing.compressor.max_contact_pressure")}, s.fixed);
+  EXPECT_EQ(r.status, "ok") << r.error;
+  EXPECT_GT(r.metrics[0], 4.2e9);
+  EXPECT_THAT(r.note, HasSubstr("bearing.compressor.max_contact_pressure is first above its limit of 4200 MPa at 0 rpm"));
+  EXPECT_THAT(r.note, ::testing::Not(HasSubstr("bearing.turbine")));  // 40 N of preload: about 1,000 MPa
+}
+
 TEST(RunEvaluation, TimeAtSpeedOnARamp) {
   SpeedProfile p;
   p.start = 100.0;

@@ -48,6 +48,11 @@ TEST(RunSummary, AProbeThatPassesItsLimitIsMarkedWhereItFirstDoesAndWarnedOf) {
   EXPECT_THAT(w[0], HasSubstr("bearing.b.max_contact_pressure is first above its limit of 4200 MPa at 12000 rpm "
                               "(t = 0.2000 s), largest 5000 MPa at 18000 rpm. The limit: ISO 76's static limit."));
   EXPECT_TRUE(probe_limit_warnings(nlohmann::json::object()).empty());
+  // A study's run carries it in one line (results.csv's note), without the time.
+  EXPECT_EQ(probe_limit_note(j),
+            "bearing.b.max_contact_pressure is first above its limit of 4200 MPa at 12000 rpm, largest 5000 MPa at "
+            "18000 rpm");
+  EXPECT_EQ(probe_limit_note(nlohmann::json::object()), "");
 }
 
 }  // namespace
