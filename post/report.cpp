@@ -150,9 +150,15 @@ void write_run_report(const std::filesystem::path& dir, const nlohmann::json& j,
     rows.push_back({"<code>" + html_escape(name) + "</code>", html_escape(text(p, "description")),
                     HtmlPage::number(F, j, at + "/max_abs", d.factor, d.unit),
                     HtmlPage::number(F, j, at + "/speed_at_max_rpm", 1.0, "rpm", 5),
-                    HtmlPage::number(F, j, at + "/time_at_max_s", 1.0, "s")});
+                    HtmlPage::number(F, j, at + "/time_at_max_s", 1.0, "s"),
+                    // A probe's limit (a ball bearing's contact pressure: ISO 76's), marked where the run passes it.
+                    HtmlPage::number(F, j, at + "/limit", d.factor, d.unit) +
+                        (p.contains("over_limit") && !p["over_limit"].is_null()
+                             ? " <span class=\"bad\">passed from " +
+                                   HtmlPage::number(F, j, at + "/over_limit/speed_rpm", 1.0, "rpm", 5) + "</span>"
+                             : "")});
   }
-  page.table("probes", {"probe", "what", "largest |value|", "at rotor speed", "at time"}, rows);
+  page.table("probes", {"probe", "what", "largest |value|", "at rotor speed", "at time", "limit"}, rows);
 
   if (j.contains("spectrogram_maxima") && !j["spectrogram_maxima"].empty()) {
     page.heading("Largest spectral lines");

@@ -40,6 +40,7 @@ int column_of(const RunupResult& r, ProbeChannel::Kind kind) {
 Display display_of(const std::string& si_unit) {
   if (si_unit == "m") return {1e6, "µm"};
   if (si_unit == "N/m") return {1e-6, "N/µm"};
+  if (si_unit == "Pa") return {1e-6, "MPa"};  // film and contact pressures
   return {1.0, si_unit};
 }
 

@@ -31,7 +31,11 @@ TEST(Report, RunReportFromASummary) {
   j["stats"] = {{"wall_time_s", 0.1}, {"steps", 10}, {"rhs_calls", 20}};
   j["energy"] = {{"balance_error_j", 1e-9}};
   j["probes"] = {{"disk.c.x", {{"unit", "m"}, {"description", "x"}, {"max_abs", 3e-5}, {"speed_at_max_rpm", 39000.0},
-                               {"time_at_max_s", 0.19}}}};
+                               {"time_at_max_s", 0.19}}},
+                  {"bearing.b.max_contact_pressure",
+                   {{"unit", "Pa"}, {"description", "p"}, {"max_abs", 4.659e9}, {"speed_at_max_rpm", 46513.0},
+                    {"time_at_max_s", 1.24}, {"limit", 4.2e9}, {"limit_note", "ISO 76"},
+                    {"over_limit", {{"time_s", 1.203}, {"speed_rpm", 45113.0}}}}}};
   j["pictures"] = {"spectrogram_disk.c.x.png"};
   j["warnings"] = {"no spectrogram of y"};
   write_run_report(dir, j, {});
@@ -40,6 +44,9 @@ TEST(Report, RunReportFromASummary) {
       "Rotor &amp; &lt;co&gt;",
       "INCOMPLETE",
       ">30.00 µm</span>",
+      ">4659 MPa</span>",
+      ">4200 MPa</span> <span class=\"bad\">passed from <span",
+      ">45113 rpm</span>",
       "turbodyn run m.toml -o out",
       "no spectrogram of y",
       "<img src=\"spectrogram_disk.c.x.png\"",

@@ -69,6 +69,8 @@ TEST(RunPictures, DisplayAndFileNames) {
   EXPECT_EQ(display_of("m").unit, "µm");
   EXPECT_EQ(display_of("N").factor, 1.0);
   EXPECT_EQ(display_of("N").unit, "N");
+  EXPECT_EQ(display_of("Pa").factor, 1e-6);
+  EXPECT_EQ(display_of("Pa").unit, "MPa");
   EXPECT_EQ(display_of("N/m").factor, 1e-6);
   EXPECT_EQ(display_of("N/m").unit, "N/µm");
   EXPECT_EQ(file_safe("disk a/x:1.5-b_c"), "disk_a_x_1.5-b_c");
