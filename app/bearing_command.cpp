@@ -384,9 +384,8 @@ int run_bearing_command(const BearingCommandOptions& options) {
     if (p > kStaticContactPressureLimit) {
       std::ostringstream os;
       os << std::fixed << std::setprecision(0) << "at " << r.speed * kRadPerSToRpm
-         << " rpm the largest contact pressure is " << p * 1e-6 << " MPa, above ISO 76's static limit of "
-         << kStaticContactPressureLimit * 1e-6 << " MPa: the balls and races would take a permanent deformation of "
-         << "more than 1/10,000 of the ball diameter, which this rigid-body Hertz model does not describe";
+         << " rpm the largest contact pressure is " << p * 1e-6 << " MPa, above its limit of "
+         << kStaticContactPressureLimit * 1e-6 << " MPa, " << MaxContactPressureProbe().limit_note;
       warnings.push_back(os.str());
     }
   }
