@@ -119,10 +119,9 @@ nlohmann::json spectral_line_json(const signal::SpectralLine& l) {
           {"time_s", l.time_s}};
 }
 
-// Whether a run's channel gets a spectrogram: not the speed and angle, and not powers and losses (W), which are read
-// as time series, not as vibration (they stay in the file).
-// Not the speed, the angle, powers, or a probe with a limit (read as its level against the limit: the
-// contact-pressure picture).
+// Whether a run's channel gets a spectrogram: not the speed and angle, not powers and losses (W), which are read
+// as time series, not as vibration (they stay in the file), and not a probe with a limit, read as its level against
+// the limit (the contact-pressure picture).
 bool gets_spectrogram(const ProbeChannel& ch) {
   return ch.kind != ProbeChannel::Kind::Speed && ch.kind != ProbeChannel::Kind::Angle && ch.unit != "W" &&
          !std::isfinite(ch.limit);
@@ -387,15 +386,12 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     written.push_back(q.file);
   }
   // Ball bearings' largest contact pressure, 10-ms peaks, against the limit their probe carries (ISO 76's).
-  if (std::optional<plot::LineChart> chart =
-          against_speed_chart(r, {".max_contact_pressure"}, block, 0.0, Block::Peak, 1e-6)) {
+  const std::string pressure = ".max_contact_pressure";
+  if (std::optional<plot::LineChart> chart = against_speed_chart(r, {pressure}, block, 0.0, Block::Peak, 1e-6)) {
     chart->title = "Largest ball-race contact pressure against rotor speed (10-ms peaks)";
     chart->ylabel = "Hertz pressure p_0 [MPa]";
     for (const ProbeChannel& ch : r.channels) {
-      const std::string suffix = ".max_contact_pressure";
-      if (!std::isfinite(ch.limit) || ch.name.size() < suffix.size() ||
-          ch.name.compare(ch.name.size() - suffix.size(), suffix.size(), suffix) != 0)
-        continue;
+      if (!std::isfinite(ch.limit) || !ch.name.ends_with(pressure)) continue;
       plot::Series limit;
       limit.label = "static limit (ISO 76)";
       limit.style = plot::Series::Style::Dashed;

@@ -631,7 +631,6 @@ void BallBearingElement::calc_bearing(const SpinState& st, const double* q, cons
   loads.outer_ring[0] = F_outer.x();
   loads.outer_ring[1] = F_outer.y();
   loads.outer_ring[2] = F_outer.z();
-  loads.max_contact_force = std::max(qmax[0], qmax[1]);
   loads.max_race_contact_force[0] = qmax[0];
   loads.max_race_contact_force[1] = qmax[1];
   loads.dissipated_power = diss;
@@ -794,7 +793,7 @@ void BallBearingElement::eval_probes(const SpinState& s, const double* q, const 
     out[1] = loads.outer_ring[1];
   }
   out[2] = s.speed != 0.0 ? z[cage_offset() + 7] / s.speed : 0.0;
-  out[3] = loads.max_contact_force;
+  out[3] = loads.max_contact_force();
   out[4] = max_contact_pressure(loads);
   out[5] = z[outer_offset()];
   out[6] = loads.inner_contact_angle;

@@ -12,6 +12,7 @@
 // docs/ball-bearing.md gives the equations, the sign conventions and the assumptions.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -130,10 +131,11 @@ struct BallBearingLoads {
   double shaft[4] = {0, 0, 0, 0};       ///< generalised forces on the shaft: x, y (N), about x, y (N m)
   double shaft_torque = 0.0;            ///< moment on the shaft about the spin axis (N m; a drag is < 0)
   double outer_ring[3] = {0, 0, 0};     ///< force of the balls on the outer ring, x, y, z (N)
-  double max_contact_force = 0.0;       ///< largest ball-race normal force (N)
   /// Largest normal force of the inner-race and of the outer-race contacts (N); their Hertz pressures:
   /// BallBearingElement::max_contact_pressure.
   double max_race_contact_force[2] = {0.0, 0.0};
+  /// Largest ball-race normal force (N).
+  double max_contact_force() const { return std::max(max_race_contact_force[0], max_race_contact_force[1]); }
   double dissipated_power = 0.0;        ///< contact damping and friction (W, >= 0)
   /// Power of the inner-race contact forces on the shaft's lateral motion (x, y and tilt rates; the spin about
   /// the axis is the drive's): normal (Hertz + damping) and tangential (friction) parts (W). Their mean over a

@@ -214,7 +214,7 @@ void BallDamperElement::eval_probes(const SpinState& s, const double* q, const d
   out[4] = std::hypot(ring[0], ring[1]) / damper_.clearance;
   const double cage_spin = z[bearing_.cage_offset() + 7];
   out[5] = s.speed != 0.0 ? cage_spin / s.speed : 0.0;
-  out[6] = e.loads.max_contact_force;
+  out[6] = e.loads.max_contact_force();
   out[7] = bearing_.max_contact_pressure(e.loads);
 }
 

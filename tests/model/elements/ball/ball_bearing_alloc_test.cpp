@@ -38,7 +38,7 @@ TEST(BallBearingAllocation, ForceEvaluationProbesAndPowerAllocateNothing) {
       sink += e.dissipated_power(s, q, v, z.data(), *ws) + e.kinetic_energy(z.data()) + e.potential_energy(q, z.data());
       BallBearingLoads loads;
       e.calc_bearing(s, q, v, z.data(), OuterRingKinematics{1e-7, 0, 0, 0}, loads, zdot.data());
-      sink += loads.max_contact_force;
+      sink += loads.max_contact_force();
     }
     EXPECT_EQ(testing::allocation_count() - before, 0) << "outer-ring mode " << static_cast<int>(mode);
     EXPECT_TRUE(std::isfinite(sink));
