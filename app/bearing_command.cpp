@@ -168,6 +168,29 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
       "linearised coefficients: each film's force against its own surfaces' relative motion, ring speed and "
       "temperatures held (the pair is two such films in series through the ring's mass)"};
   j["load_n"] = {load[0], load[1]};
+  // Each film's thinnest point (journal and ring aligned: c (1 - e/c)), against the permissible minimum the model
+  // file may give (film_thickness_limit).
+  const auto inner_h = [&](const FloatingRingOperatingPoint& p) {
+    return f.inner_clearance * (1 - p.inner_eccentricity);
+  };
+  const auto outer_h = [&](const FloatingRingOperatingPoint& p) {
+    return f.outer_clearance * (1 - p.outer_eccentricity);
+  };
+  std::vector<std::string> warnings;
+  if (f.film_thickness_limit > 0.0) {
+    j["bearing"]["film_thickness_limit_m"] = f.film_thickness_limit;
+    for (const FloatingRingOperatingPoint& p : pts) {
+      const double h = std::min(inner_h(p), outer_h(p));
+      if (h >= f.film_thickness_limit) continue;
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(0) << "at " << p.speed * kRadPerSToRpm << " rpm the "
+         << (inner_h(p) <= outer_h(p) ? "inner" : "outer") << " film is " << std::setprecision(2) << h * 1e6
+         << " µm thin, below its limit of " << f.film_thickness_limit * 1e6 << " µm, "
+         << min_film_probe("", "", f.film_thickness_limit).limit_note;
+      warnings.push_back(os.str());
+    }
+  }
+  j["warnings"] = warnings;
   nlohmann::json points = nlohmann::json::array();
   for (const FloatingRingOperatingPoint& p : pts)
     points.push_back({{"speed_rad_s", p.speed},
@@ -178,6 +201,8 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
                       {"ring_m", {p.ring[0], p.ring[1]}},
                       {"inner_eccentricity", p.inner_eccentricity},
                       {"outer_eccentricity", p.outer_eccentricity},
+                      {"inner_min_film_thickness_m", inner_h(p)},
+                      {"outer_min_film_thickness_m", outer_h(p)},
                       {"inner_attitude_deg", p.inner_attitude * kDeg},
                       {"outer_attitude_deg", p.outer_attitude * kDeg},
                       {"inner_temperature_k", p.inner_temperature},
@@ -204,7 +229,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
     for (const char* film : {"inner", "outer"})
       for (const char* m : {"k", "c"})
         for (const char* rc : {"xx", "xy", "yx", "yy"}) csv << ',' << m << '_' << film << '_' << rc;
-    csv << '\n' << std::setprecision(10);
+    csv << ",inner_min_film_thickness_m,outer_min_film_thickness_m\n" << std::setprecision(10);
     for (const FloatingRingOperatingPoint& p : pts) {
       csv << p.speed << ',' << p.speed * kRadPerSToRpm << ',' << p.ring_speed / p.speed << ','
           << p.inner_eccentricity << ',' << p.outer_eccentricity << ',' << p.inner_temperature << ','
@@ -212,19 +237,20 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
           << p.outer_flow << ',' << p.heat_to_oil << ',' << p.heat_conducted;
       for (const Eigen::Matrix2d* m : {&p.k_inner, &p.c_inner, &p.k_outer, &p.c_outer})
         csv << ',' << (*m)(0, 0) << ',' << (*m)(0, 1) << ',' << (*m)(1, 0) << ',' << (*m)(1, 1);
-      csv << '\n';
+      csv << ',' << inner_h(p) << ',' << outer_h(p) << '\n';
     }
     file.commit();
   }
   std::cout << spec.name << ": floating-ring bearing " << b.name << " (" << to_string(f.thermal.model)
             << " films), load (" << load[0] << ", " << load[1] << ") N\n";
-  std::cout << "     speed [rpm]  ring/shaft   e_i/c_i   e_o/c_o  T_i [degC]  T_o [degC]  P_i [W]   P_o [W]  "
-               "Q_i [ml/min]  Q_o [ml/min]\n";
+  std::cout << "     speed [rpm]  ring/shaft   e_i/c_i   e_o/c_o  h_i [µm]  h_o [µm]  T_i [degC]  T_o [degC]  "
+               "P_i [W]   P_o [W]  Q_i [ml/min]  Q_o [ml/min]\n";
   for (const FloatingRingOperatingPoint& p : pts)
     std::cout << std::fixed << std::setw(16) << std::setprecision(0) << p.speed * kRadPerSToRpm << std::setw(12)
               << std::setprecision(4) << p.ring_speed / p.speed << std::setw(10) << std::setprecision(3)
-              << p.inner_eccentricity << std::setw(10) << p.outer_eccentricity << std::setw(12)
-              << std::setprecision(1) << p.inner_temperature - 273.15 << std::setw(12)
+              << p.inner_eccentricity << std::setw(10) << p.outer_eccentricity << std::setw(10)
+              << std::setprecision(2) << inner_h(p) * 1e6 << std::setw(10) << outer_h(p) * 1e6
+              << std::setw(12) << std::setprecision(1) << p.inner_temperature - 273.15 << std::setw(12)
               << p.outer_temperature - 273.15 << std::setw(9) << std::setprecision(2) << p.inner_power
               << std::setw(10) << p.outer_power << std::setw(14) << p.inner_flow * 6e7 << std::setw(14)
               << p.outer_flow * 6e7 << "\n";
@@ -236,11 +262,12 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
        options.plots ? std::vector<std::string>{"ring_speed_ratio.png", "eccentricity.png", "temperatures.png",
                                                 "power_loss.png"}
                      : std::vector<std::string>{},
-       {"bearing.json", "bearing.csv"}, {}});
+       {"bearing.json", "bearing.csv"}, warnings});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "Wrote " << (options.output_dir / "bearing.json").string() << ", bearing.csv, report.html"
             << (options.plots ? ", ring_speed_ratio.png, eccentricity.png, power_loss.png, temperatures.png" : "")
             << " (" << std::setprecision(3) << wall << " s)\n";
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   return 0;
 }
 

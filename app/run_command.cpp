@@ -196,7 +196,8 @@ int run_plot_command(const PlotCommandOptions& options) {
     while (k < data.channels.size() && data.channels[k].name != c.name) ++k;
     if (k == data.channels.size())
       throw ModelError((options.run_dir / "timeseries.h5").string() + ": no channel '" + c.name + "' of the model " +
-                       j["model"]["source"].get<std::string>() + " (the run was made with another model)");
+                       j["model"]["source"].get<std::string>() + " (the run was made with another model, or by an "
+                       "older turbodyn that did not write this probe yet: run it again)");
     r.channels.push_back(c);
     r.columns.push_back(data.columns[k]);
   }

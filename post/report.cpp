@@ -151,8 +151,14 @@ void write_run_report(const std::filesystem::path& dir, const nlohmann::json& j,
                     HtmlPage::number(F, j, at + "/max_abs", d.factor, d.unit),
                     HtmlPage::number(F, j, at + "/speed_at_max_rpm", 1.0, "rpm", 5),
                     HtmlPage::number(F, j, at + "/time_at_max_s", 1.0, "s"),
-                    // A probe's limit (a ball bearing's contact pressure: ISO 76's), marked where the run passes it.
-                    HtmlPage::number(F, j, at + "/limit", d.factor, d.unit) +
+                    // A probe's limit (a ball bearing's contact pressure: ISO 76's; a film's permissible minimum
+                    // thickness), marked where the run passes it; a film's thinnest point with its smallest value.
+                    (name.ends_with("min_film_thickness")
+                         ? (p.contains("limit") ? "at least " + HtmlPage::number(F, j, at + "/limit", d.factor, d.unit)
+                                                : std::string("none")) +
+                               "; smallest " + HtmlPage::number(F, j, at + "/min", d.factor, d.unit) + " at " +
+                               HtmlPage::number(F, j, at + "/speed_at_min_rpm", 1.0, "rpm", 5)
+                         : HtmlPage::number(F, j, at + "/limit", d.factor, d.unit)) +
                         (p.contains("over_limit") && !p["over_limit"].is_null()
                              ? " <span class=\"bad\">passed from " +
                                    HtmlPage::number(F, j, at + "/over_limit/speed_rpm", 1.0, "rpm", 5) + "</span>"

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -119,12 +120,15 @@ nlohmann::json spectral_line_json(const signal::SpectralLine& l) {
           {"time_s", l.time_s}};
 }
 
+// The suffix of every fluid-film bearing's thinnest-film probes (min_film_probe).
+constexpr std::string_view kMinFilmSuffix = "min_film_thickness";
+
 // Whether a run's channel gets a spectrogram: not the speed and angle, not powers and losses (W), which are read
-// as time series, not as vibration (they stay in the file), and not a probe with a limit, read as its level against
-// the limit (the contact-pressure picture).
+// as time series, not as vibration (they stay in the file), and not a probe with a limit or a film's thinnest point,
+// read as their level (against the limit: the contact-pressure and film-thickness pictures).
 bool gets_spectrogram(const ProbeChannel& ch) {
   return ch.kind != ProbeChannel::Kind::Speed && ch.kind != ProbeChannel::Kind::Angle && ch.unit != "W" &&
-         !std::isfinite(ch.limit);
+         !std::isfinite(ch.limit) && !ch.name.ends_with(kMinFilmSuffix);
 }
 
 // What every spectrogram of a run shares: the rotor speed, whether it never falls (the spectrograms are then drawn
@@ -207,10 +211,12 @@ std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const s
     s.label = name;
     for (std::size_t i0 = 0; i0 + block <= r.time.size(); i0 += block) {
       double w = 0.0, v = 0.0;
+      if (kind == Block::Min) v = r.columns[c][i0];
       for (std::size_t i = i0; i < i0 + block; ++i) {
         w += speed_hz[i];
         if (kind == Block::Mean) v += r.columns[c][i];
-        else v = std::max(v, std::abs(r.columns[c][i]));
+        else if (kind == Block::Peak) v = std::max(v, std::abs(r.columns[c][i]));
+        else v = std::min(v, r.columns[c][i]);
       }
       s.x.push_back(w / static_cast<double>(block));
       s.y.push_back(((kind == Block::Mean ? v / static_cast<double>(block) : v) + offset) * scale);
@@ -403,6 +409,32 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     }
     plot::render_png(*chart, dir / "contact_pressure.png");
     written.push_back("contact_pressure.png");
+  }
+  // Fluid films' thinnest points, 10-ms minima, against each bearing's permissible minimum film thickness if the
+  // model file gives one.
+  if (std::optional<plot::LineChart> chart =
+          against_speed_chart(r, {std::string(kMinFilmSuffix)}, block, 0.0, Block::Min, 1e6)) {
+    chart->title = "Thinnest oil film against rotor speed (10-ms minima)";
+    chart->ylabel = "minimum film thickness h_min [µm]";
+    std::vector<double> drawn;
+    for (const ProbeChannel& ch : r.channels) {
+      if (!std::isfinite(ch.limit) || !ch.name.ends_with(kMinFilmSuffix) ||
+          std::find(drawn.begin(), drawn.end(), ch.limit) != drawn.end())
+        continue;
+      drawn.push_back(ch.limit);
+      plot::Series limit;
+      std::ostringstream label;
+      label << "permissible minimum " << std::fixed << std::setprecision(1) << ch.limit * 1e6
+            << " µm (film_thickness_limit)";
+      limit.label = label.str();
+      limit.style = plot::Series::Style::Dashed;
+      limit.color = "black";
+      limit.x = {chart->series.front().x.front(), chart->series.front().x.back()};
+      limit.y = {ch.limit * 1e6, ch.limit * 1e6};
+      chart->series.push_back(std::move(limit));
+    }
+    plot::render_png(*chart, dir / "film_thickness.png");
+    written.push_back("film_thickness.png");
   }
 }
 

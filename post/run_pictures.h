@@ -67,8 +67,9 @@ std::optional<plot::Heatmap> run_spectrogram(const OutputSpec& out, const RunupR
 /// value + `offset` (e.g. -273.15 for K to degC) against the block's mean rotor speed f_d [Hz], so that the whirl's
 /// ripple does not hide the operating point. Legend entries are the channel names. std::nullopt when no channel matches, the run has
 /// no speed channel or fewer than two blocks. With `Block::Peak` each block gives its largest |value| instead of its
-/// mean (an envelope, e.g. of a contact pressure); the value is multiplied by `scale` (after the offset).
-enum class Block { Mean, Peak };
+/// mean (an envelope, e.g. of a contact pressure), with `Block::Min` its smallest value (e.g. of a film thickness);
+/// the value is multiplied by `scale` (after the offset).
+enum class Block { Mean, Peak, Min };
 std::optional<plot::LineChart> against_speed_chart(const RunupResult& r, const std::vector<std::string>& suffixes,
                                                    std::size_t block, double offset = 0.0, Block kind = Block::Mean,
                                                    double scale = 1.0);

@@ -71,7 +71,7 @@ void DamperElement::do_calc_and_add_forces(const SpinState& s, const double* q, 
 
 std::vector<ProbeInfo> DamperElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return damper_probes(who);
+  return damper_probes(who, damper_.film_thickness_limit);
 }
 
 void DamperElement::eval_probes(const SpinState&, const double*, const double*, const double* z, ElementWorkspace& ws,
@@ -83,6 +83,7 @@ void DamperElement::eval_probes(const SpinState&, const double*, const double*, 
   out[2] = z[0];
   out[3] = z[1];
   out[4] = std::hypot(z[0], z[1]) / damper_.clearance;
+  out[5] = damper_.clearance - std::hypot(z[0], z[1]);  // the damper film does not tilt
 }
 
 double DamperElement::potential_energy(const double* q, const double* z) const {

@@ -455,7 +455,9 @@ std::vector<ProbeInfo> FloatingRingElement::probes() const {
                                      {"outer_eccentricity", "1", "outer-film eccentricity ratio at mid-width"},
                                      {"ring_tilt", "rad", "ring tilt against the housing (magnitude)"},
                                      {"drill_hole_pressure", "Pa",
-                                      "pressure at the drill holes' inner mouths, mean over the holes"}});
+                                      "pressure at the drill holes' inner mouths, mean over the holes"},
+                                     min_film_probe("inner_min_film_thickness", "inner", spec_.film_thickness_limit),
+                                     min_film_probe("outer_min_film_thickness", "outer", spec_.film_thickness_limit)});
   if (thermal_) {
     const std::vector<ProbeInfo> more = {
         {"inner_temperature", "K", "inner-film temperature"},
@@ -467,7 +469,7 @@ std::vector<ProbeInfo> FloatingRingElement::probes() const {
         {"heat_to_oil", "W", "heat the oil carries out of the bearing (over the supply temperature)"},
         {"heat_conducted", "W", "heat conducted from the films into shaft and housing"},
         {"stored_heat", "J", "heat stored in the films and the ring above the supply temperature"}};
-    for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description});
+    append_probes(p, who, more);
   }
   return p;
 }
@@ -511,18 +513,27 @@ void FloatingRingElement::eval_probes(const SpinState& s, const double* q, const
   out[4] = std::hypot(z[kX], z[kY]) / spec_.outer_clearance;
   out[5] = std::hypot(z[kAx], z[kAy]);
   out[6] = hole_pressure;
+  // The inner film's thinnest point needs only the journal's offset and slopes against the ring, the same in the
+  // housing frame as in the ring's.
+  reynolds::FilmState in;
+  in.ex = q[0] - z[kX];
+  in.ey = q[1] - z[kY];
+  in.sx = q[3] - z[kAy];
+  in.sy = -q[2] + z[kAx];
+  out[7] = reynolds::min_film_thickness(inner_, in);
+  out[8] = reynolds::min_film_thickness(outer_, outer_state(z));
   if (thermal_) {
     const thermal::FilmHeatInputs h = film_heat(s, v, films->inner, films->outer, z);
     const thermal::FilmHeatFlows b = thermal::film_heat_balance(spec_.thermal, density_, !inner_.holes.empty(), h);
-    out[7] = h.inner_temperature;
-    out[8] = h.outer_temperature;
-    out[9] = h.inner_power;
-    out[10] = h.outer_power;
-    out[11] = h.inner_flow;
-    out[12] = h.outer_flow;
-    out[13] = b.oil();
-    out[14] = b.conducted();
-    out[15] = thermal::stored_heat(spec_.thermal, h.inner_temperature, h.outer_temperature);
+    out[9] = h.inner_temperature;
+    out[10] = h.outer_temperature;
+    out[11] = h.inner_power;
+    out[12] = h.outer_power;
+    out[13] = h.inner_flow;
+    out[14] = h.outer_flow;
+    out[15] = b.oil();
+    out[16] = b.conducted();
+    out[17] = thermal::stored_heat(spec_.thermal, h.inner_temperature, h.outer_temperature);
   }
 }
 

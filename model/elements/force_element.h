@@ -69,18 +69,42 @@ class EvaluationKey {
 /// A named scalar output of an element (e.g. the force it transmits to the housing).
 struct ProbeInfo {
   ProbeInfo(std::string name_, std::string unit_, std::string description_,
-            double limit_ = std::numeric_limits<double>::infinity(), std::string limit_note_ = {})
+            double limit_ = std::numeric_limits<double>::infinity(), std::string limit_note_ = {},
+            bool limit_below_ = false)
       : name(std::move(name_)), unit(std::move(unit_)), description(std::move(description_)), limit(limit_),
-        limit_note(std::move(limit_note_)) {}
+        limit_note(std::move(limit_note_)), limit_below(limit_below_) {}
 
   std::string name;         ///< unique within the element, e.g. "force_x"
   std::string unit;         ///< e.g. "N"
   std::string description;  ///< e.g. "force on the housing, horizontal"
   /// The largest |value| the element's model describes a sound machine at (same unit; infinite: none), and what
-  /// passing it means; a run reports where it is passed (summary.json, a warning).
+  /// passing it means; a run reports where it is passed (summary.json, a warning). With `limit_below` the limit is
+  /// the smallest value instead (a film thickness), passed when the value falls below it.
   double limit = std::numeric_limits<double>::infinity();
   std::string limit_note;
+  bool limit_below = false;
 };
+
+/// `more` (ProbeInfos), each description opened by `who` ("bearing 'NAME': "), appended to p.
+template <class Probes>
+void append_probes(std::vector<ProbeInfo>& p, const std::string& who, const Probes& more) {
+  for (ProbeInfo m : more) {
+    m.description = who + m.description;
+    p.push_back(std::move(m));
+  }
+}
+
+/// The thinnest film of a fluid-film bearing (m; reynolds::min_film_thickness), `what` saying which film. A
+/// permissible minimum film thickness `limit` > 0 (the model file's film_thickness_limit) is its lower limit.
+inline ProbeInfo min_film_probe(std::string name, const std::string& what, double limit) {
+  std::string description = "thinnest " + (what.empty() ? "" : what + " ") + "film (tilt included)";
+  if (!(limit > 0.0)) return {std::move(name), "m", std::move(description)};
+  return {std::move(name), "m", std::move(description), limit,
+          "the permissible minimum film thickness of the model file (film_thickness_limit): in a thinner film the "
+          "surfaces' roughness touches through the oil (mixed lubrication, wear), which the Reynolds film model does "
+          "not describe",
+          true};
+}
 
 /// The probes every bearing reports first, fx and fy (N): the force it transmits to the housing, `via` naming the
 /// path (e.g. " through the damper"). `who` opens each description ("bearing 'NAME': "); `more` follow.
@@ -88,18 +112,20 @@ inline std::vector<ProbeInfo> housing_force_probes(const std::string& who, const
                                                    std::initializer_list<ProbeInfo> more = {}) {
   std::vector<ProbeInfo> p = {{"fx", "N", who + "force transmitted to the housing" + via + ", horizontal (x)"},
                               {"fy", "N", who + "force transmitted to the housing" + via + ", vertical (y)"}};
-  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description, m.limit, m.limit_note});
+  append_probes(p, who, more);
   return p;
 }
 
-/// housing_force_probes through a squeeze-film damper, then the damper ring's displacement (m) and eccentricity
-/// ratio, then `more`.
-inline std::vector<ProbeInfo> damper_probes(const std::string& who, std::initializer_list<ProbeInfo> more = {}) {
+/// housing_force_probes through a squeeze-film damper, then the damper ring's displacement (m), eccentricity ratio
+/// and thinnest film (m; `film_limit` > 0 its permissible minimum, min_film_probe), then `more`.
+inline std::vector<ProbeInfo> damper_probes(const std::string& who, double film_limit,
+                                            std::initializer_list<ProbeInfo> more = {}) {
   std::vector<ProbeInfo> p = housing_force_probes(who, " through the damper",
                                                   {{"damper_x", "m", "outer ring displacement in the damper, horizontal"},
                                                    {"damper_y", "m", "outer ring displacement in the damper, vertical"},
-                                                   {"damper_eccentricity", "1", "damper eccentricity ratio e/c"}});
-  for (const ProbeInfo& m : more) p.push_back({m.name, m.unit, who + m.description, m.limit, m.limit_note});
+                                                   {"damper_eccentricity", "1", "damper eccentricity ratio e/c"},
+                                                   min_film_probe("damper_min_film_thickness", "damper", film_limit)});
+  append_probes(p, who, more);
   return p;
 }
 

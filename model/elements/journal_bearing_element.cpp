@@ -26,6 +26,7 @@ JournalBearingElement::JournalBearingElement(const std::string& name, const Jour
     : ForceElement(name, {node_dof, node_dof + 1, node_dof + 2, node_dof + 3}, 0) {
   geometry_ = film_geometry(spec, options_);
   viscosity_ = oil.viscosity_at(oil.temperature_or(spec.oil_temperature));
+  film_limit_ = spec.film_thickness_limit;
   reynolds::FilmSolver check(geometry_, viscosity_, options_);  // throws for inconsistent geometry now, not mid-run
 }
 
@@ -75,7 +76,8 @@ std::vector<ProbeInfo> JournalBearingElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
   return housing_force_probes(who, "", {{"eccentricity", "1", "journal eccentricity ratio e/c at mid-width"},
                                         {"friction_power", "W", "friction power loss in the film"},
-                                        {"max_pressure", "Pa", "highest film pressure"}});
+                                        {"max_pressure", "Pa", "highest film pressure"},
+                                        min_film_probe("min_film_thickness", "", film_limit_)});
 }
 
 void JournalBearingElement::eval_probes(const SpinState& s, const double* q, const double* v, const double*,
@@ -86,6 +88,7 @@ void JournalBearingElement::eval_probes(const SpinState& s, const double* q, con
   out[2] = std::hypot(q[0], q[1]) / geometry_.clearance;
   out[3] = -r.torque_inner * s.speed;
   out[4] = r.max_pressure;
+  out[5] = reynolds::min_film_thickness(geometry_, film_state(s, q, v));
 }
 
 double JournalBearingElement::dissipated_power(const SpinState& s, const double* q, const double* v, const double*,

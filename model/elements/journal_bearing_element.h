@@ -39,6 +39,7 @@ class JournalBearingElement final : public ForceElement {
   reynolds::FilmGeometry geometry_;
   reynolds::SolverOptions options_;
   double viscosity_ = 0.0;
+  double film_limit_ = 0.0;  // m, permissible minimum film thickness (0: none)
 };
 
 }  // namespace turbodyn

@@ -105,7 +105,7 @@ RunupModel::RunupModel(const MachineSpec& spec, Rotor rotor, std::vector<std::un
     for (std::size_t p = 0; p < probes.size(); ++p)
       channels_.push_back({"bearing." + elements_[k]->name() + "." + probes[p].name, probes[p].unit,
                            probes[p].description, ProbeChannel::Kind::Element, static_cast<int>(k),
-                           static_cast<int>(p), probes[p].limit, probes[p].limit_note});
+                           static_cast<int>(p), probes[p].limit, probes[p].limit_note, probes[p].limit_below});
   }
 }
 

@@ -38,9 +38,10 @@ struct ProbeChannel {
   ProbeChannel() = default;
   ProbeChannel(std::string name_, std::string unit_, std::string description_, Kind kind_, int index_,
                int element_probe_, double limit_ = std::numeric_limits<double>::infinity(),
-               std::string limit_note_ = {})
+               std::string limit_note_ = {}, bool limit_below_ = false)
       : name(std::move(name_)), unit(std::move(unit_)), description(std::move(description_)), kind(kind_),
-        index(index_), element_probe(element_probe_), limit(limit_), limit_note(std::move(limit_note_)) {}
+        index(index_), element_probe(element_probe_), limit(limit_), limit_note(std::move(limit_note_)),
+        limit_below(limit_below_) {}
 
   std::string name;         ///< e.g. "disk.compressor.x"
   std::string unit;         ///< e.g. "m"
@@ -48,9 +49,11 @@ struct ProbeChannel {
   Kind kind = Kind::RotorDof;
   int index = 0;            ///< rotor DOF (RotorDof) or element index (Element)
   int element_probe = 0;    ///< index among the element's probes
-  /// The element probe's limit and what passing it means (ProbeInfo::limit; infinite: none).
+  /// The element probe's limit and what passing it means (ProbeInfo::limit; infinite: none); `limit_below`: the
+  /// limit is a smallest value (ProbeInfo::limit_below).
   double limit = std::numeric_limits<double>::infinity();
   std::string limit_note;
+  bool limit_below = false;
 };
 
 struct RunupWorkspace;

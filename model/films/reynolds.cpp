@@ -1341,15 +1341,14 @@ struct FilmSolver::Impl {
            symmetric_values();
   }
 
-  // Film closure: |e(z)| is convex in z, so the thinnest film is at one of the ends. Sets the error if it closes.
+  // Film closure (min_film_thickness). Sets the error if the film closes.
   bool closes(const FilmState& s) {
-    const double hl = 0.5 * g.length;
-    const double e1 = std::hypot(s.ex - hl * s.sx, s.ey - hl * s.sy);
-    const double e2 = std::hypot(s.ex + hl * s.sx, s.ey + hl * s.sy);
-    if (std::max(e1, e2) < g.clearance) return false;
+    const double h = min_film_thickness(g, s);
+    if (h > 0.0) return false;
+    const double e = g.clearance - h;
     std::ostringstream os;
-    os << "film closes: eccentricity " << std::max(e1, e2) << " m >= clearance " << g.clearance
-       << " m (eccentricity ratio " << std::max(e1, e2) / g.clearance << ")";
+    os << "film closes: eccentricity " << e << " m >= clearance " << g.clearance << " m (eccentricity ratio "
+       << e / g.clearance << ")";
     fail(os.str());
     return true;
   }
@@ -1492,6 +1491,13 @@ FilmSolver& FilmSolver::operator=(const FilmSolver& other) {
 }
 FilmSolver::FilmSolver(FilmSolver&&) noexcept = default;
 FilmSolver& FilmSolver::operator=(FilmSolver&&) noexcept = default;
+
+double min_film_thickness(const FilmGeometry& g, const FilmState& s) {
+  const double hl = 0.5 * g.length;
+  const double e1 = std::hypot(s.ex - hl * s.sx, s.ey - hl * s.sy);
+  const double e2 = std::hypot(s.ex + hl * s.sx, s.ey + hl * s.sy);
+  return g.clearance - std::max(e1, e2);
+}
 
 bool FilmSolver::solve(const FilmState& s, FilmResult& r) { return impl_->solve(s, r); }
 bool FilmSolver::solve_same_matrix(const FilmState& s, FilmResult& r) { return impl_->solve_same_matrix(s, r); }

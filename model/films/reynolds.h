@@ -123,6 +123,11 @@ struct Closed {
 Closed short_bearing(double eta, double omega, double R, double L, double c, double eps);
 Closed long_bearing(double eta, double omega, double R, double L, double c, double eps);
 
+/// The thinnest film (m) of the journal in the state s: the clearance less the journal axis's largest distance from
+/// the bush axis over the film's width, which lies at one of its ends when the journal tilts (|e(z)| is convex in
+/// z). Zero or negative: the film closes.
+double min_film_thickness(const FilmGeometry& g, const FilmState& s);
+
 /// One solver per film per simulation: holds the grid, the factorisation storage and the warm-start state (last
 /// cavitation zone and film fraction). Not thread-safe; copy it to give each thread its own.
 class FilmSolver {

@@ -162,6 +162,15 @@ Enum read_choice(Reader& r, std::string_view key, const std::vector<std::string>
   return value;
 }
 
+// The optional permissible minimum film thickness of a film of radial clearance `clearance` (0: none): positive
+// and thinner than the centred film, which would otherwise be below it at rest.
+double read_film_thickness_limit(Reader& r, double clearance) {
+  const double h = r.quantity_or("film_thickness_limit", dim::length, 0.0, Bound::Positive);
+  if (h >= clearance)
+    r.fail("film_thickness_limit", "is not thinner than the radial clearance: the centred film would be below it");
+  return h;
+}
+
 // Keys shared by the single-film specs (JournalBearingSpec, DamperSpec); `width` names the film's length in
 // messages.
 template <class Film>
@@ -185,6 +194,7 @@ void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width)
   if (f.cavitation == Cavitation::MassConserving && !(f.feed_hole_diameter > 0.0 && f.supply_pressure > 0.0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) with "
                          "supply_pressure > 0");
+  f.film_thickness_limit = read_film_thickness_limit(r, f.clearance);
 }
 
 void read_journal_bearing(Reader& r, const OilSpec& oil, BearingSpec& b) { read_film(r, oil, b.journal, "bearing length"); }
@@ -308,6 +318,7 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   if (f.cavitation == Cavitation::MassConserving && (f.supply_pressure == 0.0 || f.drill_holes == 0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply in each film: a supply_pressure at the feed "
                          "hole (outer film) and drill_holes through the ring (inner film)");
+  f.film_thickness_limit = read_film_thickness_limit(r, std::min(f.inner_clearance, f.outer_clearance));
   read_ring_thermal(r, oil, f);
 }
 

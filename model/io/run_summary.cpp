@@ -42,22 +42,28 @@ nlohmann::json run_summary(const MachineSpec& spec, const RunupModel& model, con
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
     const ProbeChannel& ch = r.channels[c];
     if (ch.kind == ProbeChannel::Kind::Speed || ch.kind == ProbeChannel::Kind::Angle) continue;
-    double max_abs = 0.0, time = 0.0, speed_hz = 0.0;
-    for (std::size_t i = 0; i < r.columns[c].size(); ++i)
-      if (std::abs(r.columns[c][i]) > max_abs) {
-        max_abs = std::abs(r.columns[c][i]);
-        time = r.time[i];
-        speed_hz = r.columns[speed_col][i];
-      }
-    probes[ch.name] = {{"unit", ch.unit}, {"description", ch.description}, {"max_abs", max_abs},
-                       {"time_at_max_s", time}, {"speed_at_max_hz", speed_hz}, {"speed_at_max_rpm", speed_hz * 60.0}};
+    const std::vector<double>& col = r.columns[c];
+    std::size_t at_max = 0, at_min = 0;
+    for (std::size_t i = 1; i < col.size(); ++i) {
+      if (std::abs(col[i]) > std::abs(col[at_max])) at_max = i;
+      if (col[i] < col[at_min]) at_min = i;
+    }
+    const bool empty = col.empty();
+    const double speed_hz = empty ? 0.0 : r.columns[speed_col][at_max];
+    probes[ch.name] = {{"unit", ch.unit}, {"description", ch.description},
+                       {"max_abs", empty ? 0.0 : std::abs(col[at_max])},
+                       {"time_at_max_s", empty ? 0.0 : r.time[at_max]},
+                       {"speed_at_max_hz", speed_hz}, {"speed_at_max_rpm", speed_hz * 60.0},
+                       {"min", empty ? 0.0 : col[at_min]}, {"time_at_min_s", empty ? 0.0 : r.time[at_min]},
+                       {"speed_at_min_rpm", empty ? 0.0 : r.columns[speed_col][at_min] * 60.0}};
     if (std::isfinite(ch.limit)) {
       nlohmann::json& p = probes[ch.name];
       p["limit"] = ch.limit;
+      p["limit_below"] = ch.limit_below;
       p["limit_note"] = ch.limit_note;
-      p["over_limit"] = nullptr;  // where |value| first passes the limit, if it does
-      for (std::size_t i = 0; i < r.columns[c].size(); ++i)
-        if (std::abs(r.columns[c][i]) > ch.limit) {
+      p["over_limit"] = nullptr;  // where the value first passes the limit (|value| above it, or below it), if it does
+      for (std::size_t i = 0; i < col.size(); ++i)
+        if (ch.limit_below ? col[i] < ch.limit : std::abs(col[i]) > ch.limit) {
           p["over_limit"] = {{"time_s", r.time[i]}, {"speed_rpm", r.columns[speed_col][i] * 60.0}};
           break;
         }
@@ -76,17 +82,21 @@ std::vector<std::pair<std::string, const nlohmann::json*>> limits_passed(const n
   if (!summary.contains("probes")) return out;
   for (const auto& [name, p] : summary["probes"].items()) {
     if (!p.contains("over_limit") || p["over_limit"].is_null()) continue;
-    // Pressures in MPa, everything else in its SI unit.
+    // Pressures in MPa, lengths (film thicknesses) in µm to a tenth, everything else in its SI unit.
     const std::string unit = p.value("unit", "");
-    const double scale = unit == "Pa" ? 1e-6 : 1.0;
-    const std::string shown = unit == "Pa" ? "MPa" : unit;
+    const double scale = unit == "Pa" ? 1e-6 : unit == "m" ? 1e6 : 1.0;
+    const std::string shown = unit == "Pa" ? "MPa" : unit == "m" ? "µm" : unit;
+    const int digits = unit == "m" ? 1 : 0;
+    const bool below = p.value("limit_below", false);
     std::ostringstream os;
-    os << std::fixed << std::setprecision(0) << name << " is first above its limit of "
-       << p["limit"].get<double>() * scale << " " << shown << " at " << p["over_limit"]["speed_rpm"].get<double>()
-       << " rpm";
+    os << std::fixed << std::setprecision(digits) << name << " is first " << (below ? "below" : "above")
+       << " its limit of " << p["limit"].get<double>() * scale << " " << shown << " at " << std::setprecision(0)
+       << p["over_limit"]["speed_rpm"].get<double>() << " rpm";
     if (with_time) os << " (t = " << std::setprecision(4) << p["over_limit"]["time_s"].get<double>() << " s)";
-    os << ", largest " << std::setprecision(0) << p["max_abs"].get<double>() * scale << " " << shown << " at "
-       << p["speed_at_max_rpm"].get<double>() << " rpm";
+    const char* extreme = below ? "min" : "max_abs";
+    const char* at = below ? "speed_at_min_rpm" : "speed_at_max_rpm";
+    os << ", " << (below ? "smallest " : "largest ") << std::setprecision(digits) << p[extreme].get<double>() * scale
+       << " " << shown << " at " << std::setprecision(0) << p[at].get<double>() << " rpm";
     out.emplace_back(os.str(), &p);
   }
   return out;

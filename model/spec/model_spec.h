@@ -93,6 +93,7 @@ struct JournalBearingSpec {
   double supply_pressure = 0.0; ///< Pa gauge at the feed hole
   double feed_hole_diameter = 0.0;  ///< m; 0 = no feed hole
   double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
+  double film_thickness_limit = 0.0;  ///< m, permissible minimum film thickness (0: none; min_film_probe)
 };
 
 /// Full-floating-ring bearing: a ring between the journal and the housing with two films, the ring translating,
@@ -117,6 +118,7 @@ struct FloatingRingSpec {
   double drill_hole_angle = 0.0;     ///< rad, first hole in the ring frame
   bool drill_hole_centrifugal = true;  ///< the oil column spinning in the holes lowers the inner-mouth pressure
   RingThermalSpec thermal;           ///< isothermal films (default) or bulk energy balances of both films
+  double film_thickness_limit = 0.0; ///< m, permissible minimum film thickness of both films (0: none)
 };
 
 /// Nusselt number h c / k of a film to each of its walls: plane Couette flow with uniform viscous heating between
@@ -148,6 +150,7 @@ struct DamperSpec {
   double feed_hole_angle = M_PI / 2;
   double end_seal_gap = 0.0;        ///< m, radial gap of the end seals at both ends; 0 = open ends
   double end_seal_length = 0.0;     ///< m, axial length of the seals' gap
+  double film_thickness_limit = 0.0;  ///< m, permissible minimum film thickness (0: none)
 };
 
 /// Model-file names: "linear", "journal", "floating-ring", "ball".

@@ -165,6 +165,30 @@ EOF2
     [ $rc -eq 2 ] || fail "plot of a missing directory: exit $rc, expected 2"
     grep -q "nowhere/summary.json" "$out/log" || fail "the message does not name the file: $(cat "$out/log")"
     ;;
+  run_film_limit)
+    # A journal bearing whose film gets thinner than the model file's permissible minimum: the run warns (naming the
+    # probe, where it is first passed, the smallest film and what the limit means), marks it in summary.json, draws
+    # the film-thickness picture, and `turbodyn plot` warns again. The other bearing has no limit: no warning.
+    "$exe" run "$src/examples/reference_journal.toml" --set "speed.end=15000 rpm" --set speed.duration=0.4 \
+      --set bearings.turbine.film_thickness_limit=5um -o "$out" > "$out/log" 2>&1 || fail "exit $?: $(cat "$out/log")"
+    said="warning: bearing.turbine.min_film_thickness is first below its limit of 5.0 µm at .* rpm (t = .* s),"
+    said+=" smallest .* µm at .* rpm. The limit: the permissible minimum film thickness of the model file"
+    grep -q "$said (film_thickness_limit)" "$out/log" || fail "no film warning: $(cat "$out/log")"
+    grep -q "warning: bearing.compressor" "$out/log" && fail "a warning without a limit: $(cat "$out/log")"
+    expect_files "$out" film_thickness.png
+    [ -e "$out/spectrogram_bearing.turbine.min_film_thickness.png" ] && fail "a spectrogram of a film thickness"
+    python3 - "$out/summary.json" <<'EOF2' || fail "summary: $(grep -A12 min_film_thickness "$out/summary.json")"
+import json, sys
+p = json.load(open(sys.argv[1]))["probes"]
+t, c = p["bearing.turbine.min_film_thickness"], p["bearing.compressor.min_film_thickness"]
+assert t["limit"] == 5e-6 and t["limit_below"] is True and t["over_limit"]["speed_rpm"] > 0, t
+assert t["min"] < 5e-6 and t["unit"] == "m", t
+assert "limit" not in c and 0 < c["min"] < 15e-6, c
+EOF2
+    "$exe" plot "$out" > "$out/log" 2>&1 || fail "plot: $(cat "$out/log")"
+    grep -q "warning: bearing.turbine.min_film_thickness is first below its limit" "$out/log" ||
+      fail "plot does not warn: $(cat "$out/log")"
+    ;;
   run_integrator_gives_up)
     # BDF takes few steps per output interval at low speed and more at high speed: a step limit of 30 per
     # 0.5 ms interval makes it give up part-way through the run.
@@ -334,7 +358,23 @@ assert j["bearing"]["thermal"] == "bulk" and len(r) == 4, (j["bearing"], len(r))
 assert 0.2 < r[-1]["ring_speed_ratio"] < r[1]["ring_speed_ratio"] < 0.3131, [p["ring_speed_ratio"] for p in r]
 assert all(p["inner_temperature_k"] > p["outer_temperature_k"] > 363.15 for p in r)
 assert abs(r[-1]["inner_power_w"] + r[-1]["outer_power_w"] - r[-1]["heat_to_oil_w"] - r[-1]["heat_conducted_w"]) < 1e-3
+# Each film's thinnest point, journal and ring aligned: c (1 - e/c); no limit in the model file, no warning.
+b = j["bearing"]
+for p in r:
+    assert abs(p["inner_min_film_thickness_m"] - b["inner_clearance_m"] * (1 - p["inner_eccentricity"])) < 1e-15, p
+    assert abs(p["outer_min_film_thickness_m"] - b["outer_clearance_m"] * (1 - p["outer_eccentricity"])) < 1e-15, p
+assert j["warnings"] == [] and "film_thickness_limit_m" not in b, j["warnings"]
 EOF2
+    # 40 N on the journal and a permissible minimum film thickness of 12 µm: at 20,000 rpm the ring sits low in its
+    # outer film (about 9 µm left), at 150,000 rpm both films are thicker (about 14 and 30 µm). One warning, on
+    # standard error and in bearing.json; the results written, exit 0.
+    "$exe" bearing "$src/examples/reference_floating_ring.toml" --bearing compressor --speeds "20000 rpm:150000 rpm:2" \
+      --load "0,-40" --set bearings.compressor.film_thickness_limit=12um --no-plots -o "$out/limit" \
+      > "$out/limit.log" 2>&1 || fail "exit $?: $(cat "$out/limit.log")"
+    grep -q "warning: at 20000 rpm the outer film is .* µm thin, below its limit of 12.00 µm, the permissible" \
+      "$out/limit.log" || fail "no film warning: $(cat "$out/limit.log")"
+    python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert len(j['warnings']) == 1, j['warnings']" \
+      "$out/limit/bearing.json" || fail "warnings in bearing.json"
     ;;
   modal_floating_ring)
     # turbodyn modal on variant I: the films linearised at steady points under the rotor's weight, ring masses as

@@ -35,7 +35,16 @@ TEST(Report, RunReportFromASummary) {
                   {"bearing.b.max_contact_pressure",
                    {{"unit", "Pa"}, {"description", "p"}, {"max_abs", 4.659e9}, {"speed_at_max_rpm", 46513.0},
                     {"time_at_max_s", 1.24}, {"limit", 4.2e9}, {"limit_note", "ISO 76"},
-                    {"over_limit", {{"time_s", 1.203}, {"speed_rpm", 45113.0}}}}}};
+                    {"over_limit", {{"time_s", 1.203}, {"speed_rpm", 45113.0}}}}},
+                  // Films' thinnest points: one with a permissible minimum it passes, one without a limit.
+                  {"bearing.t.min_film_thickness",
+                   {{"unit", "m"}, {"description", "h"}, {"max_abs", 1.2e-5}, {"speed_at_max_rpm", 1000.0},
+                    {"time_at_max_s", 0.01}, {"min", 0.6e-6}, {"speed_at_min_rpm", 12645.0}, {"time_at_min_s", 0.3},
+                    {"limit", 2e-6}, {"limit_below", true}, {"limit_note", "permissible"},
+                    {"over_limit", {{"time_s", 0.28}, {"speed_rpm", 10532.0}}}}},
+                  {"bearing.c.min_film_thickness",
+                   {{"unit", "m"}, {"description", "h"}, {"max_abs", 1.2e-5}, {"speed_at_max_rpm", 1000.0},
+                    {"time_at_max_s", 0.01}, {"min", 4.5e-6}, {"speed_at_min_rpm", 2869.0}, {"time_at_min_s", 0.07}}}};
   j["pictures"] = {"spectrogram_disk.c.x.png"};
   j["warnings"] = {"no spectrogram of y"};
   write_run_report(dir, j, {});
@@ -47,6 +56,13 @@ TEST(Report, RunReportFromASummary) {
       ">4659 MPa</span>",
       ">4200 MPa</span> <span class=\"bad\">passed from <span",
       ">45113 rpm</span>",
+      "at least <span",
+      ">2.000 µm</span>; smallest <span",
+      ">0.6000 µm</span> at <span",
+      ">12645 rpm</span> <span class=\"bad\">passed from <span",
+      ">10532 rpm</span>",
+      "none; smallest <span",
+      ">4.500 µm</span> at <span",
       "turbodyn run m.toml -o out",
       "no spectrogram of y",
       "<img src=\"spectrogram_disk.c.x.png\"",

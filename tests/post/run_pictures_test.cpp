@@ -247,5 +247,39 @@ TEST(RunPictures, FloatingRingsGetTheirOperatingPointAgainstSpeed) {
   EXPECT_GT(fs::file_size(dir / "ring_speed_ratio.png"), 1000u);
 }
 
+TEST(RunPictures, FilmThicknessesAreDrawnAsBlockMinimaAgainstTheirLimitWithoutSpectrograms) {
+  // Two films 5 µm thick less a whirl of 2 µm at 37 Hz: every block's minimum is 3 µm (to the sampling: 2 µm times
+  // 1 - cos(pi 37 / 2000) < 4 nm). The second carries a permissible minimum of 4 µm.
+  RunupResult r = with_floating_rings();
+  r.channels.push_back({"bearing.c.inner_min_film_thickness", "m", "", ProbeChannel::Kind::Element, 0, 0});
+  r.channels.push_back({"bearing.t.outer_min_film_thickness", "m", "", ProbeChannel::Kind::Element, 0, 0, 4e-6,
+                        "the permissible minimum", true});
+  r.columns.resize(r.channels.size());
+  for (std::size_t i = 0; i < r.time.size(); ++i)
+    for (std::size_t c : {r.channels.size() - 2, r.channels.size() - 1})
+      r.columns[c].push_back(5e-6 - 2e-6 * std::sin(2.0 * M_PI * 37.0 * r.time[i]));
+  const std::optional<plot::LineChart> chart =
+      against_speed_chart(r, {"min_film_thickness"}, 1000, 0.0, Block::Min, 1e6);
+  ASSERT_TRUE(chart);
+  ASSERT_EQ(chart->series.size(), 2u);
+  for (const plot::Series& s : chart->series) {
+    ASSERT_EQ(s.y.size(), 4u);
+    for (double y : s.y) EXPECT_NEAR(y, 3.0, 0.004);  // µm
+  }
+  if (!plot::gnuplot_available()) return;
+  const fs::path dir = turbodyn::testing::fresh_temp_dir("run_pictures_films");
+  MachineSpec spec;
+  spec.output = output();
+  std::vector<std::string> written, warnings;
+  nlohmann::json spectral = nlohmann::json::object();
+  draw_run_pictures(spec, r, dir, written, warnings, spectral);
+  EXPECT_THAT(written, ::testing::Contains("film_thickness.png"));
+  EXPECT_GT(fs::file_size(dir / "film_thickness.png"), 1000u);
+  // A film's thinnest point is read as a level, with or without a limit: no spectrogram.
+  for (const std::string& f : written) EXPECT_EQ(f.find("min_film_thickness"), std::string::npos) << f;
+  EXPECT_FALSE(spectral.contains("bearing.c.inner_min_film_thickness"));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace turbodyn::post

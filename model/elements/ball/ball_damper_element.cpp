@@ -197,9 +197,10 @@ void BallDamperElement::do_calc_and_add_forces(const SpinState& s, const double*
 
 std::vector<ProbeInfo> BallDamperElement::probes() const {
   const std::string who = "bearing '" + name() + "': ";
-  return damper_probes(who, {{"cage_speed_ratio", "1", "cage speed / rotor speed"},
-                             {"max_contact_force", "N", "largest ball-race normal force"},
-                             MaxContactPressureProbe()});
+  return damper_probes(who, damper_.film_thickness_limit,
+                       {{"cage_speed_ratio", "1", "cage speed / rotor speed"},
+                        {"max_contact_force", "N", "largest ball-race normal force"},
+                        MaxContactPressureProbe()});
 }
 
 void BallDamperElement::eval_probes(const SpinState& s, const double* q, const double* v, const double* z,
@@ -212,10 +213,11 @@ void BallDamperElement::eval_probes(const SpinState& s, const double* q, const d
   out[2] = ring[0];
   out[3] = ring[1];
   out[4] = std::hypot(ring[0], ring[1]) / damper_.clearance;
+  out[5] = damper_.clearance - std::hypot(ring[0], ring[1]);  // the damper film does not tilt
   const double cage_spin = z[bearing_.cage_offset() + 7];
-  out[5] = s.speed != 0.0 ? cage_spin / s.speed : 0.0;
-  out[6] = e.loads.max_contact_force();
-  out[7] = bearing_.max_contact_pressure(e.loads);
+  out[6] = s.speed != 0.0 ? cage_spin / s.speed : 0.0;
+  out[7] = e.loads.max_contact_force();
+  out[8] = bearing_.max_contact_pressure(e.loads);
 }
 
 double BallDamperElement::potential_energy(const double* q, const double* z) const {

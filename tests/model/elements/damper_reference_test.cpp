@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -38,9 +39,12 @@ std::array<double, 3> housing_force(const DamperSpec& d, double eta, const doubl
   oil.viscosity = eta;
   const DamperElement e(b, 0, d, oil, 0.0);
   auto ws = e.make_workspace();
-  double out[5];
+  std::vector<double> out(e.probes().size());
   const double q[2] = {0, 0}, v[2] = {0, 0};
-  e.eval_probes(SpinState{}, q, v, z, *ws, out);
+  e.eval_probes(SpinState{}, q, v, z, *ws, out.data());
+  // The thinnest film (probe 5) of the untilted damper: c - e.
+  EXPECT_NEAR(out[5], d.clearance - std::hypot(z[0], z[1]), 1e-15);
+  EXPECT_EQ(e.probes()[5].name, "damper_min_film_thickness");
   return {-out[0], -out[1], out[4]};
 }
 

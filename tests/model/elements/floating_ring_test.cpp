@@ -48,6 +48,43 @@ TEST(FloatingRing, FilmForcesActOnShaftAndRingInOpposition) {
   EXPECT_GT(zdot[2], 0.0);  // the ring (centred in its own film, which carries no force there) is pushed to +x
 }
 
+TEST(FloatingRing, ThinnestFilmProbesIncludeTheRingsOffsetAndTilt) {
+  // Ring 0.3 c_o off in +x and tilted in the x-z plane so that its ends lie a further 0.2 c_o out; the journal
+  // 0.2 c_i beyond the ring's centre, untilted. Outer film: c_o - 0.5 c_o. Inner film: the journal against the
+  // tilted ring, its ends 0.2 c_i + (L_i / 2) * tilt off the ring's axis.
+  FloatingRingSpec f = reference_ring();
+  f.film_thickness_limit = 1e-6;
+  OilSpec oil;
+  const FloatingRingElement e("test", f, oil, 0, 0.0);
+  auto ws = e.make_workspace();
+  const double ci = f.inner_clearance, co = f.outer_clearance;
+  const double tilt = 0.2 * co / (0.5 * f.outer_length);
+  double z[FloatingRingElement::kStates] = {};
+  z[FloatingRingElement::kX] = 0.3 * co;
+  z[FloatingRingElement::kAy] = tilt;  // dx/dz of the ring's axis
+  z[FloatingRingElement::kSpin] = 1000.0;
+  z[FloatingRingElement::kAngle] = 0.7;  // the ring's angle does not matter
+  const double q[4] = {0.3 * co + 0.2 * ci, 0, 0, 0}, v[4] = {0, 0, 0, 0};
+  const std::vector<ProbeInfo> info = e.probes();
+  std::vector<double> out(info.size());
+  e.eval_probes(SpinState{0.0, 3000.0, 0.0, 0.0}, q, v, z, *ws, out.data());
+  int seen = 0;
+  for (std::size_t i = 0; i < info.size(); ++i) {
+    if (info[i].name == "inner_min_film_thickness") {
+      EXPECT_NEAR(out[i], ci - 0.2 * ci - 0.5 * f.inner_length * tilt, 1e-12 * ci);
+      ++seen;
+    } else if (info[i].name == "outer_min_film_thickness") {
+      EXPECT_NEAR(out[i], 0.5 * co, 1e-12 * co);
+      ++seen;
+    } else {
+      continue;
+    }
+    EXPECT_EQ(info[i].limit, 1e-6);  // one permissible thickness for both films
+    EXPECT_TRUE(info[i].limit_below);
+  }
+  EXPECT_EQ(seen, 2);
+}
+
 TEST(FloatingRing, InnerFilmInTheRingFrameGivesTheSameForcesAtAnyRingAngle) {
   // Without drill holes nothing is fixed in the ring frame, so the forces must not depend on the ring angle: checks
   // the rotation of positions, tilts and their rates (with the frame-rotation terms) into the ring frame and back.

@@ -503,6 +503,34 @@ TEST(BadInput, ConstructorRejectsWithAClearMessage) {
   EXPECT_THAT(message(plain(1.0), kEta, o), HasSubstr("tolerance"));
 }
 
+TEST(FilmGeometry, ThinnestFilmIsTheClearanceLessTheLargestOffsetOverTheWidth) {
+  // h = c - |e + z s| over z in [-L/2, L/2]; |e + z s| is convex in z, so its largest value is at an end.
+  const FilmGeometry g = plain(1.0);  // L = 2R
+  const double hl = kR;
+  EXPECT_NEAR(min_film_thickness(g, journal(0.0)), kC, 1e-18);
+  EXPECT_NEAR(min_film_thickness(g, journal(0.6, 1.1)), 0.4 * kC, 1e-18);  // untilted: c (1 - eps)
+  // Offset along x, tilt along y: both ends sqrt(e^2 + (L/2 s)^2) off the axis.
+  FilmState s = journal(0.6);
+  s.sy = 0.3 * kC / hl;
+  EXPECT_NEAR(min_film_thickness(g, s), kC - std::hypot(0.6 * kC, 0.3 * kC), 1e-18);
+  // Tilt in the offset's plane: one end 0.9 c off, the other 0.3 c.
+  s.sy = 0.0;
+  s.sx = 0.3 * kC / hl;
+  EXPECT_NEAR(min_film_thickness(g, s), 0.1 * kC, 1e-18);
+  s.sx = -s.sx;
+  EXPECT_NEAR(min_film_thickness(g, s), 0.1 * kC, 1e-18);
+  // The solver refuses exactly the states whose thinnest film is not positive.
+  FilmSolver solver(g, kEta);
+  FilmResult r;
+  s.sx = 0.39 * kC / hl;  // 0.01 c left at one end
+  EXPECT_GT(min_film_thickness(g, s), 0.0);
+  EXPECT_TRUE(solver.solve(s, r)) << solver.last_error();
+  s.sx = 0.41 * kC / hl;
+  EXPECT_LT(min_film_thickness(g, s), 0.0);
+  EXPECT_FALSE(solver.solve(s, r));
+  EXPECT_THAT(solver.last_error(), HasSubstr("film closes"));
+}
+
 TEST(BadInput, ClosingFilmReturnsFalse) {
   FilmSolver solver(plain(1.0), kEta);
   FilmResult r;

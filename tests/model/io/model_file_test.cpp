@@ -193,6 +193,32 @@ TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {
               HasSubstr("end_seal_gap"));
 }
 
+TEST(ModelFile, APermissibleFilmThicknessIsPositiveAndThinnerThanTheClearance) {
+  // Every fluid film takes film_thickness_limit: a floating ring's (both films), a damper's, a journal bearing's.
+  const std::string ring = example("reference_floating_ring.toml");
+  EXPECT_DOUBLE_EQ(load_model(ring).bearings.at(0).ring.film_thickness_limit, 0.0);  // none unless given
+  EXPECT_DOUBLE_EQ(load_model(ring, {parse_override("bearings.compressor.film_thickness_limit=2 um")})
+                       .bearings.at(0).ring.film_thickness_limit,
+                   2e-6);
+  // Thinner than both films' clearances (15 and 40 µm): the centred inner film would otherwise be below it.
+  EXPECT_THAT(model_error_of(ring, {parse_override("bearings.compressor.film_thickness_limit=15 um")}),
+              AllOf(HasSubstr("bearings.compressor.film_thickness_limit"), HasSubstr("thinner than the radial")));
+  EXPECT_THAT(model_error_of(ring, {parse_override("bearings.compressor.film_thickness_limit=-1 um")}),
+              HasSubstr("bearings.compressor.film_thickness_limit"));
+  EXPECT_THAT(model_error_of(ring, {parse_override("bearings.compressor.film_thickness_limit=1 bar")}),
+              HasSubstr("bearings.compressor.film_thickness_limit"));
+  const std::string sfd = example("reference_ball_sfd.toml");
+  EXPECT_DOUBLE_EQ(load_model(sfd, {parse_override("bearings.turbine.damper.film_thickness_limit=3 um")})
+                       .bearings.at(1).damper.film_thickness_limit,
+                   3e-6);
+  EXPECT_THAT(model_error_of(sfd, {parse_override("bearings.turbine.damper.film_thickness_limit=51 um")}),
+              HasSubstr("bearings.turbine.damper.film_thickness_limit"));
+  const std::string journal = example("reference_journal.toml");
+  EXPECT_DOUBLE_EQ(load_model(journal, {parse_override("bearings.compressor.film_thickness_limit=1 um")})
+                       .bearings.at(0).journal.film_thickness_limit,
+                   1e-6);
+}
+
 TEST(ModelFile, ExamplesLoad) {
   EXPECT_NO_THROW(load_model(example("reference_linear.toml")));
   EXPECT_NO_THROW(load_model(example("friswell_5_9_1.toml")));
