@@ -92,7 +92,7 @@ Variable read_variable(Reader& r) {
 Metric read_metric(Reader& r, double window_min, double window_max) {
   Metric m;
   studies::MetricSpec& s = m.spec;
-  const std::vector<std::string> kinds = {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed",
+  const std::vector<std::string> kinds = {"max", "min", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed",
                                           "subsync_max", "subsync_ratio", "subsync_onset_speed", "subsync_jump_speed",
                                           "subsync_frequency", "summary", "response_peak", "response_peak_speed",
                                           "stability_growth", "stability_growth_speed", "stability_frequency",

@@ -158,17 +158,19 @@ double evaluate_metric(const MetricSpec& m, const RunupResult& r, const nlohmann
   }
   const int c = find_channel(r.channels, m.probe);
   const std::vector<double>& x = r.columns[c];
-  if (m.kind == "max" || m.kind == "rms" || m.kind == "mean") {
-    double acc = 0.0, best = 0.0;
+  if (m.kind == "max" || m.kind == "min" || m.kind == "rms" || m.kind == "mean") {
+    double acc = 0.0, best = 0.0, least = std::numeric_limits<double>::infinity();
     std::size_t n = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
       if (!in_window(m, speed[i])) continue;
       best = std::max(best, std::abs(x[i]));
+      least = std::min(least, x[i]);
       acc += m.kind == "rms" ? x[i] * x[i] : x[i];
       ++n;
     }
     if (n == 0) return kNaN;
     if (m.kind == "max") return best;
+    if (m.kind == "min") return least;  // signed: e.g. a film's thinnest point
     return m.kind == "rms" ? std::sqrt(acc / n) : acc / n;
   }
   if (m.kind == "peak_1x" || m.kind == "peak_1x_speed") {

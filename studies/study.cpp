@@ -69,7 +69,8 @@ Parameter read_parameter(Reader& r, DesignKind kind, std::string& unit, std::vec
 MetricSpec read_metric(Reader& r, const StudySpec& s) {
   MetricSpec m;
   m.kind = r.choice("kind",
-                    {"max", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed", "subsync_max", "subsync_ratio",
+                    {"max", "min", "max_radius", "rms", "mean", "peak_1x", "peak_1x_speed", "subsync_max",
+                     "subsync_ratio",
                      "subsync_onset_speed", "subsync_jump_speed", "subsync_frequency", "summary", "stability_growth",
                      "stability_growth_speed", "stability_frequency", "stability_damping", "stability_onset_speed"},
                     "");

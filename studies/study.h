@@ -28,7 +28,7 @@ struct UnitValue {
 /// One metric computed from every run (docs/studies.md lists the kinds).
 struct MetricSpec {
   std::string name;   ///< column name in the results
-  std::string kind;   ///< max, max_radius, rms, mean, peak_1x, peak_1x_speed, subsync_max, subsync_ratio,
+  std::string kind;   ///< max, min, max_radius, rms, mean, peak_1x, peak_1x_speed, subsync_max, subsync_ratio,
                       ///< subsync_onset_speed, subsync_jump_speed, subsync_frequency, summary, stability_growth,
                       ///< stability_growth_speed, stability_frequency, stability_damping, stability_onset_speed
   std::string probe;  ///< channel name ("disk.compressor.x"), a pair stem for max_radius ("disk.compressor"), or

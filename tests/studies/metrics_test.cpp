@@ -61,6 +61,23 @@ TEST(Metrics, JumpSpeedIsWhereTheDominantSubsynchronousLineChangesItsFrequency) 
   EXPECT_NEAR(evaluate_metric(threshold_metric("subsync_frequency", 0.0), r, {}, 20000.0), 350.0, 15.0);
 }
 
+TEST(Metrics, MinIsTheSmallestSignedValueInTheWindowAndMaxTheLargestMagnitude) {
+  // 1 µm of 1x plus 2 µm of whirl below 500 Hz, 3 µm from there on: the two lines line up somewhere in the
+  // thousands of cycles, so the smallest value lies within 2.5 % of -4 µm (of -3 µm below 30,000 rpm).
+  const RunupResult r = jumping_whirl(1.0);
+  MetricSpec m = threshold_metric("min", 0.0);
+  const double least = evaluate_metric(m, r, {}, 20000.0);
+  EXPECT_LT(least, -3.9e-6);
+  EXPECT_GE(least, -4e-6);
+  m.kind = "max";
+  EXPECT_NEAR(evaluate_metric(m, r, {}, 20000.0), -least, 0.05e-6);
+  m.kind = "min";
+  m.speed_max = 29000.0 * 2.0 * kPi / 60.0;  // rad/s: the 2-µm whirl alone
+  const double early = evaluate_metric(m, r, {}, 20000.0);
+  EXPECT_LT(early, -2.9e-6);
+  EXPECT_GE(early, -3e-6);
+}
+
 TEST(Metrics, JumpSpeedNeedsALineAboveTheThreshold) {
   const RunupResult r = jumping_whirl(0.1);  // lines of 0.2 and 0.3 um
   EXPECT_TRUE(std::isnan(evaluate_metric(threshold_metric("subsync_jump_speed", 0.5e-6), r, {}, 20000.0)));
