@@ -111,7 +111,7 @@ for v in "${variants[@]}"; do
     *)
       cp "$dir/spectrogram_disk.compressor.x.png" "docs/images/variant_${v}_compressor_x.png"
       cp "$dir/spectrogram_bearing.compressor.fx.png" "docs/images/variant_${v}_compressor_force.png"
-      for f in ring_speed_ratio film_temperatures contact_pressure; do
+      for f in ring_speed_ratio film_temperatures contact_pressure film_thickness; do
         if [[ -f $dir/$f.png ]]; then cp "$dir/$f.png" "docs/images/variant_${v}_$f.png"; fi
       done
       if [[ $v == ball ]]; then
