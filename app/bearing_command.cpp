@@ -186,7 +186,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
       os << std::fixed << std::setprecision(0) << "at " << p.speed * kRadPerSToRpm << " rpm the "
          << (inner_h(p) <= outer_h(p) ? "inner" : "outer") << " film is " << std::setprecision(2) << h * 1e6
          << " µm thin, below its limit of " << f.film_thickness_limit * 1e6 << " µm, "
-         << min_film_probe("", "", f.film_thickness_limit).limit_note;
+         << kFilmThicknessLimitNote;
       warnings.push_back(os.str());
     }
   }

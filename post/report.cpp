@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "model/elements/force_element.h"
 #include "model/engine/stability.h"
 #include "post/html_page.h"
 #include "post/run_pictures.h"
@@ -153,7 +154,7 @@ void write_run_report(const std::filesystem::path& dir, const nlohmann::json& j,
                     HtmlPage::number(F, j, at + "/time_at_max_s", 1.0, "s"),
                     // A probe's limit (a ball bearing's contact pressure: ISO 76's; a film's permissible minimum
                     // thickness), marked where the run passes it; a film's thinnest point with its smallest value.
-                    (name.ends_with("min_film_thickness")
+                    (name.ends_with(kMinFilmProbeSuffix)
                          ? (p.contains("limit") ? "at least " + HtmlPage::number(F, j, at + "/limit", d.factor, d.unit)
                                                 : std::string("none")) +
                                "; smallest " + HtmlPage::number(F, j, at + "/min", d.factor, d.unit) + " at " +

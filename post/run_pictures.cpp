@@ -120,15 +120,24 @@ nlohmann::json spectral_line_json(const signal::SpectralLine& l) {
           {"time_s", l.time_s}};
 }
 
-// The suffix of every fluid-film bearing's thinnest-film probes (min_film_probe).
-constexpr std::string_view kMinFilmSuffix = "min_film_thickness";
+// A probe's limit as a dashed black line at y across the chart's first series (a pressure or a film thickness
+// against speed).
+void add_limit_line(plot::LineChart& chart, double y, std::string label) {
+  plot::Series limit;
+  limit.label = std::move(label);
+  limit.style = plot::Series::Style::Dashed;
+  limit.color = "black";
+  limit.x = {chart.series.front().x.front(), chart.series.front().x.back()};
+  limit.y = {y, y};
+  chart.series.push_back(std::move(limit));
+}
 
 // Whether a run's channel gets a spectrogram: not the speed and angle, not powers and losses (W), which are read
 // as time series, not as vibration (they stay in the file), and not a probe with a limit or a film's thinnest point,
 // read as their level (against the limit: the contact-pressure and film-thickness pictures).
 bool gets_spectrogram(const ProbeChannel& ch) {
   return ch.kind != ProbeChannel::Kind::Speed && ch.kind != ProbeChannel::Kind::Angle && ch.unit != "W" &&
-         !std::isfinite(ch.limit) && !ch.name.ends_with(kMinFilmSuffix);
+         !std::isfinite(ch.limit) && !ch.name.ends_with(kMinFilmProbeSuffix);
 }
 
 // What every spectrogram of a run shares: the rotor speed, whether it never falls (the spectrograms are then drawn
@@ -398,13 +407,7 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
     chart->ylabel = "Hertz pressure p_0 [MPa]";
     for (const ProbeChannel& ch : r.channels) {
       if (!std::isfinite(ch.limit) || !ch.name.ends_with(pressure)) continue;
-      plot::Series limit;
-      limit.label = "static limit (ISO 76)";
-      limit.style = plot::Series::Style::Dashed;
-      limit.color = "black";
-      limit.x = {chart->series.front().x.front(), chart->series.front().x.back()};
-      limit.y = {ch.limit * 1e-6, ch.limit * 1e-6};
-      chart->series.push_back(std::move(limit));
+      add_limit_line(*chart, ch.limit * 1e-6, "static limit (ISO 76)");
       break;  // one line: every ball bearing has the same limit
     }
     plot::render_png(*chart, dir / "contact_pressure.png");
@@ -413,25 +416,19 @@ void draw_run_pictures(const MachineSpec& spec, const RunupResult& r, const std:
   // Fluid films' thinnest points, 10-ms minima, against each bearing's permissible minimum film thickness if the
   // model file gives one.
   if (std::optional<plot::LineChart> chart =
-          against_speed_chart(r, {std::string(kMinFilmSuffix)}, block, 0.0, Block::Min, 1e6)) {
+          against_speed_chart(r, {std::string(kMinFilmProbeSuffix)}, block, 0.0, Block::Min, 1e6)) {
     chart->title = "Thinnest oil film against rotor speed (10-ms minima)";
     chart->ylabel = "minimum film thickness h_min [µm]";
     std::vector<double> drawn;
     for (const ProbeChannel& ch : r.channels) {
-      if (!std::isfinite(ch.limit) || !ch.name.ends_with(kMinFilmSuffix) ||
+      if (!std::isfinite(ch.limit) || !ch.name.ends_with(kMinFilmProbeSuffix) ||
           std::find(drawn.begin(), drawn.end(), ch.limit) != drawn.end())
         continue;
       drawn.push_back(ch.limit);
-      plot::Series limit;
       std::ostringstream label;
       label << "permissible minimum " << std::fixed << std::setprecision(1) << ch.limit * 1e6
             << " µm (film_thickness_limit)";
-      limit.label = label.str();
-      limit.style = plot::Series::Style::Dashed;
-      limit.color = "black";
-      limit.x = {chart->series.front().x.front(), chart->series.front().x.back()};
-      limit.y = {ch.limit * 1e6, ch.limit * 1e6};
-      chart->series.push_back(std::move(limit));
+      add_limit_line(*chart, ch.limit * 1e6, label.str());
     }
     plot::render_png(*chart, dir / "film_thickness.png");
     written.push_back("film_thickness.png");

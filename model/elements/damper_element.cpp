@@ -83,7 +83,7 @@ void DamperElement::eval_probes(const SpinState&, const double*, const double*, 
   out[2] = z[0];
   out[3] = z[1];
   out[4] = std::hypot(z[0], z[1]) / damper_.clearance;
-  out[5] = damper_.clearance - std::hypot(z[0], z[1]);  // the damper film does not tilt
+  out[5] = reynolds::min_film_thickness(geometry_, {.ex = z[0], .ey = z[1]});  // the damper film does not tilt
 }
 
 double DamperElement::potential_energy(const double* q, const double* z) const {

@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -94,16 +95,22 @@ void append_probes(std::vector<ProbeInfo>& p, const std::string& who, const Prob
   }
 }
 
-/// The thinnest film of a fluid-film bearing (m; reynolds::min_film_thickness), `what` saying which film. A
-/// permissible minimum film thickness `limit` > 0 (the model file's film_thickness_limit) is its lower limit.
+/// How every thinnest-film probe's name ends (min_film_probe): the pictures and the report find them by it.
+inline constexpr std::string_view kMinFilmProbeSuffix = "min_film_thickness";
+
+/// What passing a film's permissible minimum thickness means (min_film_probe's limit note).
+inline constexpr const char* kFilmThicknessLimitNote =
+    "the permissible minimum film thickness of the model file (film_thickness_limit): in a thinner film the "
+    "surfaces' roughness touches through the oil (mixed lubrication, wear), which the Reynolds film model does not "
+    "describe";
+
+/// The thinnest film of a fluid-film bearing (m; reynolds::min_film_thickness), `what` saying which film; `name`
+/// ends in kMinFilmProbeSuffix. A permissible minimum film thickness `limit` > 0 (the model file's
+/// film_thickness_limit) is its lower limit.
 inline ProbeInfo min_film_probe(std::string name, const std::string& what, double limit) {
   std::string description = "thinnest " + (what.empty() ? "" : what + " ") + "film (tilt included)";
   if (!(limit > 0.0)) return {std::move(name), "m", std::move(description)};
-  return {std::move(name), "m", std::move(description), limit,
-          "the permissible minimum film thickness of the model file (film_thickness_limit): in a thinner film the "
-          "surfaces' roughness touches through the oil (mixed lubrication, wear), which the Reynolds film model does "
-          "not describe",
-          true};
+  return {std::move(name), "m", std::move(description), limit, kFilmThicknessLimitNote, true};
 }
 
 /// The probes every bearing reports first, fx and fy (N): the force it transmits to the housing, `via` naming the

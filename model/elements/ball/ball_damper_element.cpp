@@ -213,7 +213,7 @@ void BallDamperElement::eval_probes(const SpinState& s, const double* q, const d
   out[2] = ring[0];
   out[3] = ring[1];
   out[4] = std::hypot(ring[0], ring[1]) / damper_.clearance;
-  out[5] = damper_.clearance - std::hypot(ring[0], ring[1]);  // the damper film does not tilt
+  out[5] = reynolds::min_film_thickness(geometry_, {.ex = ring[0], .ey = ring[1]});  // the damper film does not tilt
   const double cage_spin = z[bearing_.cage_offset() + 7];
   out[6] = s.speed != 0.0 ? cage_spin / s.speed : 0.0;
   out[7] = e.loads.max_contact_force();
