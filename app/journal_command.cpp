@@ -122,6 +122,9 @@ int run_journal_command(const JournalCommandOptions& o) {
   j["friction_power_w"] = -base.torque_inner * w - base.torque_outer * w_out;
   j["flow_out_of_ends_m3_s"] = base.flow_ends;
   j["flow_into_holes_m3_s"] = base.hole_flows;
+  // The thinnest point of the film: h0 = c (1 - e/c) for the journal parallel to the bush (Raimondi & Boyd's
+  // minimum film thickness variable h0/c = 1 - e/c).
+  j["min_film_thickness_m"] = min_film_thickness(g, s);
   j["max_pressure_pa"] = base.max_pressure;
   j["cavitated_fraction"] = base.cavitated_fraction;
   std::cout << std::setw(2) << j << "\n";

@@ -277,6 +277,10 @@ EOF2
     awk -v s="$(get sommerfeld_number)" -v f="$(get friction_variable)" \
       'BEGIN { exit !(s > 0.121 * 0.97 && s < 0.121 * 1.03 && f > 3.22 * 0.97 && f < 3.22 * 1.03) }' \
       || fail "S = $(get sommerfeld_number), (R/c)f = $(get friction_variable)"
+    # The thinnest film, h0 = c (1 - e/c) of the parallel journal (Raimondi & Boyd's h0/c = 0.4 here).
+    awk -v h="$(get min_film_thickness_m)" -v c="$(get clearance_m)" \
+      'BEGIN { exit !(c > 0 && h > 0.4 * c * (1 - 1e-12) && h < 0.4 * c * (1 + 1e-12)) }' \
+      || fail "h_min = $(get min_film_thickness_m) m for c = $(get clearance_m) m"
     "$exe" journal --eccentricity 1.2 > "$out/bad.log" 2>&1
     [ $? -eq 2 ] || fail "eccentricity 1.2 accepted"
     ;;
