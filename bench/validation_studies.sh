@@ -4,7 +4,7 @@
 #   damper optimisation of variant III to convergence (docs/optimization.md, ~4-6 min on 2 cores; after a change of
 #   its model file remove out/validation_studies/optimize_ball_sfd first, or the cache is refused),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
-#   the outer-film whirl (docs/studies.md, ~13 min on 2 cores, 2026-12-04),
+#   the outer-film whirl and the films' thinnest points (docs/studies.md, ~8-13 min on 2 cores, 2026-12-07),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
 #   2 cores since a run-up takes 1.7-2.9 min; 34 min on 2026-12-04, 2 h before),
 #   the 20-design map of where variant II's ball-set whirl starts over preload and contact angle, 48 designs of
@@ -70,7 +70,9 @@ for w in "${which[@]}"; do
       done
       cp "$out/study_floating_ring/metric_subsync_frequency_vs_bearings.compressor.outer_clearance.png" \
         docs/images/study_floating_ring_subsync_frequency_vs_outer_clearance.png
-      cp "$out/study_floating_ring/map_outer_whirl_amplitude.png" docs/images/study_floating_ring_map_outer_whirl_amplitude.png
+      for f in map_outer_whirl_amplitude.png map_min_inner_film_compressor.png map_min_outer_film_turbine.png; do
+        cp "$out/study_floating_ring/$f" "docs/images/study_floating_ring_$f"
+      done
       cp "$out/study_floating_ring/metric_outer_whirl_onset_vs_bearings.compressor.outer_clearance.png" \
         docs/images/study_floating_ring_outer_whirl_onset_vs_outer_clearance.png
       ;;
