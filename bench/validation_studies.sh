@@ -3,6 +3,8 @@
 #   identification of the ball-bearing preload and turbine unbalance (docs/identification.md, ~2 min on 2 cores),
 #   damper optimisation of variant III to convergence (docs/optimization.md, ~4-6 min on 2 cores; after a change of
 #   its model file remove out/validation_studies/optimize_ball_sfd first, or the cache is refused),
+#   the same over clearance, centring spring and end seals from rest to 45,000 rpm (optimize_seals, afresh each
+#   time; docs/optimization.md, ~10-15 min on 2 cores),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl and the films' thinnest points (docs/studies.md, ~8-13 min on 2 cores, 2026-12-07),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
@@ -13,8 +15,8 @@
 #   the 16-run sweep of variant III's damper clearance, centring spring and end seals (docs/studies.md, ~1.5 min).
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~12 min on 2 cores).
-# Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [floating_ring] [ball]
-#   [ball_stability] [ball_sfd]
+# Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [optimize_seals]
+#   [floating_ring] [ball] [ball_stability] [ball_sfd]
 #   (default: all).
 # Build first (scripts/build.sh).
 # Results in out/validation_studies/; an interrupted optimisation resumes from its cache when run again.
@@ -23,7 +25,8 @@ cd "$(dirname "$0")/.."
 exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "validation_studies: build first (scripts/build.sh)" >&2; exit 1; }
 which=("$@")
-((${#which[@]})) || which=(identify identify_floating_ring optimize floating_ring ball ball_stability ball_sfd)
+((${#which[@]})) ||
+  which=(identify identify_floating_ring optimize optimize_seals floating_ring ball ball_stability ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
 # Runs examples/study_reference_NAME.toml afresh into $out/study_NAME and logs its wall time to $out/NAME.log.
@@ -62,6 +65,17 @@ for w in "${which[@]}"; do
       cp "$out/optimize_ball_sfd/spectrogram_disk.compressor.x_comparison.png" \
         docs/images/optimize_ball_sfd_spectrogram_compressor_x.png
       ;;
+    optimize_seals)
+      rm -rf "$out/optimize_ball_sfd_seals"
+      start=$(date +%s)
+      "$exe" optimize examples/optimize_reference_ball_sfd_seals.toml -o "$out/optimize_ball_sfd_seals" \
+        | tee "$out/optimize_seals.log"
+      echo "optimize_ball_sfd_seals: $(($(date +%s) - start)) s of wall time on $(nproc) cores" \
+        | tee -a "$out/optimize_seals.log"
+      cp "$out/optimize_ball_sfd_seals/convergence.png" docs/images/optimize_ball_sfd_seals_convergence.png
+      cp "$out/optimize_ball_sfd_seals/spectrogram_bearing.compressor.fx_comparison.png" \
+        docs/images/optimize_ball_sfd_seals_spectrogram_compressor_force.png
+      ;;
     floating_ring)
       run_study floating_ring
       for f in sensitivity_max_compressor_orbit.png map_max_compressor_orbit.png \
@@ -96,7 +110,7 @@ for w in "${which[@]}"; do
       cp "$out/study_ball_sfd/map_force_1x_compressor.png" docs/images/study_ball_sfd_map_force_1x_compressor.png
       cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
       ;;
-    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, floating_ring, ball," \
-            "ball_stability, ball_sfd)" >&2; exit 2 ;;
+    *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, optimize_seals," \
+            "floating_ring, ball, ball_stability, ball_sfd)" >&2; exit 2 ;;
   esac
 done
