@@ -339,8 +339,9 @@ Eigen::VectorXd element_steady_state(const ForceElement& e, const Layout& layout
 [[noreturn]] void throw_unsupported(const ForceElement& e) {
   throw std::invalid_argument("bearing '" + e.name() + "': its element has no steady state about a centred "
                               "rotor that the stability analysis knows (it covers ball bearings with a fixed or "
-                              "spring-mounted outer ring or in a squeeze-film damper without feed hole and supply "
-                              "pressure, and linear bearings, all acting the same in every direction)");
+                              "spring-mounted outer ring or in a squeeze-film damper without feed hole and with "
+                              "either no supply pressure or a central feed groove, and linear bearings, all acting the "
+                              "same in every direction)");
 }
 
 }  // namespace

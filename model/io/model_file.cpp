@@ -189,11 +189,18 @@ void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width)
   f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
   if (f.feed_hole_diameter >= f.length) r.fail("feed_hole_diameter", "must be smaller than the " + width);
-  if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
-    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
-  if (f.cavitation == Cavitation::MassConserving && !(f.feed_hole_diameter > 0.0 && f.supply_pressure > 0.0))
-    r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) with "
-                         "supply_pressure > 0");
+  f.feed_groove_width = r.quantity_or("feed_groove_width", dim::length, 0.0, Bound::NonNegative);
+  if (f.feed_groove_width >= f.length) r.fail("feed_groove_width", "must be narrower than the " + width);
+  if (f.feed_groove_width > 0.0 && f.feed_hole_diameter > 0.0)
+    r.fail("feed_groove_width", "the oil enters through a feed hole or a feed groove: give feed_hole_diameter or "
+                                "feed_groove_width, not both");
+  const bool fed = f.feed_hole_diameter > 0.0 || f.feed_groove_width > 0.0;
+  if (f.supply_pressure > 0.0 && !fed)
+    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) or a feed groove (feed_groove_width) to enter "
+                              "the film");
+  if (f.cavitation == Cavitation::MassConserving && !(fed && f.supply_pressure > 0.0))
+    r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) or groove "
+                         "(feed_groove_width) with supply_pressure > 0");
   f.film_thickness_limit = read_film_thickness_limit(r, f.clearance);
 }
 

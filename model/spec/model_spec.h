@@ -90,9 +90,10 @@ struct JournalBearingSpec {
   int n_circ = 60, n_axial = 12;
   double axial_grading = 0.0;   ///< film nodes drawn towards the ends (reynolds::SolverOptions::axial_grading)
   double oil_temperature = 0.0; ///< K; 0 = the [oil] temperature
-  double supply_pressure = 0.0; ///< Pa gauge at the feed hole
+  double supply_pressure = 0.0; ///< Pa gauge at the feed hole or groove
   double feed_hole_diameter = 0.0;  ///< m; 0 = no feed hole
   double feed_hole_angle = M_PI / 2;  ///< rad from +x towards +y (default: top)
+  double feed_groove_width = 0.0;  ///< m, full circumferential feed groove at mid-width instead of a hole (0: none)
   double film_thickness_limit = 0.0;  ///< m, permissible minimum film thickness (0: none; min_film_probe)
 };
 
@@ -145,9 +146,10 @@ struct DamperSpec {
   int n_circ = 60, n_axial = 12;
   double axial_grading = 0.0;   ///< film nodes drawn towards the ends (reynolds::SolverOptions::axial_grading)
   double oil_temperature = 0.0;     ///< K; 0 = the [oil] temperature
-  double supply_pressure = 0.0;     ///< Pa gauge at the feed hole
+  double supply_pressure = 0.0;     ///< Pa gauge at the feed hole or groove
   double feed_hole_diameter = 0.0;  ///< m; 0 = none
   double feed_hole_angle = M_PI / 2;
+  double feed_groove_width = 0.0;   ///< m, full circumferential feed groove at mid-width instead of a hole (0: none)
   double end_seal_gap = 0.0;        ///< m, radial gap of the end seals at both ends; 0 = open ends
   double end_seal_length = 0.0;     ///< m, axial length of the seals' gap
   double film_thickness_limit = 0.0;  ///< m, permissible minimum film thickness (0: none)

@@ -139,8 +139,11 @@ void BallDamperElement::initial_states_at_speed(double speed, double* z) const {
 void BallDamperElement::initial_states(double* z) const { initial_states_at_speed(0.0, z); }
 
 bool BallDamperElement::steady_rotation_layout(SteadyRotationLayout* layout) const {
-  // A feed hole or a supply pressure pushes the ring one way: no steady state turns with the cage.
-  if (gravity_ != 0.0 || damper_.feed_hole_diameter > 0.0 || damper_.supply_pressure != 0.0) return false;
+  // A feed hole pushes the ring one way: no steady state turns with the cage. A central feed groove's supply
+  // pressure is the same all round and pushes it nowhere.
+  const bool pushed =
+      damper_.feed_hole_diameter > 0.0 || (damper_.supply_pressure != 0.0 && !(damper_.feed_groove_width > 0.0));
+  if (gravity_ != 0.0 || pushed) return false;
   bearing_.core_rotation_layout(layout);
   layout->planar_pairs.emplace_back(n_core_, n_core_ + 1);
   layout->planar_pairs.emplace_back(n_core_ + 2, n_core_ + 3);

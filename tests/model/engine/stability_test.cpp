@@ -232,6 +232,15 @@ TEST(Stability, BallBearingsInADamperWhoseFilmIsTheSameInEveryDirection) {
     if (std::abs(m.frequency) < 1e-3) {
       EXPECT_FALSE(m.grows()) << "the rings' neutral place at 0 Hz counts as growing";
     }
+  // Fed at its 4 bar through a central groove instead of the hole, the film is the same all round again: the
+  // rings rest at the centre and the balls turn as before, on a film the supply keeps whole.
+  for (BearingSpec& b : sfd.bearings) {
+    b.damper.feed_groove_width = 1e-3;
+    b.damper.supply_pressure = 4e5;
+  }
+  const StabilityPoint grooved = analyse_stability(sfd, kSpeed);
+  EXPECT_NEAR(grooved.frame_speed / fixed.frame_speed, 1.0, 1e-9);
+  EXPECT_EQ(grooved.n_states, damped.n_states);
 }
 
 TEST(Stability, AnAnalysisContinuedFromALowerSpeedIsTheOneFromRest) {

@@ -193,6 +193,22 @@ TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {
               HasSubstr("end_seal_gap"));
 }
 
+TEST(ModelFile, AFeedGrooveReplacesTheFeedHoleAndIsNarrowerThanTheLand) {
+  // feed_groove_width: a full circumferential groove at mid-width at the supply pressure, instead of the feed hole.
+  const std::string f = example("reference_ball_sfd.toml");
+  const Override no_hole = parse_override("bearings.compressor.damper.feed_hole_diameter=0 mm");
+  const MachineSpec s = load_model(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=2 mm")});
+  EXPECT_DOUBLE_EQ(s.bearings.at(0).damper.feed_groove_width, 2e-3);
+  EXPECT_DOUBLE_EQ(load_model(f).bearings.at(0).damper.feed_groove_width, 0.0);  // none unless given
+  EXPECT_THAT(model_error_of(f, {parse_override("bearings.compressor.damper.feed_groove_width=2 mm")}),
+              AllOf(HasSubstr("bearings.compressor.damper.feed_groove_width"), HasSubstr("not both")));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=6 mm")}),
+              AllOf(HasSubstr("feed_groove_width"), HasSubstr("narrower than the land width")));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=-1 mm")}),
+              HasSubstr("feed_groove_width"));
+  EXPECT_THAT(model_error_of(f, {no_hole}), AllOf(HasSubstr("supply_pressure"), HasSubstr("feed_groove_width")));
+}
+
 TEST(ModelFile, APermissibleFilmThicknessIsPositiveAndThinnerThanTheClearance) {
   // Every fluid film takes film_thickness_limit: a floating ring's (both films), a damper's, a journal bearing's.
   const std::string ring = example("reference_floating_ring.toml");
