@@ -29,13 +29,18 @@ which=("$@")
   which=(identify identify_floating_ring optimize optimize_seals floating_ring ball ball_stability ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
+# Runs COMMAND..., its output also into $out/LOG, and appends its wall time under LABEL: run_timed LABEL LOG COMMAND...
+run_timed() {
+  local label=$1 log=$2 start
+  shift 2
+  start=$(date +%s)
+  "$@" | tee "$out/$log"
+  echo "$label: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/$log"
+}
 # Runs examples/study_reference_NAME.toml afresh into $out/study_NAME and logs its wall time to $out/NAME.log.
 run_study() {
-  local name=$1 start
-  rm -rf "$out/study_$name"
-  start=$(date +%s)
-  "$exe" sweep "examples/study_reference_$name.toml" -o "$out/study_$name" | tee "$out/$name.log"
-  echo "study_$name: $(($(date +%s) - start)) s of wall time on $(nproc) cores" | tee -a "$out/$name.log"
+  rm -rf "$out/study_$1"
+  run_timed "study_$1" "$1.log" "$exe" sweep "examples/study_reference_$1.toml" -o "$out/study_$1"
 }
 for w in "${which[@]}"; do
   case $w in
@@ -67,11 +72,8 @@ for w in "${which[@]}"; do
       ;;
     optimize_seals)
       rm -rf "$out/optimize_ball_sfd_seals"
-      start=$(date +%s)
-      "$exe" optimize examples/optimize_reference_ball_sfd_seals.toml -o "$out/optimize_ball_sfd_seals" \
-        | tee "$out/optimize_seals.log"
-      echo "optimize_ball_sfd_seals: $(($(date +%s) - start)) s of wall time on $(nproc) cores" \
-        | tee -a "$out/optimize_seals.log"
+      run_timed optimize_ball_sfd_seals optimize_seals.log \
+        "$exe" optimize examples/optimize_reference_ball_sfd_seals.toml -o "$out/optimize_ball_sfd_seals"
       cp "$out/optimize_ball_sfd_seals/convergence.png" docs/images/optimize_ball_sfd_seals_convergence.png
       cp "$out/optimize_ball_sfd_seals/spectrogram_bearing.compressor.fx_comparison.png" \
         docs/images/optimize_ball_sfd_seals_spectrogram_compressor_force.png
@@ -87,11 +89,8 @@ for w in "${which[@]}"; do
       sed -e "s|^model = \"reference_ball_sfd.toml\"|model = \"$PWD/examples/reference_ball_sfd.toml\"|" \
           -e "s|^fixed = \[|fixed = [$groove|" examples/optimize_reference_ball_sfd_seals.toml \
         > "$out/optimize_ball_sfd_seals_groove.toml"
-      start=$(date +%s)
-      "$exe" optimize "$out/optimize_ball_sfd_seals_groove.toml" -o "$out/optimize_ball_sfd_seals_groove" \
-        | tee "$out/optimize_seals_groove.log"
-      echo "optimize_ball_sfd_seals_groove: $(($(date +%s) - start)) s of wall time on $(nproc) cores" \
-        | tee -a "$out/optimize_seals_groove.log"
+      run_timed optimize_ball_sfd_seals_groove optimize_seals_groove.log \
+        "$exe" optimize "$out/optimize_ball_sfd_seals_groove.toml" -o "$out/optimize_ball_sfd_seals_groove"
       ;;
     floating_ring)
       run_study floating_ring

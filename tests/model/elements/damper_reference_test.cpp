@@ -48,6 +48,12 @@ std::array<double, 3> film_force_on_ring(const DamperSpec& d, double eta, const 
   return {-out[0], -out[1], out[4]};
 }
 
+// Radial damping of the uncavitated open-ended short damper at e = eps c, docs/references.md section 3:
+// C_rr = pi eta R L^3 (1 + 2 eps^2) / (c^3 (1 - eps^2)^2.5).
+double short_damper_radial_damping(double eta, double R, double L, double c, double eps) {
+  return M_PI * eta * R * std::pow(L, 3) * (1 + 2 * eps * eps) / (std::pow(c, 3) * std::pow(1 - eps * eps, 2.5));
+}
+
 // Tangential and radial film force on the ring of a damper whose ring runs a centred circular orbit.
 struct OrbitForce {
   double radial, tangential, eccentricity;
@@ -93,8 +99,7 @@ TEST(Damper, RadialSqueezeAgainstTheShortDamperClosedForm) {
   d.cavitation = Cavitation::None;
   const double R = 0.01, L = d.length, c = d.clearance, eta = 0.01, edot = 1e-3;
   for (const double eps : {0.3, 0.6, 0.9}) {
-    const double Crr = M_PI * eta * R * std::pow(L, 3) * (1 + 2 * eps * eps) /
-                       (std::pow(c, 3) * std::pow(1 - eps * eps, 2.5));
+    const double Crr = short_damper_radial_damping(eta, R, L, c, eps);
     EXPECT_NEAR(radial_squeeze_force(d, eta, eps, edot) / (-Crr * edot), 1.0, kShortDamperTolerance) << eps;
   }
 }
@@ -110,8 +115,7 @@ TEST(Damper, ACentralFeedGrooveSplitsTheLandIntoTwoShortDampersAndPushesTheRingN
   d.cavitation = Cavitation::None;
   d.n_axial = 25;  // a row of nodes at mid-width: the groove narrower than a grid step fixes that row alone
   const double R = 0.01, L = d.length, c = d.clearance, eta = 0.01, edot = 1e-3, eps = 0.5;
-  const double Crr = M_PI * eta * R * std::pow(L, 3) * (1 + 2 * eps * eps) /
-                     (std::pow(c, 3) * std::pow(1 - eps * eps, 2.5));
+  const double Crr = short_damper_radial_damping(eta, R, L, c, eps);
   EXPECT_NEAR(radial_squeeze_force(d, eta, eps, edot) / (-Crr * edot), 1.0, kShortDamperTolerance);
   d.feed_groove_width = 0.01 * L;
   d.supply_pressure = 4e5;
