@@ -73,8 +73,18 @@ int run_journal_command(const JournalCommandOptions& o) {
   g.n_circ = o.n_circ;
   g.n_axial = o.n_axial;
   const double hole = value("hole-diameter", o.hole_diameter, dim::length);
+  const double groove = value("groove-width", o.groove_width, dim::length);
   const double supply = value("supply-pressure", o.supply_pressure, dim::pressure);
+  if (!(hole >= 0.0 && hole < L)) throw ModelError("--hole-diameter: must lie in [0, the bearing length)");
+  if (!(groove >= 0.0 && groove < L)) throw ModelError("--groove-width: must lie in [0, the bearing length)");
+  if (hole > 0.0 && groove > 0.0)
+    throw ModelError("--hole-diameter and --groove-width: the oil enters through a feed hole or a feed groove, not "
+                     "both");
+  if (!std::isfinite(supply) || (supply != 0.0 && hole == 0.0 && groove == 0.0))
+    throw ModelError("--supply-pressure: needs a feed hole (--hole-diameter) or a feed groove (--groove-width) to "
+                     "enter the film");
   if (hole > 0.0) g.holes.push_back({M_PI / 2, 0.0, hole, supply});
+  if (groove > 0.0) g.grooves.push_back({0.0, groove, supply});
   SolverOptions so;
   if (!from_string(o.cavitation, so.cavitation))
     throw ModelError("--cavitation '" + o.cavitation + "': expected gumbel, mass-conserving or none");
@@ -97,7 +107,8 @@ int run_journal_command(const JournalCommandOptions& o) {
                 {"viscosity_pa_s", eta}, {"speed_rad_s", w}, {"outer_speed_rad_s", w_out},
                 {"eccentricity_ratio", o.eccentricity}, {"attitude_of_eccentricity_rad", att},
                 {"cavitation", o.cavitation}, {"n_circ", o.n_circ}, {"n_axial", o.n_axial},
-                {"hole_diameter_m", hole}, {"supply_pressure_pa", supply}};
+                {"hole_diameter_m", hole}, {"groove_width_m", groove},
+                {"supply_pressure_pa", supply}};
   j["force_on_journal_n"] = {base.fx, base.fy};
   j["load_n"] = W;
   if (W > 0.0) {

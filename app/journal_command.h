@@ -15,6 +15,7 @@ struct JournalCommandOptions {
   std::string cavitation = "gumbel";
   int n_circ = 60, n_axial = 12;
   std::string supply_pressure = "0 Pa", hole_diameter = "0 mm";
+  std::string groove_width = "0 mm";  ///< full circumferential feed groove at mid-width, instead of the hole
 };
 
 /// Prints the JSON result to stdout; returns the exit code.

@@ -203,7 +203,10 @@ int main(int argc, char** argv) {
   journal->add_option("--n-circ", jo.n_circ, "Grid nodes around")->capture_default_str();
   journal->add_option("--n-axial", jo.n_axial, "Grid nodes across")->capture_default_str();
   journal->add_option("--hole-diameter", jo.hole_diameter, "Feed hole at the top, mid-width")->capture_default_str();
-  journal->add_option("--supply-pressure", jo.supply_pressure, "Feed pressure (gauge)")->capture_default_str();
+  journal->add_option("--groove-width", jo.groove_width,
+                      "Full circumferential feed groove at mid-width, instead of the hole")->capture_default_str();
+  journal->add_option("--supply-pressure", jo.supply_pressure, "Feed pressure (gauge) at the hole or groove")
+      ->capture_default_str();
 
   turbodyn::app::OptimizeCommandOptions optimize_options;
   CLI::App* optimize = app.add_subcommand("optimize", "Design optimisation (NLopt) of model parameters on run metrics");

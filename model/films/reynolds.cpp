@@ -1303,6 +1303,11 @@ struct FilmSolver::Impl {
         ends += 0.5 * (theta_at(i, 0) / hl + theta_at(i, nz - 1) / hu);
       }
       couette += ends * 2.0 * (zf[0] + 0.5 * g.length);  // the end strips
+      // A groove is deep against the clearance: no Couette shear across its width, which the rows' cells above
+      // counted at the land's thickness (taken at the groove's centre line here).
+      for (const Groove& gr : g.grooves)
+        for (int i = 0; i < n; ++i)
+          couette -= gr.width / (c - (s.ex + gr.z * s.sx) * ct[i] - (s.ey + gr.z * s.sy) * st[i]);
       const double tc = R * eta * R * (s.omega_outer - s.omega_inner) * couette * dx;
       const double tp = -R * 0.5 * pois;
       r.torque_inner = tc + tp;

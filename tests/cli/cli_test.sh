@@ -284,6 +284,32 @@ EOF2
     "$exe" journal --eccentricity 1.2 > "$out/bad.log" 2>&1
     [ $? -eq 2 ] || fail "eccentricity 1.2 accepted"
     ;;
+  journal_groove)
+    # A central feed groove, deep against the clearance, carries no shear: the centred journal's torque is
+    # Petroff's over the two lands, (L - w) / L of the plain bearing's (D = L = 10 mm, w = 2 mm: 0.8).
+    "$exe" journal --ld 1 --eccentricity 0 --viscosity "10 mPa*s" --speed "30000 rpm" > "$out/plain.json" 2>&1 \
+      || fail "exit $?: $(cat "$out/plain.json")"
+    "$exe" journal --ld 1 --eccentricity 0 --viscosity "10 mPa*s" --speed "30000 rpm" --groove-width "2 mm" \
+      --supply-pressure "2 bar" > "$out/groove.json" 2>&1 || fail "exit $?: $(cat "$out/groove.json")"
+    get() { grep "\"$2\"" "$out/$1.json" | head -1 | sed 's/.*: *//; s/,$//'; }
+    awk -v a="$(get groove torque_on_journal_n_m)" -v b="$(get plain torque_on_journal_n_m)" \
+      'BEGIN { r = a / b; exit !(r > 0.8 - 1e-9 && r < 0.8 + 1e-9) }' \
+      || fail "torques $(get groove torque_on_journal_n_m) and $(get plain torque_on_journal_n_m) N m"
+    grep -q '"groove_width_m": 0.002' "$out/groove.json" || fail "input: $(head -c 800 "$out/groove.json")"
+    # The supply leaves at both ends.
+    awk -v q="$(get groove flow_out_of_ends_m3_s)" 'BEGIN { exit !(q > 0) }' || fail "no flow: $(cat "$out/groove.json")"
+    # Refused: hole and groove together, a groove as wide as the bearing, a supply with no way in.
+    refused() {  # refused PATTERN ARGS...
+      local pattern=$1
+      shift
+      "$exe" journal --ld 1 "$@" > "$out/bad.log" 2>&1
+      local rc=$?
+      [ $rc -eq 2 ] && grep -q -- "$pattern" "$out/bad.log" || fail "$*: exit $rc: $(cat "$out/bad.log")"
+    }
+    refused "not both" --groove-width "2 mm" --hole-diameter "2 mm"
+    refused "groove-width: must lie" --groove-width "10 mm"
+    refused "supply-pressure: needs a feed hole" --supply-pressure "2 bar"
+    ;;
   bearing_reference_ball)
     # turbodyn bearing on the reference ball bearing: files, the picture, a radial stiffness at rest of about
     # 4.96e7 N/m (the element's static value) and a cage speed ratio that rises with speed.

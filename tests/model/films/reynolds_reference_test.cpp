@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 #include <Eigen/SparseLU>
 #include <gmock/gmock.h>
@@ -222,6 +223,26 @@ TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
   const double q = 2.0 * (2.0 * kPi * g.radius) * c * c * c / (12.0 * 0.0108) * 2e5 / (0.5 * g.length - edge);
   EXPECT_NEAR(r.flow_ends, q, 1e-9 * q);
   EXPECT_TRUE(r.hole_flows.empty());
+}
+
+TEST(Grooves, AGrooveCarriesNoShear) {
+  // Centred journal, bush turning too: Petroff's torque eta (omega_o - omega_i) R^3 2 pi L_land / c over the lands
+  // alone (L_land = L - groove width, the groove deep against the clearance), on any grid: a groove narrower than
+  // the axial step (one fixed row) and one over several rows, with and without a supply.
+  for (const auto& [width, n_axial, supply] : {std::tuple{0.0005, 13, 2e5}, std::tuple{0.002, 13, 0.0},
+                                               std::tuple{0.002, 10, 3e5}}) {
+    FilmGeometry g = plain(0.7, 24, n_axial, 0.005, 15e-6);
+    g.grooves = {Groove{0.0, width, supply}};
+    FilmSolver solver(g, 0.0108, with(Cavitation::Gumbel));
+    FilmState s;
+    s.omega_inner = kOmega;
+    s.omega_outer = 0.3 * kOmega;
+    const FilmResult r = solve_ok(solver, s);
+    const double petroff = -0.0108 * 0.7 * kOmega * std::pow(g.radius, 3) * 2.0 * kPi * (g.length - width) /
+                           g.clearance;
+    EXPECT_NEAR(r.torque_inner, petroff, 1e-12 * std::abs(petroff)) << width << " " << n_axial;
+    EXPECT_NEAR(r.torque_outer, -petroff, 1e-12 * std::abs(petroff)) << width << " " << n_axial;
+  }
 }
 
 // A supply hole of radius a at mid-width of a centred film at rest: Laplace's equation in the strip |z| < L/2 with
