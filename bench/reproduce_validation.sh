@@ -8,7 +8,9 @@
 #   N        runs per variant (default 1; 3 for the medians quoted in bench/README.md). The pictures of the last
 #            run are copied into docs/images/ under the names docs/validation.md uses.
 #   VARIANT  any of floating_ring ball ball_sfd linear oil_whirl (default: all five), or floating_ring_thermal:
-#            variant I with thermal films in both bearings (docs/thermal-films.md), or ball_window: issue 17's
+#            variant I with thermal films in both bearings (docs/thermal-films.md), or floating_ring_groove: variant
+#            I with both outer films fed through a 2-mm circumferential groove instead of the top hole, or
+#            ball_window: issue 17's
 #            window of variant II, 90,000 -> 99,375 rpm in 0.25 s from the balls' no-slip state, with 40-ms STFT
 #            segments (docs/ball-bearing.md; about 10 s), which prints each wheel's largest sub-synchronous line
 #            at its end
@@ -36,7 +38,7 @@ model_of() {
   case $1 in
     linear) echo examples/reference_linear.toml ;;
     oil_whirl) echo examples/rigid_rotor_oil_whirl.toml ;;
-    floating_ring_thermal) echo examples/reference_floating_ring.toml ;;
+    floating_ring_thermal | floating_ring_groove) echo examples/reference_floating_ring.toml ;;
     ball_window) echo examples/reference_ball.toml ;;
     *) echo "examples/reference_$1.toml" ;;
   esac
@@ -45,6 +47,9 @@ model_of() {
 sets_of() {  # the overrides that make a variant out of its model file
   case $1 in
     floating_ring_thermal) echo "--set bearings.compressor.thermal=bulk --set bearings.turbine.thermal=bulk" ;;
+    floating_ring_groove)
+      echo "--set bearings.compressor.feed_hole_diameter=0mm --set bearings.turbine.feed_hole_diameter=0mm" \
+           "--set bearings.compressor.feed_groove_width=2mm --set bearings.turbine.feed_groove_width=2mm" ;;
     ball_window) echo "--set speed.start=90000rpm --set speed.end=99375rpm --set speed.duration=0.25s" \
                       "--set output.spectrogram_segment=800" ;;
   esac
@@ -137,7 +142,7 @@ done
 {
   printf "%-15s %10s %24s %24s %10s %10s %12s %9s\n" variant "wall [s]" "runs, wall [s]" "runs, CPU [s]" steps \
     "rhs calls" "elem calls" complete
-  for v in floating_ring floating_ring_thermal ball ball_sfd ball_window linear oil_whirl; do
+  for v in floating_ring floating_ring_thermal floating_ring_groove ball ball_sfd ball_window linear oil_whirl; do
     [[ -f out/validation/$v.timing ]] && cat "out/validation/$v.timing"
   done
 } | tee out/validation/timings.txt

@@ -83,6 +83,7 @@ FloatingRingElement::FloatingRingElement(const std::string& name, const Floating
   }
   if (spec.feed_hole_diameter > 0.0)
     outer_.holes.push_back({spec.feed_hole_angle, 0.0, spec.feed_hole_diameter, spec.supply_pressure});
+  if (spec.feed_groove_width > 0.0) outer_.grooves.push_back({0.0, spec.feed_groove_width, spec.supply_pressure});
   if (spec.drill_holes > 8) throw std::invalid_argument("floating-ring bearing: at most 8 drill holes");
   for (int k = 0; k < spec.drill_holes; ++k)
     inner_.holes.push_back({spec.drill_hole_angle + 2.0 * M_PI * k / spec.drill_holes, 0.0, spec.drill_hole_diameter,

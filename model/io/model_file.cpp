@@ -171,6 +171,21 @@ double read_film_thickness_limit(Reader& r, double clearance) {
   return h;
 }
 
+// feed_groove_width of a film `width_value` wide (`width` names it in messages): a full circumferential groove at
+// mid-width instead of the feed hole (`hole`, already read), and a supply pressure needs one of them to enter `film`.
+double read_feed_groove(Reader& r, double width_value, const std::string& width, double hole, double supply,
+                        const std::string& film) {
+  const double groove = r.quantity_or("feed_groove_width", dim::length, 0.0, Bound::NonNegative);
+  if (groove >= width_value) r.fail("feed_groove_width", "must be narrower than " + width);
+  if (groove > 0.0 && hole > 0.0)
+    r.fail("feed_groove_width", "the oil enters the " + film + " through a feed hole or a feed groove: give "
+                                "feed_hole_diameter or feed_groove_width, not both");
+  if (supply > 0.0 && !(hole > 0.0 || groove > 0.0))
+    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) or a feed groove (feed_groove_width) to enter "
+                              "the " + film);
+  return groove;
+}
+
 // Keys shared by the single-film specs (JournalBearingSpec, DamperSpec); `width` names the film's length in
 // messages.
 template <class Film>
@@ -189,15 +204,8 @@ void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width)
   f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
   if (f.feed_hole_diameter >= f.length) r.fail("feed_hole_diameter", "must be smaller than the " + width);
-  f.feed_groove_width = r.quantity_or("feed_groove_width", dim::length, 0.0, Bound::NonNegative);
-  if (f.feed_groove_width >= f.length) r.fail("feed_groove_width", "must be narrower than the " + width);
-  if (f.feed_groove_width > 0.0 && f.feed_hole_diameter > 0.0)
-    r.fail("feed_groove_width", "the oil enters through a feed hole or a feed groove: give feed_hole_diameter or "
-                                "feed_groove_width, not both");
+  f.feed_groove_width = read_feed_groove(r, f.length, "the " + width, f.feed_hole_diameter, f.supply_pressure, "film");
   const bool fed = f.feed_hole_diameter > 0.0 || f.feed_groove_width > 0.0;
-  if (f.supply_pressure > 0.0 && !fed)
-    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) or a feed groove (feed_groove_width) to enter "
-                              "the film");
   if (f.cavitation == Cavitation::MassConserving && !(fed && f.supply_pressure > 0.0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) or groove "
                          "(feed_groove_width) with supply_pressure > 0");
@@ -309,8 +317,8 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
   if (f.feed_hole_diameter >= f.outer_length) r.fail("feed_hole_diameter", "must be smaller than outer_length");
-  if (f.supply_pressure > 0.0 && f.feed_hole_diameter == 0.0)
-    r.fail("supply_pressure", "needs a feed hole (feed_hole_diameter) to enter the film");
+  f.feed_groove_width =
+      read_feed_groove(r, f.outer_length, "outer_length", f.feed_hole_diameter, f.supply_pressure, "outer film");
   f.drill_holes = static_cast<int>(r.integer_or("drill_holes", f.drill_holes, 0, limits::kMaxDrillHoles));
   f.drill_hole_diameter = r.quantity_or("drill_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.drill_hole_angle = r.quantity_or("drill_hole_angle", dim::angle, f.drill_hole_angle);
@@ -324,7 +332,7 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
     r.fail("drill_hole_diameter", "the drill holes overlap around the bore");
   if (f.cavitation == Cavitation::MassConserving && (f.supply_pressure == 0.0 || f.drill_holes == 0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply in each film: a supply_pressure at the feed "
-                         "hole (outer film) and drill_holes through the ring (inner film)");
+                         "hole or groove (outer film) and drill_holes through the ring (inner film)");
   f.film_thickness_limit = read_film_thickness_limit(r, std::min(f.inner_clearance, f.outer_clearance));
   read_ring_thermal(r, oil, f);
 }

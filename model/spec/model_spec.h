@@ -111,9 +111,11 @@ struct FloatingRingSpec {
   int n_circ = 60, n_axial = 12;
   double axial_grading = 0.0;   ///< film nodes drawn towards the ends (reynolds::SolverOptions::axial_grading)
   double inner_oil_temperature = 0.0, outer_oil_temperature = 0.0;  ///< K; 0 = the [oil] temperature
-  double supply_pressure = 0.0;      ///< Pa gauge at the housing feed hole (outer film)
+  double supply_pressure = 0.0;      ///< Pa gauge at the housing feed hole or groove (outer film)
   double feed_hole_diameter = 0.0;   ///< m
   double feed_hole_angle = M_PI / 2; ///< rad
+  double feed_groove_width = 0.0;    ///< m, full circumferential groove in the housing bore at mid-width, fed at
+                                     ///< supply_pressure, instead of the feed hole (0: none)
   int drill_holes = 0;               ///< radial holes through the ring at mid-width, evenly spaced (0-8)
   double drill_hole_diameter = 0.0;  ///< m
   double drill_hole_angle = 0.0;     ///< rad, first hole in the ring frame

@@ -85,6 +85,51 @@ TEST(FloatingRing, ThinnestFilmProbesIncludeTheRingsOffsetAndTilt) {
   EXPECT_EQ(seen, 2);
 }
 
+TEST(FloatingRing, AnOuterFeedGrooveHoldsEveryDrillHoleAtTheSupplyPressure) {
+  // A circumferential groove in the housing bore at mid-width holds the drill holes' outer mouths at the supply
+  // pressure wherever the ring turns and moves; fed through the single top hole they see the outer film's pressure
+  // where they pass, which varies with the ring's angle. The oil column spinning with the ring lowers the inner
+  // mouths' pressure by 1/2 rho w^2 (r_o^2 - r_i^2).
+  FloatingRingSpec hole = reference_ring();
+  hole.drill_holes = 4;
+  hole.drill_hole_diameter = 0.002;
+  hole.drill_hole_centrifugal = false;
+  FloatingRingSpec groove = hole;
+  groove.feed_hole_diameter = 0.0;
+  groove.feed_groove_width = 0.002;  // covers the two middle rows of the 12
+  FloatingRingSpec spinning = groove;
+  spinning.drill_hole_centrifugal = true;
+  OilSpec oil;
+  const FloatingRingElement eh("hole", hole, oil, 0, 0.0), eg("groove", groove, oil, 0, 0.0),
+      es("spinning", spinning, oil, 0, 0.0);
+  double q[4], v[4], z[FloatingRingElement::kMaxStates];
+  general_state(q, v, z);
+  const double ro = 0.5 * groove.outer_diameter, ri = 0.5 * groove.inner_diameter;
+  const double head = 0.5 * oil.density * z[FloatingRingElement::kSpin] * z[FloatingRingElement::kSpin] *
+                      (ro * ro - ri * ri);
+  auto hole_pressure = [&](const FloatingRingElement& e) {
+    auto ws = e.make_workspace();
+    const std::vector<ProbeInfo> info = e.probes();
+    std::vector<double> out(info.size());
+    e.eval_probes(SpinState{0.0, 3000.0, 0.0, 0.0}, q, v, z, *ws, out.data());
+    for (std::size_t i = 0; i < info.size(); ++i)
+      if (info[i].name == "drill_hole_pressure") return out[i];
+    ADD_FAILURE() << "no drill_hole_pressure probe";
+    return 0.0;
+  };
+  double lo = 1e30, hi = -1e30;
+  for (const double angle : {0.0, 0.3, 0.6, 1.1}) {
+    z[FloatingRingElement::kAngle] = angle;
+    EXPECT_NEAR(hole_pressure(eg), groove.supply_pressure, 1e-9 * groove.supply_pressure) << angle;
+    EXPECT_NEAR(hole_pressure(es), groove.supply_pressure - head, 1e-9 * groove.supply_pressure) << angle;
+    lo = std::min(lo, hole_pressure(eh));
+    hi = std::max(hi, hole_pressure(eh));
+  }
+  EXPECT_GT(head, 1e4);
+  EXPECT_GT(hi - lo, 1e3);  // through the hole the drill holes' pressure depends on where they are
+  EXPECT_LT(hi, hole.supply_pressure);
+}
+
 TEST(FloatingRing, InnerFilmInTheRingFrameGivesTheSameForcesAtAnyRingAngle) {
   // Without drill holes nothing is fixed in the ring frame, so the forces must not depend on the ring angle: checks
   // the rotation of positions, tilts and their rates (with the frame-rotation terms) into the ring frame and back.

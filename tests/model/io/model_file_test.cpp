@@ -257,6 +257,25 @@ TEST(ModelFile, FloatingRingDrillHolesAndMassConservingFilms) {
               HasSubstr("smaller than inner_length"));
 }
 
+TEST(ModelFile, AFloatingRingsOuterFilmIsFedThroughAHoleOrAGroove) {
+  const std::filesystem::path f = example("reference_floating_ring.toml");
+  const Override no_hole = parse_override("bearings.turbine.feed_hole_diameter=0 mm");
+  const MachineSpec s = load_model(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=2 mm")});
+  EXPECT_DOUBLE_EQ(s.bearings.at(1).ring.feed_groove_width, 2e-3);
+  EXPECT_DOUBLE_EQ(load_model(f).bearings.at(1).ring.feed_groove_width, 0.0);  // none unless given
+  EXPECT_THAT(model_error_of(f, {parse_override("bearings.turbine.feed_groove_width=2 mm")}),
+              AllOf(HasSubstr("bearings.turbine.feed_groove_width"), HasSubstr("not both")));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=10 mm")}),
+              AllOf(HasSubstr("feed_groove_width"), HasSubstr("narrower than outer_length")));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=-1 mm")}),
+              HasSubstr("feed_groove_width"));
+  EXPECT_THAT(model_error_of(f, {no_hole}), AllOf(HasSubstr("bearings.turbine.supply_pressure"),
+                                                  HasSubstr("feed_groove_width")));
+  // The mass-conserving model takes the groove as the outer film's supply.
+  EXPECT_NO_THROW(load_model(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=2 mm"),
+                                 parse_override("bearings.turbine.cavitation=mass-conserving")}));
+}
+
 TEST(ModelFile, FloatingRingThermalFilmsAndTheirErrors) {
   // The example's isothermal films; "bulk" derives its conductances from the geometry and refuses what it cannot use.
   const std::filesystem::path f = example("reference_floating_ring.toml");
