@@ -88,7 +88,19 @@ int run_journal_command(const JournalCommandOptions& o) {
   SolverOptions so;
   if (!from_string(o.cavitation, so.cavitation))
     throw ModelError("--cavitation '" + o.cavitation + "': expected gumbel, mass-conserving or none");
-  FilmSolver film(g, eta, so);
+  // The grid and the feed are checked above but for one thing the solver alone knows: a groove must hold a node.
+  auto make_film = [&] {
+    try {
+      return FilmSolver(g, eta, so);
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      const std::size_t at = what.find("groove 0 ");
+      if (at == std::string::npos) throw;
+      throw ModelError("--groove-width " + o.groove_width + " --n-axial " + std::to_string(o.n_axial) + ": the groove" +
+                       what.substr(at + 8));
+    }
+  };
+  FilmSolver film = make_film();
 
   FilmState s;
   s.ex = o.eccentricity * c * std::cos(att);

@@ -4,7 +4,8 @@
 #   damper optimisation of variant III to convergence (docs/optimization.md, ~4-6 min on 2 cores; after a change of
 #   its model file remove out/validation_studies/optimize_ball_sfd first, or the cache is refused),
 #   the same over clearance, centring spring and end seals from rest to 45,000 rpm (optimize_seals, afresh each
-#   time; docs/optimization.md, ~10-15 min on 2 cores),
+#   time; docs/optimization.md, ~7 min on 2 cores), and with the dampers fed through a central groove
+#   (optimize_seals_groove, ~17 min),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl and the films' thinnest points (docs/studies.md, ~8-13 min on 2 cores, 2026-12-07),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
@@ -16,7 +17,7 @@
 #   identification of variant I's clearances and oil temperature with model error, and its held-out check
 #   (docs/identification.md, ~12 min on 2 cores).
 # Usage: bench/validation_studies.sh [identify] [identify_floating_ring] [optimize] [optimize_seals]
-#   [floating_ring] [ball] [ball_stability] [ball_sfd]
+#   [optimize_seals_groove] [floating_ring] [ball] [ball_stability] [ball_sfd]
 #   (default: all).
 # Build first (scripts/build.sh).
 # Results in out/validation_studies/; an interrupted optimisation resumes from its cache when run again.
@@ -26,7 +27,8 @@ exe=build/app/turbodyn
 [[ -x $exe ]] || { echo "validation_studies: build first (scripts/build.sh)" >&2; exit 1; }
 which=("$@")
 ((${#which[@]})) ||
-  which=(identify identify_floating_ring optimize optimize_seals floating_ring ball ball_stability ball_sfd)
+  which=(identify identify_floating_ring optimize optimize_seals optimize_seals_groove floating_ring ball ball_stability
+         ball_sfd)
 out=out/validation_studies
 mkdir -p "$out" docs/images
 # Runs COMMAND..., its output also into $out/LOG, and appends its wall time under LABEL: run_timed LABEL LOG COMMAND...
@@ -77,20 +79,13 @@ for w in "${which[@]}"; do
       cp "$out/optimize_ball_sfd_seals/convergence.png" docs/images/optimize_ball_sfd_seals_convergence.png
       cp "$out/optimize_ball_sfd_seals/spectrogram_bearing.compressor.fx_comparison.png" \
         docs/images/optimize_ball_sfd_seals_spectrogram_compressor_force.png
-      # The same dampers fed through a central feed groove 1.5 mm wide instead of the top hole (the grid with a row
-      # at mid-width, 11 axial rows), docs/optimization.md: the example with these overrides added to its fixed ones.
+      ;;
+    optimize_seals_groove)
+      # The same dampers fed through a central feed groove instead of the top hole (docs/optimization.md).
       rm -rf "$out/optimize_ball_sfd_seals_groove"
-      mkdir -p "$out/optimize_ball_sfd_seals_groove"
-      groove=""
-      for b in compressor turbine; do
-        groove+="\"bearings.$b.damper.feed_hole_diameter=0 mm\", \"bearings.$b.damper.feed_groove_width=1.5 mm\", "
-        groove+="\"bearings.$b.damper.n_axial=11\", "
-      done
-      sed -e "s|^model = \"reference_ball_sfd.toml\"|model = \"$PWD/examples/reference_ball_sfd.toml\"|" \
-          -e "s|^fixed = \[|fixed = [$groove|" examples/optimize_reference_ball_sfd_seals.toml \
-        > "$out/optimize_ball_sfd_seals_groove.toml"
       run_timed optimize_ball_sfd_seals_groove optimize_seals_groove.log \
-        "$exe" optimize "$out/optimize_ball_sfd_seals_groove.toml" -o "$out/optimize_ball_sfd_seals_groove"
+        "$exe" optimize examples/optimize_reference_ball_sfd_seals_groove.toml \
+        -o "$out/optimize_ball_sfd_seals_groove"
       ;;
     floating_ring)
       run_study floating_ring
@@ -127,6 +122,6 @@ for w in "${which[@]}"; do
       cp "$out/study_ball_sfd/map_max_damper_eccentricity.png" docs/images/study_ball_sfd_map_max_damper_eccentricity.png
       ;;
     *) echo "validation_studies: unknown study '$w' (identify, identify_floating_ring, optimize, optimize_seals," \
-            "floating_ring, ball, ball_stability, ball_sfd)" >&2; exit 2 ;;
+            "optimize_seals_groove, floating_ring, ball, ball_stability, ball_sfd)" >&2; exit 2 ;;
   esac
 done

@@ -45,7 +45,9 @@ struct Hole {
   double pressure = 0;  ///< Pa gauge (can be overridden per call, FilmState::hole_pressure_override)
 };
 
-/// Full circumferential groove: nodes with |z - groove.z| <= width/2 get p = pressure (the nearest row if none).
+/// Full circumferential groove: nodes with |z - groove.z| <= width/2 get p = pressure (at least one row must lie
+/// inside: FilmSolver refuses a groove between two rows); the faces from them to free nodes are fitted to its edges
+/// (SolverOptions::fitted_holes), so the lands keep their width on any grid. Deep: no shear across its width.
 struct Groove {
   double z = 0;         ///< m, from mid-width
   double width = 0;     ///< m
@@ -106,7 +108,8 @@ struct SolverOptions {
   bool use_symmetry = true;  ///< solve half the film when tilt, holes and grooves are symmetric about mid-width
   /// Holes' edges where they cross the grid lines: a face between a free node and a hole node conducts over the
   /// free node's distance to the hole's circle instead of the grid step (Shortley & Weller 1938), so the hole's
-  /// size does not jump with the grid. False: the hole is the grid nodes inside its circle.
+  /// size does not jump with the grid. Likewise a groove's edges along the axis. False: the hole (groove) is the
+  /// grid nodes inside its circle (rows inside its width).
   bool fitted_holes = true;
   /// Axial nodes drawn towards both ends, where the pressure profile is steepest: z = (L/2) G(xi) on uniform xi,
   /// G = (1 - b) xi + b sin(pi xi / 2), b in [0, 1); 0 is the uniform grid (docs/reynolds.md §2).

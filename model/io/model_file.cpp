@@ -11,6 +11,7 @@
 
 #include <toml++/toml.h>
 
+#include "model/films/reynolds.h"
 #include "model/io/overrides_toml.h"
 #include "model/io/toml_reader.h"
 #include "model/spec/units.h"
@@ -173,10 +174,31 @@ double read_film_thickness_limit(Reader& r, double clearance) {
 
 // feed_groove_width of a film `width_value` wide (`width` names it in messages): a full circumferential groove at
 // mid-width instead of the feed hole (`hole`, already read), and a supply pressure needs one of them to enter `film`.
+// The groove must hold a node of the film's axial grid (`grid`, already read; the film solver's own rule).
+template <class Grid>
 double read_feed_groove(Reader& r, double width_value, const std::string& width, double hole, double supply,
-                        const std::string& film) {
+                        const std::string& film, const Grid& grid) {
   const double groove = r.quantity_or("feed_groove_width", dim::length, 0.0, Bound::NonNegative);
   if (groove >= width_value) r.fail("feed_groove_width", "must be narrower than " + width);
+  if (groove > 0.0) {
+    reynolds::FilmGeometry g;
+    g.radius = 1.0;  // the grid's rows depend on the width and the node counts alone
+    g.length = width_value;
+    g.clearance = 1e-4;
+    g.n_circ = grid.n_circ;
+    g.n_axial = grid.n_axial;
+    g.grooves = {reynolds::Groove{0.0, groove, 0.0}};
+    reynolds::SolverOptions o;
+    o.axial_grading = grid.axial_grading;
+    try {
+      reynolds::FilmSolver check(g, 1.0, o);
+    } catch (const std::invalid_argument& e) {
+      std::string what = e.what();
+      if (const std::size_t at = what.find("groove 0 "); at != std::string::npos)
+        what = "the groove" + what.substr(at + 8);
+      r.fail("feed_groove_width", what + " (n_axial = " + std::to_string(grid.n_axial) + ")");
+    }
+  }
   if (groove > 0.0 && hole > 0.0)
     r.fail("feed_groove_width", "the oil enters the " + film + " through a feed hole or a feed groove: give "
                                 "feed_hole_diameter or feed_groove_width, not both");
@@ -204,7 +226,8 @@ void read_film(Reader& r, const OilSpec& oil, Film& f, const std::string& width)
   f.feed_hole_diameter = r.quantity_or("feed_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
   if (f.feed_hole_diameter >= f.length) r.fail("feed_hole_diameter", "must be smaller than the " + width);
-  f.feed_groove_width = read_feed_groove(r, f.length, "the " + width, f.feed_hole_diameter, f.supply_pressure, "film");
+  f.feed_groove_width =
+      read_feed_groove(r, f.length, "the " + width, f.feed_hole_diameter, f.supply_pressure, "film", f);
   const bool fed = f.feed_hole_diameter > 0.0 || f.feed_groove_width > 0.0;
   if (f.cavitation == Cavitation::MassConserving && !(fed && f.supply_pressure > 0.0))
     r.fail("cavitation", "the mass-conserving model needs an oil supply: a feed hole (feed_hole_diameter) or groove "
@@ -318,7 +341,7 @@ void read_floating_ring(Reader& r, const OilSpec& oil, BearingSpec& b) {
   f.feed_hole_angle = r.quantity_or("feed_hole_angle", dim::angle, f.feed_hole_angle);
   if (f.feed_hole_diameter >= f.outer_length) r.fail("feed_hole_diameter", "must be smaller than outer_length");
   f.feed_groove_width =
-      read_feed_groove(r, f.outer_length, "outer_length", f.feed_hole_diameter, f.supply_pressure, "outer film");
+      read_feed_groove(r, f.outer_length, "outer_length", f.feed_hole_diameter, f.supply_pressure, "outer film", f);
   f.drill_holes = static_cast<int>(r.integer_or("drill_holes", f.drill_holes, 0, limits::kMaxDrillHoles));
   f.drill_hole_diameter = r.quantity_or("drill_hole_diameter", dim::length, 0.0, Bound::NonNegative);
   f.drill_hole_angle = r.quantity_or("drill_hole_angle", dim::angle, f.drill_hole_angle);

@@ -309,6 +309,7 @@ EOF2
     refused "not both" --groove-width "2 mm" --hole-diameter "2 mm"
     refused "groove-width: must lie" --groove-width "10 mm"
     refused "supply-pressure: needs a feed hole" --supply-pressure "2 bar"
+    refused "groove-width 0.5 mm --n-axial 12: the groove (0.5 mm wide" --groove-width "0.5 mm"
     ;;
   bearing_reference_ball)
     # turbodyn bearing on the reference ball bearing: files, the picture, a radial stiffness at rest of about

@@ -18,6 +18,7 @@
 namespace turbodyn::reynolds {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using namespace turbodyn::reynolds::testing;
 
@@ -210,19 +211,42 @@ TEST(ClosedForms, AttitudeAngleAndInputChecks) {
 
 TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
   // Centred journal, full circumferential groove at mid-width: the pressure falls linearly from the groove edge to
-  // each end, Q = 2 (2 pi R) c^3 / (12 eta) p_s / (L/2 - z_edge). The scheme is exact for a linear profile.
-  FilmGeometry g = plain(0.7, 24, 13, 0.005, 15e-6);
-  g.grooves = {Groove{0.0, 0.001, 2e5}};
-  FilmSolver solver(g, 0.0108, with(Cavitation::Gumbel));
-  const FilmResult r = solve_ok(solver, FilmState{});
-  const std::vector<double> z = solver.z_nodes();
-  double edge = 0.0;
-  for (const double zj : z)
-    if (std::abs(zj) <= 0.0005) edge = std::max(edge, std::abs(zj));
-  const double c = g.clearance;
-  const double q = 2.0 * (2.0 * kPi * g.radius) * c * c * c / (12.0 * 0.0108) * 2e5 / (0.5 * g.length - edge);
-  EXPECT_NEAR(r.flow_ends, q, 1e-9 * q);
-  EXPECT_TRUE(r.hole_flows.empty());
+  // each end, Q = 2 (2 pi R) c^3 / (12 eta) p_s / (L/2 - w/2). The scheme is exact for a linear profile, and the
+  // faces to the groove fitted to its edges (the default) put the edge at w/2 on any grid: a groove over several
+  // rows, one narrower than the step that holds the row at mid-width alone, one over the two middle rows of an even
+  // grid, one whose edge lies far from a row. Without the fitting the edge is the outermost row inside the groove.
+  for (const auto& [n_axial, width] : {std::tuple{13, 0.001}, std::tuple{13, 0.0002}, std::tuple{12, 0.0006},
+                                       std::tuple{12, 0.003}}) {
+    for (const bool fitted : {true, false}) {
+      FilmGeometry g = plain(0.7, 24, n_axial, 0.005, 15e-6);
+      g.grooves = {Groove{0.0, width, 2e5}};
+      SolverOptions o = with(Cavitation::Gumbel);
+      o.fitted_holes = fitted;
+      FilmSolver solver(g, 0.0108, o);
+      const FilmResult r = solve_ok(solver, FilmState{});
+      double edge = 0.5 * width;
+      if (!fitted) {
+        edge = 0.0;
+        for (int j = 0; j < n_axial; ++j)
+          if (solver.node_pressure(0, j) == 2e5) edge = std::max(edge, std::abs(solver.z_nodes()[j]));
+      }
+      const double c = g.clearance;
+      const double q = 2.0 * (2.0 * kPi * g.radius) * c * c * c / (12.0 * 0.0108) * 2e5 / (0.5 * g.length - edge);
+      EXPECT_NEAR(r.flow_ends, q, 1e-9 * q) << n_axial << " rows, groove " << width << (fitted ? "" : ", unfitted");
+      EXPECT_TRUE(r.hole_flows.empty());
+      EXPECT_TRUE(r.symmetric) << n_axial << " rows, groove " << width;
+    }
+  }
+  // A groove that holds no node would put its pressure on a land row: refused, saying how to mend it (the even
+  // grid's middle rows lie 0.54 mm apart, about a groove of 0.2 mm).
+  FilmGeometry narrow = plain(0.7, 24, 12, 0.005, 15e-6);
+  narrow.grooves = {Groove{0.0, 0.0002, 2e5}};
+  try {
+    FilmSolver refused(narrow, 0.0108);
+    ADD_FAILURE() << "a groove between two rows was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("holds no node"), HasSubstr("0.538"), HasSubstr("odd number")));
+  }
 }
 
 TEST(Grooves, AGrooveCarriesNoShear) {

@@ -207,6 +207,12 @@ TEST(ModelFile, AFeedGrooveReplacesTheFeedHoleAndIsNarrowerThanTheLand) {
   EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=-1 mm")}),
               HasSubstr("feed_groove_width"));
   EXPECT_THAT(model_error_of(f, {no_hole}), AllOf(HasSubstr("supply_pressure"), HasSubstr("feed_groove_width")));
+  // The land's 6 even rows lie 0.86 mm apart about mid-width: a groove of 0.5 mm holds none of them.
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=0.5 mm")}),
+              AllOf(HasSubstr("bearings.compressor.damper.feed_groove_width"), HasSubstr("holds no node"),
+                    HasSubstr("n_axial = 6")));
+  EXPECT_NO_THROW(load_model(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=0.5 mm"),
+                                 parse_override("bearings.compressor.damper.n_axial=7")}));
 }
 
 TEST(ModelFile, APermissibleFilmThicknessIsPositiveAndThinnerThanTheClearance) {
