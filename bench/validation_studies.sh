@@ -5,7 +5,7 @@
 #   its model file remove out/validation_studies/optimize_ball_sfd first, or the cache is refused),
 #   the same over clearance, centring spring and end seals from rest to 45,000 rpm (optimize_seals, afresh each
 #   time; docs/optimization.md, ~7 min on 2 cores), and with the dampers fed through a central groove
-#   (optimize_seals_groove, ~17 min),
+#   (optimize_seals_groove, ~27 min),
 #   the 32-run design of experiments on variant I's clearances, unbalance and oil temperature, with the onset of
 #   the outer-film whirl and the films' thinnest points (docs/studies.md, ~8-13 min on 2 cores, 2026-12-07),
 #   the 16-run design on variant II's preload, contact angle and unbalance, full run-ups (docs/studies.md, 20 min on
