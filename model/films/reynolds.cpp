@@ -360,13 +360,12 @@ struct FilmSolver::Impl {
       return step / std::clamp(delta, 0.05 * step, step);
     };
     // A groove's edges, z = z_g -+ width/2, lie on no grid line in general: the axial face from a free node to a
-    // groove row conducts over the node's distance to the edge. That distance may exceed the step where a groove
-    // narrower than the step fixes its nearest row (the edge then lies between that row and the groove's centre).
+    // groove row conducts over the node's distance to the edge, which lies between the two (a groove holds a row).
     auto groove_factor = [&](int free_k, int groove_k) {
       const Groove& gr = g.grooves[-2 - kind[groove_k]];
       const int jf = std::max(free_k % nz, groove_k % nz);
       const double step = dzf[jf], delta = std::abs(zn[free_k % nz] - gr.z) - 0.5 * gr.width;
-      return step / std::clamp(delta, 0.05 * step, 2.0 * step);
+      return step / std::clamp(delta, 0.05 * step, step);
     };
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < nz; ++j) {

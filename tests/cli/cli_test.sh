@@ -297,7 +297,8 @@ EOF2
       || fail "torques $(get groove torque_on_journal_n_m) and $(get plain torque_on_journal_n_m) N m"
     grep -q '"groove_width_m": 0.002' "$out/groove.json" || fail "input: $(head -c 800 "$out/groove.json")"
     # The supply leaves at both ends.
-    awk -v q="$(get groove flow_out_of_ends_m3_s)" 'BEGIN { exit !(q > 0) }' || fail "no flow: $(cat "$out/groove.json")"
+    awk -v q="$(get groove flow_out_of_ends_m3_s)" 'BEGIN { exit !(q > 0) }' \
+      || fail "no flow: $(cat "$out/groove.json")"
     # Refused: hole and groove together, a groove as wide as the bearing, a supply with no way in.
     refused() {  # refused PATTERN ARGS...
       local pattern=$1

@@ -106,10 +106,10 @@ TEST(Damper, RadialSqueezeAgainstTheShortDamperClosedForm) {
 
 TEST(Damper, ACentralFeedGrooveSplitsTheLandIntoTwoShortDampersAndPushesTheRingNowhere) {
   // A full circumferential groove at mid-width held at the supply pressure cuts the land into two lands of
-  // (L - w)/2, each a short damper: C_rr = 2 x 2 pi eta R ((L - w)/2)^3 (...), (1 - w/L)^3 / 4 of the ungrooved land's (San Andres,
-  // Modern Lubrication Theory, Notes 13: a central feed groove acting as a pressure source). The supply pressure then
-  // falls linearly from the groove to the ends, the same all round, and adds no force (uncavitated film), where the
-  // same pressure in a feed hole at the top pushes the ring down.
+  // (L - w)/2, each a short damper: C_rr = 2 x 2 pi eta R ((L - w)/2)^3 (...), (1 - w/L)^3 / 4 of the ungrooved
+  // land's (San Andres, Modern Lubrication Theory, Notes 13: a central feed groove acting as a pressure source). The
+  // supply pressure then falls linearly from the groove to the ends, the same all round, and adds no force
+  // (uncavitated film), where the same pressure in a feed hole at the top pushes the ring down.
   constexpr double kShortDamperTolerance = 0.01;  // L/D = 0.025, each land 0.0125: the short-film limit
   DamperSpec d = test_damper(0.0005);
   d.cavitation = Cavitation::None;
