@@ -150,6 +150,8 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
                   {"ring_mass_kg", f.ring_mass},
                   {"drill_holes", f.drill_holes},
                   {"supply_pressure_pa", f.supply_pressure},
+                  {"feed_hole_diameter_m", f.feed_hole_diameter},
+                  {"feed_groove_width_m", f.feed_groove_width},
                   {"supply_temperature_k", spec.oil.temperature}};
   if (thermal)
     j["thermal"] = {{"shaft_temperature_k", f.thermal.shaft_temperature},
@@ -211,6 +213,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
                       {"outer_power_w", p.outer_power},
                       {"inner_side_flow_m3_s", p.inner_flow},
                       {"outer_side_flow_m3_s", p.outer_flow},
+                      {"drill_hole_pressure_pa", p.drill_hole_pressure},
                       {"heat_to_oil_w", p.heat_to_oil},
                       {"heat_conducted_w", p.heat_conducted},
                       {"inner_stiffness_n_per_m", matrix2_json(p.k_inner)},
@@ -229,7 +232,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
     for (const char* film : {"inner", "outer"})
       for (const char* m : {"k", "c"})
         for (const char* rc : {"xx", "xy", "yx", "yy"}) csv << ',' << m << '_' << film << '_' << rc;
-    csv << ",inner_min_film_thickness_m,outer_min_film_thickness_m\n" << std::setprecision(10);
+    csv << ",inner_min_film_thickness_m,outer_min_film_thickness_m,drill_hole_pressure_pa\n" << std::setprecision(10);
     for (const FloatingRingOperatingPoint& p : pts) {
       csv << p.speed << ',' << p.speed * kRadPerSToRpm << ',' << p.ring_speed / p.speed << ','
           << p.inner_eccentricity << ',' << p.outer_eccentricity << ',' << p.inner_temperature << ','
@@ -237,14 +240,14 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
           << p.outer_flow << ',' << p.heat_to_oil << ',' << p.heat_conducted;
       for (const Eigen::Matrix2d* m : {&p.k_inner, &p.c_inner, &p.k_outer, &p.c_outer})
         csv << ',' << (*m)(0, 0) << ',' << (*m)(0, 1) << ',' << (*m)(1, 0) << ',' << (*m)(1, 1);
-      csv << ',' << inner_h(p) << ',' << outer_h(p) << '\n';
+      csv << ',' << inner_h(p) << ',' << outer_h(p) << ',' << p.drill_hole_pressure << '\n';
     }
     file.commit();
   }
   std::cout << spec.name << ": floating-ring bearing " << b.name << " (" << to_string(f.thermal.model)
             << " films), load (" << load[0] << ", " << load[1] << ") N\n";
   std::cout << "     speed [rpm]  ring/shaft   e_i/c_i   e_o/c_o  h_i [µm]  h_o [µm]  T_i [degC]  T_o [degC]  "
-               "P_i [W]   P_o [W]  Q_i [ml/min]  Q_o [ml/min]\n";
+               "P_i [W]   P_o [W]  Q_i [ml/min]  Q_o [ml/min]  p_h [bar]\n";
   for (const FloatingRingOperatingPoint& p : pts)
     std::cout << std::fixed << std::setw(16) << std::setprecision(0) << p.speed * kRadPerSToRpm << std::setw(12)
               << std::setprecision(4) << p.ring_speed / p.speed << std::setw(10) << std::setprecision(3)
@@ -253,7 +256,7 @@ int run_floating_ring(const BearingCommandOptions& options, const MachineSpec& s
               << std::setw(12) << std::setprecision(1) << p.inner_temperature - 273.15 << std::setw(12)
               << p.outer_temperature - 273.15 << std::setw(9) << std::setprecision(2) << p.inner_power
               << std::setw(10) << p.outer_power << std::setw(14) << p.inner_flow * 6e7 << std::setw(14)
-              << p.outer_flow * 6e7 << "\n";
+              << p.outer_flow * 6e7 << std::setw(11) << p.drill_hole_pressure * 1e-5 << "\n";
   std::cout << std::defaultfloat;
   if (options.plots) write_ring_pictures(b.name, pts, thermal, options.output_dir);
   post::write_bearing_report(

@@ -37,6 +37,10 @@ struct FloatingRingOperatingPoint {
   double inner_power = 0.0, outer_power = 0.0;        ///< W dissipated in each film
   double inner_flow = 0.0, outer_flow = 0.0;          ///< m^3/s side leakage of each film
   double heat_to_oil = 0.0, heat_conducted = 0.0;     ///< W (thermal films; 0 for isothermal)
+  /// Pa gauge at the drill holes' inner mouths, the inner film's feed (the element's drill_hole_pressure probe: the
+  /// outer film's pressure at the outer mouths less the oil column's centrifugal head, not below cavitation; mean
+  /// over the holes and the ring angles; 0 without drill holes)
+  double drill_hole_pressure = 0.0;
   /// Linearised film forces: K = -dF/de, C = -dF/de' (N/m, N s/m), rows and columns x, y, the inner film's
   /// force on the journal against the journal's motion relative to the ring, the outer film's force on the ring
   /// against the ring's motion in the housing (ring speed and temperatures held).

@@ -396,6 +396,27 @@ for p in r:
     assert abs(p["inner_min_film_thickness_m"] - b["inner_clearance_m"] * (1 - p["inner_eccentricity"])) < 1e-15, p
     assert abs(p["outer_min_film_thickness_m"] - b["outer_clearance_m"] * (1 - p["outer_eccentricity"])) < 1e-15, p
 assert j["warnings"] == [] and "film_thickness_limit_m" not in b, j["warnings"]
+# The drill holes feed the inner film below the supply pressure (4.5 bar through the top hole)
+holes = [p["drill_hole_pressure_pa"] for p in r]
+assert all(0 <= h < b["supply_pressure_pa"] for h in holes), holes
+EOF2
+    # Fed through a groove instead of the hole, every drill hole sees the supply pressure less the centrifugal head
+    # of the oil column turning with the ring, rho w_r^2 (R_o^2 - R_i^2) / 2 (none once the head passes the supply).
+    "$exe" bearing "$src/examples/reference_floating_ring.toml" --bearing turbine --speeds "20000 rpm:150000 rpm:3" \
+      --set bearings.turbine.feed_hole_diameter=0mm --set "bearings.turbine.feed_groove_width=2 mm" --no-plots \
+      -o "$out/groove" > "$out/groove.log" 2>&1 || fail "groove: exit $?: $(cat "$out/groove.log")"
+    python3 - "$out/groove/bearing.json" <<'EOF2' || fail "groove: $(head -c 2000 "$out/groove/bearing.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+b = j["bearing"]
+assert b["feed_groove_width_m"] == 0.002 and b["feed_hole_diameter_m"] == 0, b
+for p in j["results"]:
+    ro, ri = b["outer_diameter_m"] / 2, b["inner_diameter_m"] / 2
+    head = 0.5 * 850 * p["ring_speed_rad_s"] ** 2 * (ro ** 2 - ri ** 2)
+    expected = max(b["supply_pressure_pa"] - head, 0.0)
+    assert abs(p["drill_hole_pressure_pa"] - expected) < 1e-6 * b["supply_pressure_pa"], (p["speed_rpm"], expected, p)
+    assert p["outer_eccentricity"] < 0.02, p  # the groove's pressure is the same all round: no push on the ring
+assert j["results"][-1]["drill_hole_pressure_pa"] == 0.0  # 150,000 rpm: the head passes the 4.5 bar
 EOF2
     # 40 N on the journal and a permissible minimum film thickness of 12 µm: at 20,000 rpm the ring sits low in its
     # outer film (about 9 µm left), at 150,000 rpm both films are thicker (about 14 and 30 µm). One warning, on
