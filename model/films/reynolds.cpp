@@ -203,6 +203,18 @@ struct FilmSolver::Impl {
         bad(why.str());
       }
     }
+    // Grooves over every row leave no film to solve (a central groove nearly as wide as the film).
+    bool land_row = false;
+    for (int j = 0; j < nz; ++j) land_row = land_row || kind[j] >= -1;  // a row of column 0 outside every groove
+    if (!land_row) {
+      std::ostringstream why;
+      if (g.grooves.size() == 1)
+        why << "groove 0 (" << g.grooves[0].width * 1e3 << " mm wide at z = " << g.grooves[0].z * 1e3 << " mm) leaves";
+      else
+        why << "the grooves leave";
+      why << " no land with a node of the axial grid: a narrower groove or more axial nodes";
+      bad(why.str());
+    }
     std::vector<char> caught(g.holes.size(), 0);  // the hole's circle holds a node (else its nearest node stands in)
     for (std::size_t h = 0; h < g.holes.size(); ++h) {
       const Hole& ho = g.holes[h];

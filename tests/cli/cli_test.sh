@@ -311,6 +311,7 @@ EOF2
     refused "groove-width: must lie" --groove-width "10 mm"
     refused "supply-pressure: needs a feed hole" --supply-pressure "2 bar"
     refused "groove-width 0.5 mm --n-axial 12: the groove (0.5 mm wide" --groove-width "0.5 mm"
+    refused "the groove (9.9 mm wide at z = 0 mm) leaves no land" --groove-width "9.9 mm"
     ;;
   bearing_reference_ball)
     # turbodyn bearing on the reference ball bearing: files, the picture, a radial stiffness at rest of about

@@ -247,6 +247,15 @@ TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), AllOf(HasSubstr("holds no node"), HasSubstr("0.538"), HasSubstr("odd number")));
   }
+  // Nor may a groove take every row: the lands beside it would not be solved at all (a 6.9-mm groove in a 7-mm film).
+  FilmGeometry wide = plain(0.7, 24, 12, 0.005, 15e-6);
+  wide.grooves = {Groove{0.0, 0.0069, 2e5}};
+  try {
+    FilmSolver refused(wide, 0.0108);
+    ADD_FAILURE() << "a groove over every row was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("leaves no land"), HasSubstr("node of the axial grid")));
+  }
 }
 
 TEST(Grooves, AGrooveCarriesNoShear) {

@@ -213,6 +213,8 @@ TEST(ModelFile, AFeedGrooveReplacesTheFeedHoleAndIsNarrowerThanTheLand) {
                     HasSubstr("n_axial = 6")));
   EXPECT_NO_THROW(load_model(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=0.5 mm"),
                                  parse_override("bearings.compressor.damper.n_axial=7")}));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=5.9 mm")}),
+              AllOf(HasSubstr("bearings.compressor.damper.feed_groove_width"), HasSubstr("leaves no land")));
 }
 
 TEST(ModelFile, APermissibleFilmThicknessIsPositiveAndThinnerThanTheClearance) {
