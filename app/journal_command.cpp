@@ -92,12 +92,9 @@ int run_journal_command(const JournalCommandOptions& o) {
   auto make_film = [&] {
     try {
       return FilmSolver(g, eta, so);
-    } catch (const std::invalid_argument& e) {
-      const std::string what = e.what();
-      const std::size_t at = what.find("groove 0 ");
-      if (at == std::string::npos) throw;
-      throw ModelError("--groove-width " + o.groove_width + " --n-axial " + std::to_string(o.n_axial) + ": the groove" +
-                       what.substr(at + 8));
+    } catch (const GrooveGridError& e) {
+      throw ModelError("--groove-width " + o.groove_width + " --n-axial " + std::to_string(o.n_axial) + ": " +
+                       e.reason());
     }
   };
   FilmSolver film = make_film();

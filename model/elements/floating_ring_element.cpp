@@ -481,6 +481,7 @@ FloatingRingElement::Heat FloatingRingElement::heat(const SpinState& s, const do
   Heat h;
   h.films = film_heat(s, v, films.inner, films.outer, z);
   if (thermal_) h.flows = thermal::film_heat_balance(spec_.thermal, density_, !inner_.holes.empty(), h.films);
+  h.drill_hole_pressure = films.hole_pressure;
   return h;
 }
 

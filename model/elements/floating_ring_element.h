@@ -84,6 +84,7 @@ class FloatingRingElement final : public ForceElement {
   struct Heat {
     thermal::FilmHeatInputs films;  ///< powers, side leakages and temperatures of both films
     thermal::FilmHeatFlows flows;   ///< the energy balance (zero for isothermal films)
+    double drill_hole_pressure = 0.0;  ///< Pa gauge, the drill_hole_pressure probe: the inner film's feed
   };
   Heat heat(const SpinState& s, const double* q, const double* v, const double* z, ElementWorkspace& ws) const;
   /// Diametral inertia of the ring used (the spec's, or the thick-walled cylinder's if the spec gives none).

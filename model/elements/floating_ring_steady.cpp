@@ -181,18 +181,10 @@ void FloatingRingSteady::finish(FloatingRingOperatingPoint& p, const Eigen::Vect
   p.outer_attitude = std::remainder(std::atan2(u[kRy], u[kRx]) - total_angle, 2.0 * M_PI);
   // Heat and flows, the drill holes' pressure, and the linearised films, averaged over the ring angles.
   const double v0[4] = {0, 0, 0, 0};
-  const std::vector<ProbeInfo> probes = e_.probes();
-  std::vector<double> probe_values(probes.size());
-  const std::size_t hole_probe = static_cast<std::size_t>(
-      std::find_if(probes.begin(), probes.end(), [](const ProbeInfo& i) { return i.name == "drill_hole_pressure"; }) -
-      probes.begin());
   for (int a = 0; a < na; ++a) {
     state(speed, u, pitch_ * a / na, q, z);
     const FloatingRingElement::Heat h = e_.heat(s, q, v0, z, *ws_);
-    if (hole_probe < probes.size()) {  // after heat(): the films of this state are solved already
-      e_.eval_probes(s, q, v0, z, *ws_, probe_values.data());
-      p.drill_hole_pressure += probe_values[hole_probe] / na;
-    }
+    p.drill_hole_pressure += h.drill_hole_pressure / na;
     p.inner_temperature += h.films.inner_temperature / na;
     p.outer_temperature += h.films.outer_temperature / na;
     p.inner_power += h.films.inner_power / na;

@@ -196,11 +196,12 @@ struct FilmSolver::Impl {
           if (zn[j] < gr.z) below = j;
         const double gap = below < 0 ? zn[0] + half : below + 1 < nz ? zn[below + 1] - zn[below] : half - zn[nz - 1];
         std::ostringstream why;
-        why << "groove " << k << " (" << gr.width * 1e3 << " mm wide at z = " << gr.z * 1e3
-            << " mm) holds no node of the axial grid, whose nodes lie " << gap * 1e3
+        why << (g.grooves.size() == 1 ? "the groove" : "groove " + std::to_string(k)) << " (" << gr.width * 1e3
+            << " mm wide at z = " << gr.z * 1e3 << " mm) holds no node of the axial grid, whose nodes lie "
+            << gap * 1e3
             << " mm apart there: more axial nodes, or for a groove at mid-width an odd number of them (a node at "
                "its centre)";
-        bad(why.str());
+        throw GrooveGridError(why.str());
       }
     }
     // Grooves over every row leave no film to solve (a central groove nearly as wide as the film).
@@ -209,11 +210,12 @@ struct FilmSolver::Impl {
     if (!land_row) {
       std::ostringstream why;
       if (g.grooves.size() == 1)
-        why << "groove 0 (" << g.grooves[0].width * 1e3 << " mm wide at z = " << g.grooves[0].z * 1e3 << " mm) leaves";
+        why << "the groove (" << g.grooves[0].width * 1e3 << " mm wide at z = " << g.grooves[0].z * 1e3
+            << " mm) leaves";
       else
         why << "the grooves leave";
       why << " no land with a node of the axial grid: a narrower groove or more axial nodes";
-      bad(why.str());
+      throw GrooveGridError(why.str());
     }
     std::vector<char> caught(g.holes.size(), 0);  // the hole's circle holds a node (else its nearest node stands in)
     for (std::size_t h = 0; h < g.holes.size(); ++h) {

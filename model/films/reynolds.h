@@ -24,6 +24,7 @@
 
 #include <array>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -131,12 +132,26 @@ Closed long_bearing(double eta, double omega, double R, double L, double c, doub
 /// z). Zero or negative: the film closes.
 double min_film_thickness(const FilmGeometry& g, const FilmState& s);
 
+/// A groove that the film's axial grid cannot represent: it holds no grid row, or the grooves take every row.
+/// reason() words it for a user of one central groove ("the groove (2 mm wide at z = 0 mm) holds no node ..."), so
+/// that the model file and the command line can name their own key or option beside it.
+class GrooveGridError : public std::invalid_argument {
+ public:
+  explicit GrooveGridError(const std::string& reason)
+      : std::invalid_argument("reynolds::FilmSolver: " + reason), reason_(reason) {}
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string reason_;
+};
+
 /// One solver per film per simulation: holds the grid, the factorisation storage and the warm-start state (last
 /// cavitation zone and film fraction). Not thread-safe; copy it to give each thread its own.
 class FilmSolver {
  public:
   /// Throws std::invalid_argument for bad input (non-positive radius, length, clearance or viscosity, grid smaller
-  /// than 8 x 4, more than 8 holes, a hole or groove not inside the film, overlapping holes, bad options).
+  /// than 8 x 4, more than 8 holes, a hole or groove not inside the film, overlapping holes, bad options);
+  /// GrooveGridError, one of them, for a groove the grid cannot hold.
   FilmSolver(const FilmGeometry& g, double viscosity, const SolverOptions& o = {});
   ~FilmSolver();
   FilmSolver(const FilmSolver&);

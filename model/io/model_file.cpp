@@ -192,11 +192,8 @@ double read_feed_groove(Reader& r, double width_value, const std::string& width,
     o.axial_grading = grid.axial_grading;
     try {
       reynolds::FilmSolver check(g, 1.0, o);
-    } catch (const std::invalid_argument& e) {
-      std::string what = e.what();
-      if (const std::size_t at = what.find("groove 0 "); at != std::string::npos)
-        what = "the groove" + what.substr(at + 8);
-      r.fail("feed_groove_width", what + " (n_axial = " + std::to_string(grid.n_axial) + ")");
+    } catch (const reynolds::GrooveGridError& e) {
+      r.fail("feed_groove_width", e.reason() + " (n_axial = " + std::to_string(grid.n_axial) + ")");
     }
   }
   if (groove > 0.0 && hole > 0.0)

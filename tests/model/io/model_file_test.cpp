@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -38,6 +39,25 @@ std::string model_error_of(const std::string& file, const std::vector<Override>&
     return e.what();
   }
   return "";
+}
+
+// The feed rules every film table shares (feed_groove_width beside feed_hole_diameter and supply_pressure): `prefix`
+// the table's keys ("bearings.NAME." or "bearings.NAME.damper."), `groove_of` the width read from it, `too_wide` a
+// groove as wide as the film and `width_message` how the refusal names the film's width.
+void expect_feed_groove_rules(const std::string& f, const std::string& prefix,
+                              const std::function<double(const MachineSpec&)>& groove_of, const std::string& too_wide,
+                              const std::string& width_message) {
+  const Override no_hole = parse_override(prefix + "feed_hole_diameter=0 mm");
+  EXPECT_DOUBLE_EQ(groove_of(load_model(f, {no_hole, parse_override(prefix + "feed_groove_width=2 mm")})), 2e-3);
+  EXPECT_DOUBLE_EQ(groove_of(load_model(f)), 0.0);  // none unless given
+  EXPECT_THAT(model_error_of(f, {parse_override(prefix + "feed_groove_width=2 mm")}),
+              AllOf(HasSubstr(prefix + "feed_groove_width"), HasSubstr("not both")));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override(prefix + "feed_groove_width=" + too_wide)}),
+              AllOf(HasSubstr("feed_groove_width"), HasSubstr(width_message)));
+  EXPECT_THAT(model_error_of(f, {no_hole, parse_override(prefix + "feed_groove_width=-1 mm")}),
+              HasSubstr("feed_groove_width"));
+  EXPECT_THAT(model_error_of(f, {no_hole}),
+              AllOf(HasSubstr(prefix + "supply_pressure"), HasSubstr("feed_groove_width")));
 }
 
 TEST(ModelFile, ReferenceExampleValuesInSI) {
@@ -196,17 +216,10 @@ TEST(ModelFile, DamperEndSealsNeedGapAndLengthAndAGapBelowTheClearance) {
 TEST(ModelFile, AFeedGrooveReplacesTheFeedHoleAndIsNarrowerThanTheLand) {
   // feed_groove_width: a full circumferential groove at mid-width at the supply pressure, instead of the feed hole.
   const std::string f = example("reference_ball_sfd.toml");
+  expect_feed_groove_rules(f, "bearings.compressor.damper.",
+                           [](const MachineSpec& s) { return s.bearings.at(0).damper.feed_groove_width; }, "6 mm",
+                           "narrower than the land width");
   const Override no_hole = parse_override("bearings.compressor.damper.feed_hole_diameter=0 mm");
-  const MachineSpec s = load_model(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=2 mm")});
-  EXPECT_DOUBLE_EQ(s.bearings.at(0).damper.feed_groove_width, 2e-3);
-  EXPECT_DOUBLE_EQ(load_model(f).bearings.at(0).damper.feed_groove_width, 0.0);  // none unless given
-  EXPECT_THAT(model_error_of(f, {parse_override("bearings.compressor.damper.feed_groove_width=2 mm")}),
-              AllOf(HasSubstr("bearings.compressor.damper.feed_groove_width"), HasSubstr("not both")));
-  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=6 mm")}),
-              AllOf(HasSubstr("feed_groove_width"), HasSubstr("narrower than the land width")));
-  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=-1 mm")}),
-              HasSubstr("feed_groove_width"));
-  EXPECT_THAT(model_error_of(f, {no_hole}), AllOf(HasSubstr("supply_pressure"), HasSubstr("feed_groove_width")));
   // The land's 6 even rows lie 0.86 mm apart about mid-width: a groove of 0.5 mm holds none of them.
   EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.compressor.damper.feed_groove_width=0.5 mm")}),
               AllOf(HasSubstr("bearings.compressor.damper.feed_groove_width"), HasSubstr("holds no node"),
@@ -266,19 +279,11 @@ TEST(ModelFile, FloatingRingDrillHolesAndMassConservingFilms) {
 }
 
 TEST(ModelFile, AFloatingRingsOuterFilmIsFedThroughAHoleOrAGroove) {
-  const std::filesystem::path f = example("reference_floating_ring.toml");
+  const std::string f = example("reference_floating_ring.toml");
+  expect_feed_groove_rules(f, "bearings.turbine.",
+                           [](const MachineSpec& s) { return s.bearings.at(1).ring.feed_groove_width; }, "10 mm",
+                           "narrower than outer_length");
   const Override no_hole = parse_override("bearings.turbine.feed_hole_diameter=0 mm");
-  const MachineSpec s = load_model(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=2 mm")});
-  EXPECT_DOUBLE_EQ(s.bearings.at(1).ring.feed_groove_width, 2e-3);
-  EXPECT_DOUBLE_EQ(load_model(f).bearings.at(1).ring.feed_groove_width, 0.0);  // none unless given
-  EXPECT_THAT(model_error_of(f, {parse_override("bearings.turbine.feed_groove_width=2 mm")}),
-              AllOf(HasSubstr("bearings.turbine.feed_groove_width"), HasSubstr("not both")));
-  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=10 mm")}),
-              AllOf(HasSubstr("feed_groove_width"), HasSubstr("narrower than outer_length")));
-  EXPECT_THAT(model_error_of(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=-1 mm")}),
-              HasSubstr("feed_groove_width"));
-  EXPECT_THAT(model_error_of(f, {no_hole}), AllOf(HasSubstr("bearings.turbine.supply_pressure"),
-                                                  HasSubstr("feed_groove_width")));
   // The mass-conserving model takes the groove as the outer film's supply.
   EXPECT_NO_THROW(load_model(f, {no_hole, parse_override("bearings.turbine.feed_groove_width=2 mm"),
                                  parse_override("bearings.turbine.cavitation=mass-conserving")}));
