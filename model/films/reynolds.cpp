@@ -204,18 +204,41 @@ struct FilmSolver::Impl {
         throw GrooveGridError(why.str());
       }
     }
-    // Grooves over every row leave no film to solve (a central groove nearly as wide as the film).
-    bool land_row = false;
-    for (int j = 0; j < nz; ++j) land_row = land_row || kind[j] >= -1;  // a row of column 0 outside every groove
-    if (!land_row) {
-      std::ostringstream why;
-      if (g.grooves.size() == 1)
-        why << "the groove (" << g.grooves[0].width * 1e3 << " mm wide at z = " << g.grooves[0].z * 1e3
-            << " mm) leaves";
-      else
-        why << "the grooves leave";
-      why << " no land with a node of the axial grid: a narrower groove or more axial nodes";
-      throw GrooveGridError(why.str());
+    // Each land beside a groove, to the film's end or to the next groove, must hold a row: else the groove's outer
+    // row conducts to the end over the grid's step instead of the land, and the land's pressure, load and side flow
+    // are not resolved (a groove 0.4 mm from the end of a film whose rows lie 0.64 mm apart). A groove over every
+    // row (a central groove nearly as wide as the film) leaves no film at all and fails here too.
+    for (std::size_t k = 0; k < g.grooves.size(); ++k) {
+      const Groove& gr = g.grooves[k];
+      for (const int side : {-1, 1}) {
+        const double edge = gr.z + side * 0.5 * gr.width;
+        double far = side * 0.5 * g.length;  // the land's other side: the film's end or the next groove's near edge
+        std::size_t next = g.grooves.size();
+        for (std::size_t q = 0; q < g.grooves.size(); ++q) {
+          const double near_edge = g.grooves[q].z - side * 0.5 * g.grooves[q].width;
+          if (q != k && side * (near_edge - edge) >= 0.0 && side * (far - near_edge) > 0.0) {
+            far = near_edge;
+            next = q;
+          }
+        }
+        bool held = false;
+        for (int j = 0; j < nz; ++j)
+          held = held || (kind[j] == -1 && side * (zn[j] - edge) > 0.0 && side * (far - zn[j]) > 0.0);
+        if (held) continue;
+        int beside = 0;  // the grid row nearest the edge, for the rows' spacing there
+        for (int j = 0; j < nz; ++j)
+          if (std::abs(zn[j] - edge) < std::abs(zn[beside] - edge)) beside = j;
+        std::ostringstream why;
+        why << (g.grooves.size() == 1 ? "the groove" : "groove " + std::to_string(k)) << " (" << gr.width * 1e3
+            << " mm wide at z = " << gr.z * 1e3 << " mm) leaves no land with a node of the axial grid between it and ";
+        if (next < g.grooves.size())
+          why << "groove " << next;
+        else
+          why << "the film's end at z = " << far * 1e3 << " mm";
+        why << " (a land of " << std::abs(far - edge) * 1e3 << " mm, nodes " << dzf[beside + (side > 0 ? 1 : 0)] * 1e3
+            << " mm apart there): a narrower groove, one further from the end, or more axial nodes";
+        throw GrooveGridError(why.str());
+      }
     }
     std::vector<char> caught(g.holes.size(), 0);  // the hole's circle holds a node (else its nearest node stands in)
     for (std::size_t h = 0; h < g.holes.size(); ++h) {

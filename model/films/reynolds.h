@@ -132,7 +132,8 @@ Closed long_bearing(double eta, double omega, double R, double L, double c, doub
 /// z). Zero or negative: the film closes.
 double min_film_thickness(const FilmGeometry& g, const FilmState& s);
 
-/// A groove that the film's axial grid cannot represent: it holds no grid row, or the grooves take every row.
+/// A groove that the film's axial grid cannot represent: it holds no grid row, or a land beside it (to the film's
+/// end or to the next groove) holds none.
 /// reason() words it for a user of one central groove ("the groove (2 mm wide at z = 0 mm) holds no node ..."), so
 /// that the model file and the command line can name their own key or option beside it.
 class GrooveGridError : public std::invalid_argument {

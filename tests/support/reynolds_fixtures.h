@@ -64,7 +64,7 @@ inline FilmGeometry supplied(double pressure, double diameter = 0.01, double the
 inline FilmGeometry awkward() {  // tilt-free mid-width asymmetry, holes of different sizes, a groove: the general case
   FilmGeometry g = plain(0.7, 48, 10, 0.005, 15e-6);
   g.holes = {Hole{0.3, 0.0005, 0.002, 2e5}, Hole{2.0, -0.001, 0.0015, 1e5}, Hole{4.0, 0.0, 0.0005, 0.5e5}};
-  g.grooves = {Groove{0.0028, 0.0006, 0.3e5}};
+  g.grooves = {Groove{0.0025, 0.0006, 0.3e5}};  // its outer land holds a row
   return g;
 }
 

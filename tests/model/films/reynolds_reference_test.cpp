@@ -239,9 +239,9 @@ TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
   }
   // A groove that holds no node would put its pressure on a land row: refused, saying how to mend it (the even
   // grid's middle rows lie 0.54 mm apart, about a groove of 0.2 mm).
-  auto refusal = [](double width) -> std::string {  // the solver's message for a central groove, "" if accepted
-    FilmGeometry g = plain(0.7, 24, 12, 0.005, 15e-6);
-    g.grooves = {Groove{0.0, width, 2e5}};
+  auto refusal_of = [](const std::vector<Groove>& grooves) -> std::string {  // the solver's message, "" if accepted
+    FilmGeometry g = plain(0.7, 24, 12, 0.005, 15e-6);  // L = 7 mm, rows at +-0.269, +-0.808, ..., +-2.962 mm
+    g.grooves = grooves;
     try {
       FilmSolver accepted(g, 0.0108);
       return "";
@@ -249,9 +249,20 @@ TEST(Grooves, CentralGrooveLeakageMatchesClosedForm) {
       return e.what();
     }
   };
+  auto refusal = [&](double width) { return refusal_of({Groove{0.0, width, 2e5}}); };  // a central groove
   EXPECT_THAT(refusal(0.0002), AllOf(HasSubstr("holds no node"), HasSubstr("0.538"), HasSubstr("odd number")));
   // Nor may a groove take every row: the lands beside it would not be solved at all (a 6.9-mm groove in a 7-mm film).
   EXPECT_THAT(refusal(0.0069), AllOf(HasSubstr("leaves no land"), HasSubstr("node of the axial grid")));
+  // Nor a land beside a groove that holds no row, to the end or to the next groove: the groove's row would conduct
+  // over the grid's step, not over the land. 2.7-3.1 mm leaves 0.4 mm of land to the end, with no row in it; 2.3-2.7
+  // leaves the row at 2.962 mm.
+  EXPECT_THAT(refusal_of({Groove{0.0029, 0.0004, 2e5}}),
+              AllOf(HasSubstr("leaves no land"), HasSubstr("the film's end at z = 3.5 mm"),
+                    HasSubstr("a land of 0.4 mm")));
+  EXPECT_EQ(refusal_of({Groove{0.0025, 0.0004, 2e5}}), "");
+  EXPECT_THAT(refusal_of({Groove{0.000269, 0.0002, 2e5}, Groove{0.000808, 0.0006, 1e5}}),
+              AllOf(HasSubstr("groove 0 (0.2 mm wide at z = 0.269 mm) leaves no land"), HasSubstr("and groove 1")));
+  EXPECT_EQ(refusal_of({Groove{0.000269, 0.0002, 2e5}, Groove{0.001346, 0.0002, 1e5}}), "");
 }
 
 TEST(Grooves, AGrooveCarriesNoShear) {
