@@ -447,10 +447,13 @@ void write_floating_ring_report(const std::filesystem::path& dir, const nlohmann
                     HtmlPage::number(F, j, at + "/outer_temperature_k", 1.0, "K", 5),
                     HtmlPage::number(F, j, at + "/inner_power_w", 1.0, "W"),
                     HtmlPage::number(F, j, at + "/outer_power_w", 1.0, "W"),
+                    HtmlPage::number(F, j, at + "/inner_side_flow_m3_s", 6e7, "L/min", 3),
+                    HtmlPage::number(F, j, at + "/outer_side_flow_m3_s", 6e7, "L/min", 3),
                     HtmlPage::number(F, j, at + "/drill_hole_pressure_pa", 1e-5, "bar", 3)});
   }
   page.table("bearing", {"rotor speed", "ring / shaft speed", "e/c inner", "e/c outer", "T inner", "T outer",
-                         "power loss inner", "power loss outer", "drill holes (inner film's feed)"},
+                         "power loss inner", "power loss outer", "side flow inner", "side flow outer",
+                         "drill holes (inner film's feed)"},
              rows);
   pictures_and_files(page, in);
   page.write(dir);
