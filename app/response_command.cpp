@@ -13,6 +13,7 @@
 #include "model/engine/unbalance_whirl.h"
 #include "model/spec/constants.h"
 #include "post/plot.h"
+#include "post/resonance.h"
 #include "post/report.h"
 #include "app/command_line.h"
 #include "model/rotor/response.h"
@@ -117,6 +118,56 @@ void print_nonlinear(const UnbalanceWhirl& nl) {
   }
 }
 
+// The resonances of each disk's orbit (major semi-axis) against speed, each peak and half-power point found on the
+// response itself (computed anew at any speed), with API RP 684's amplification factor (post/resonance.h).
+nlohmann::json resonances_json(const Rotor& rotor, const std::vector<double>& speeds,
+                               const std::vector<std::vector<double>>& cols, std::ostream& listing) {
+  nlohmann::json out = nlohmann::json::array();
+  bool increasing = speeds.size() >= 3;
+  for (std::size_t i = 1; i < speeds.size(); ++i) increasing = increasing && speeds[i] > speeds[i - 1];
+  if (!increasing) {
+    listing << "Resonances: not sought (they need at least three increasing speeds)\n";
+    return out;
+  }
+  auto json_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  listing << "Resonances (peaks of the orbits' major semi-axes, half-power points at 1/sqrt(2) of the peak, "
+             "amplification factor AF = speed / band, API RP 684):\n";
+  std::size_t found = 0;
+  for (std::size_t d = 0; d < rotor.disks.size(); ++d) {
+    const RigidDisk& disk = rotor.disks[d];
+    const int ix = rotor.dof(disk.node, kX), iy = rotor.dof(disk.node, kY);
+    auto orbit_at = [&](double w) {
+      const SteadyResponse r = unbalance_response(rotor, w);
+      return major_semi_axis(r.q(ix), r.q(iy));
+    };
+    const std::string column = "disk." + disk.name + ".major_semi_axis_m";
+    for (const post::Resonance& r : post::find_resonances(speeds, cols[2 + 4 * d + 2], orbit_at)) {
+      out.push_back({{"column", column},
+                     {"speed_rad_s", r.speed},
+                     {"speed_hz", r.speed / (2 * M_PI)},
+                     {"speed_rpm", r.speed * kRadPerSToRpm},
+                     {"peak", r.peak},
+                     {"lower_speed_hz", json_or_null(r.lower / (2 * M_PI))},
+                     {"upper_speed_hz", json_or_null(r.upper / (2 * M_PI))},
+                     {"amplification_factor", json_or_null(r.amplification_factor)}});
+      ++found;
+      listing << "  disk " << disk.name << ": " << std::fixed << std::setprecision(1) << r.speed / (2 * M_PI)
+              << " Hz (" << std::setprecision(0) << r.speed * kRadPerSToRpm << " rpm), " << std::setprecision(2)
+              << r.peak * 1e6 << " um, ";
+      if (std::isfinite(r.amplification_factor))
+        listing << "half-power band " << std::setprecision(1) << r.lower / (2 * M_PI) << "-" << r.upper / (2 * M_PI)
+                << " Hz, AF " << std::setprecision(r.amplification_factor < 100 ? 2 : 0) << r.amplification_factor
+                << (r.amplification_factor < 2.5 ? " (critically damped by API 617's measure, AF < 2.5)" : "");
+      else
+        listing << "no AF: the response does not fall to 1/sqrt(2) of the peak "
+                << (std::isfinite(r.lower) ? "above" : "below") << " it within the speeds";
+      listing << std::defaultfloat << "\n";
+    }
+  }
+  if (found == 0) listing << "  none within the speeds\n";
+  return out;
+}
+
 }  // namespace
 
 int run_response_command(const ResponseCommandOptions& options) {
@@ -177,6 +228,12 @@ int run_response_command(const ResponseCommandOptions& options) {
   }
   nlohmann::json j = result_header(spec, options.overrides);
   for (std::size_t c = 0; c < names.size(); ++c) j["columns"][names[c]] = cols[c];
+  std::ostringstream resonance_listing;
+  try {
+    j["resonances"] = resonances_json(rotor, speeds, cols, resonance_listing);
+  } catch (const QuasiStaticError& e) {
+    throw ModelError(spec.source.string() + ": a ball bearing's linearisation failed: " + e.what());
+  }
   UnbalanceWhirl nl;
   if (options.nonlinear) {
     UnbalanceWhirlOptions no;
@@ -255,6 +312,7 @@ int run_response_command(const ResponseCommandOptions& options) {
                               {command_line(), options.plots ? std::vector<std::string>{"response.png"}
                                                              : std::vector<std::string>{},
                                files, {}});
+  std::cout << resonance_listing.str();
   if (options.nonlinear) print_nonlinear(nl);
   std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json, report.html"
             << (options.plots ? ", response.png" : "") << (options.nonlinear ? ", response_nonlinear.csv" : "")

@@ -388,6 +388,28 @@ void write_response_report(const std::filesystem::path& dir, const nlohmann::jso
                     HtmlPage::number(F, j, json_pointer("/columns/speed_hz", k), kHzToRpm, "rpm", 5)});
   }
   page.table("peaks", {"column", "what", "peak", "at rotor speed"}, rows);
+  if (j.contains("resonances")) {
+    page.heading("Resonances");
+    page.paragraph("Each peak of a wheel's orbit against speed with its half-power points, where the response has "
+                   "fallen to 1/√2 of the peak, and the amplification factor AF = peak speed / (upper − lower "
+                   "half-power speed) of API RP 684 (about 1/(2ζ) for a lightly damped mode; API 617 calls AF < 2.5 "
+                   "critically damped). Found on the response itself, not on the sampled speeds alone; – where the "
+                   "response does not fall to the half-power level on that side within the speeds.");
+    std::vector<Row> res;
+    for (std::size_t k = 0; k < j.at("resonances").size(); ++k) {
+      const std::string at = json_pointer("/resonances", k);
+      res.push_back({"<code>" + html_escape(text(j.at("resonances")[k], "column")) + "</code>",
+                     HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
+                     HtmlPage::number(F, j, at + "/speed_hz", 1.0, "Hz", 5),
+                     HtmlPage::number(F, j, at + "/peak", 1e6, "µm"),
+                     HtmlPage::number(F, j, at + "/lower_speed_hz", 1.0, "Hz", 5),
+                     HtmlPage::number(F, j, at + "/upper_speed_hz", 1.0, "Hz", 5),
+                     HtmlPage::number(F, j, at + "/amplification_factor", 1.0, "", 3)});
+    }
+    page.table("resonances", {"column", "rotor speed", "frequency", "peak", "lower half-power", "upper half-power",
+                              "AF"},
+               res);
+  }
   if (j.contains("nonlinear")) {
     const nlohmann::json& nl = j.at("nonlinear");
     page.heading("Nonlinear steady state");
