@@ -30,6 +30,16 @@
 namespace turbodyn::app {
 namespace {
 
+// ", AF 278 (s = 0.073)": the amplification factor a steady response to the critical's order would show, from its
+// damping ratio and branch slope (CriticalSpeed), with API 617's "critically damped" below 2.5.
+std::string amplification_note(const CriticalSpeed& c) {
+  std::ostringstream s;
+  s << std::fixed << ", AF " << std::setprecision(c.amplification_factor < 100 ? 1 : 0) << c.amplification_factor
+    << " (s = " << std::setprecision(3) << c.branch_slope << ")"
+    << (c.amplification_factor < 2.5 ? ", critically damped by API 617's measure" : "");
+  return s.str();
+}
+
 // One value of a list option (`option` "--speeds" and so on), checked for its dimension and plausible size.
 double list_value(const std::string& text, const std::string& option, const std::string& whole, const Dimension& d) {
   double v = 0.0;
@@ -511,7 +521,11 @@ int run_modal_command(const ModalCommandOptions& options) {
                     {"speed_rad_s", c.speed},
                     {"speed_rpm", c.speed * kRadPerSToRpm},
                     {"frequency_hz", c.frequency},
-                    {"damping_ratio", c.damping_ratio}});
+                    {"damping_ratio", c.damping_ratio},
+                    {"branch_slope", std::isfinite(c.branch_slope) ? nlohmann::json(c.branch_slope) : nlohmann::json()},
+                    {"amplification_factor", std::isfinite(c.amplification_factor)
+                                                 ? nlohmann::json(c.amplification_factor)
+                                                 : nlohmann::json()}});
   j["critical_speeds"] = crit;
   nlohmann::json shape_json = nlohmann::json::array();
   for (const ModalResult& r : shapes) {
@@ -556,7 +570,7 @@ int run_modal_command(const ModalCommandOptions& options) {
     std::cout << "  " << std::defaultfloat << c.order << "x " << std::setw(8) << to_string(c.whirl) << " branch "
               << c.branch + 1 << ": " << std::fixed << std::setprecision(0) << c.speed * kRadPerSToRpm << " rpm ("
               << std::setprecision(1) << c.frequency << " Hz), zeta " << std::setprecision(4) << c.damping_ratio
-              << "\n";
+              << (std::isfinite(c.amplification_factor) ? amplification_note(c) : "") << "\n";
   std::cout << std::defaultfloat;
   if (!options.amplitudes.empty()) write_backbone_table(backbones, amplitude_place, options.output_dir / "backbone.csv");
 

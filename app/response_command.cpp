@@ -304,18 +304,45 @@ int run_response_command(const ResponseCommandOptions& options) {
         }
       if (!hz.empty()) chart.series.push_back({"folds (jump speeds)", hz, r, plot::Series::Style::Points, "black", 1.5});
     }
+    // The resonances' speeds as markers, on this and on the phase picture.
+    for (const nlohmann::json& r : j["resonances"]) chart.vertical_lines.push_back(r["speed_hz"].get<double>());
     plot::render_png(chart, options.output_dir / "response.png");
+    // The other half of the Bode plot: each wheel's phase lag of x behind the rotor's angle (x = |x| cos(Omega t +
+    // phase), lag = -phase, unwrapped from the lowest speed; none where the wheel does not move, at rest), which turns
+    // by about 180 degrees through each lightly damped resonance.
+    plot::LineChart phase;
+    phase.title = "Steady-state unbalance response, phase: " + spec.name;
+    phase.xlabel = "rotor speed f_d [Hz]";
+    phase.ylabel = "phase lag of x behind the rotor angle [deg]";
+    phase.vertical_lines = chart.vertical_lines;
+    for (std::size_t k = 0; k < rotor.disks.size(); ++k) {
+      std::vector<double> lag;
+      double last = std::nan("");
+      for (std::size_t i = 0; i < speeds.size(); ++i) {
+        if (!(cols[2 + 4 * k][i] > 0.0)) {  // |x| = 0: no phase
+          lag.push_back(std::nan(""));
+          continue;
+        }
+        double v = -cols[2 + 4 * k + 3][i] * 180.0 / M_PI;
+        if (std::isfinite(last)) v -= 360.0 * std::round((v - last) / 360.0);
+        lag.push_back(last = v);
+      }
+      phase.series.push_back({"disk " + rotor.disks[k].name, cols[1], lag, plot::Series::Style::Lines,
+                              colours[k % 4], 1.5});
+    }
+    plot::render_png(phase, options.output_dir / "response_phase.png");
   }
   std::vector<std::string> files{"response.json", "response.csv"};
   if (options.nonlinear) files.push_back("response_nonlinear.csv");
   post::write_response_report(options.output_dir, j,
-                              {command_line(), options.plots ? std::vector<std::string>{"response.png"}
+                              {command_line(), options.plots ? std::vector<std::string>{"response.png",
+                                                                                        "response_phase.png"}
                                                              : std::vector<std::string>{},
                                files, {}});
   std::cout << resonance_listing.str();
   if (options.nonlinear) print_nonlinear(nl);
   std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json, report.html"
-            << (options.plots ? ", response.png" : "") << (options.nonlinear ? ", response_nonlinear.csv" : "")
+            << (options.plots ? ", response.png, response_phase.png" : "") << (options.nonlinear ? ", response_nonlinear.csv" : "")
             << " (" << speeds.size() << " speeds)\n";
   // Part of the range without a steady state within the model: written so far, exit code 3.
   if (options.nonlinear && !nl.covers_range) {

@@ -221,7 +221,9 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
                             {"degrees of freedom", HtmlPage::number(F, j, "/model/n_dof", 1.0, "", 6)},
                             {"rotor mass", HtmlPage::number(F, j, "/model/total_mass_kg", 1.0, "kg")}});
   page.heading("Critical speeds");
-  page.paragraph("Crossings of the natural frequencies with the order lines.");
+  page.paragraph("Crossings of the natural frequencies with the order lines. The branch slope s = df_n/df_d at the "
+                 "crossing and the damping ratio ζ give the amplification factor a steady response to that order "
+                 "would show, |n − s|/(2nζ) to first order (API RP 684's half-power AF; – for an unstable mode).");
   std::vector<Row> rows;
   const nlohmann::json& crit = j.at("critical_speeds");
   for (std::size_t i = 0; i < crit.size(); ++i) {
@@ -229,10 +231,14 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
     rows.push_back({HtmlPage::number(F, j, at + "/order", 1.0, "x", 3), html_escape(text(crit[i], "whirl")),
                     HtmlPage::number(F, j, at + "/speed_rpm", 1.0, "rpm", 5),
                     HtmlPage::number(F, j, at + "/frequency_hz", 1.0, "Hz"),
-                    HtmlPage::number(F, j, at + "/damping_ratio", 1.0, "", 3)});
+                    HtmlPage::number(F, j, at + "/damping_ratio", 1.0, "", 3),
+                    HtmlPage::number(F, j, at + "/branch_slope", 1.0, "", 3),
+                    HtmlPage::number(F, j, at + "/amplification_factor", 1.0, "", 3)});
   }
   if (rows.empty()) page.paragraph("No order line crosses a natural frequency in the speed range.");
-  else page.table("critical_speeds", {"order", "whirl", "rotor speed", "natural frequency", "damping ratio"}, rows);
+  else page.table("critical_speeds", {"order", "whirl", "rotor speed", "natural frequency", "damping ratio",
+                                      "branch slope s", "AF (first order)"},
+                  rows);
   if (!j.at("campbell").empty()) {
     const nlohmann::json& first = j["campbell"][0];
     page.heading("Natural frequencies at " + display_number(first.at("speed_rpm").get<double>(), 5) + " rpm");

@@ -302,6 +302,16 @@ Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds,
           cs.speed = 0.5 * (lo + hi);
           cs.frequency = order * cs.speed / (2.0 * M_PI);
           if (const Mode* m = branch_mode(mid_r, whirl, branch)) cs.damping_ratio = m->damping_ratio;
+          // The branch's slope at the crossing, and the amplification factor it and the damping ratio give.
+          constexpr double kSlopeStep = 1e-4;  // of the speed
+          const double dw = kSlopeStep * cs.speed;
+          if (dw > 0.0) {
+            const double f_up = branch_frequency(modal_analysis(rotor, cs.speed + dw, options), whirl, branch);
+            const double f_down = branch_frequency(modal_analysis(rotor, cs.speed - dw, options), whirl, branch);
+            cs.branch_slope = (f_up - f_down) / (2.0 * dw / (2.0 * M_PI));
+            if (std::isfinite(cs.branch_slope) && cs.damping_ratio > 0.0)
+              cs.amplification_factor = std::abs(order - cs.branch_slope) / (2.0 * order * cs.damping_ratio);
+          }
           c.critical.push_back(cs);
         }
       }

@@ -4,6 +4,7 @@
 // real non-symmetric eigenproblem; each mode with Im(lambda) > 0 is one damped natural frequency.
 #pragma once
 
+#include <cmath>
 #include <complex>
 #include <string>
 #include <vector>
@@ -65,6 +66,14 @@ struct CriticalSpeed {
   double speed = 0.0;       ///< rad/s
   double frequency = 0.0;   ///< Hz, = order * speed / (2 pi)
   double damping_ratio = 0.0;
+  /// s = d f_n / d f_d, the slope of the branch on the Campbell diagram at the crossing (central differences at
+  /// +-1e-4 of the speed; NaN where the branch is not found there).
+  double branch_slope = std::nan("");
+  /// The amplification factor a steady response to this order's excitation would show, to first order in the damping:
+  /// |n - s| / (2 n zeta) (the response goes as 1 / (f_n(f_d) - n f_d + i zeta f_n), so its half-power band in rotor
+  /// speed is 2 zeta f_c / |n - s|; API RP 684's half-power AF, 1 / (2 zeta) without gyroscopic effects;
+  /// docs/references.md §11). NaN for zeta <= 0 (no resonance: the mode is unstable) or without the slope.
+  double amplification_factor = std::nan("");
 };
 
 struct Campbell {
