@@ -419,6 +419,17 @@ int run_bearing_command(const BearingCommandOptions& options) {
       warnings.push_back(os.str());
     }
   }
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    for (const LoadDeflectionPoint& p : curves[i])
+      if (p.max_contact_pressure > kStaticContactPressureLimit) {
+        std::ostringstream os;
+        os << std::fixed << std::setprecision(0) << "the load-deflection curve at " << results[i].speed * kRadPerSToRpm
+           << " rpm passes the contact pressure's limit of " << kStaticContactPressureLimit * 1e-6 << " MPa at "
+           << std::setprecision(2) << p.travel * 1e6 << " um of travel (" << std::setprecision(0) << p.load
+           << " N, " << p.max_contact_pressure * 1e-6 << " MPa), " << MaxContactPressureProbe().limit_note;
+        warnings.push_back(os.str());
+        break;
+      }
   j["warnings"] = warnings;
   nlohmann::json points = nlohmann::json::array();
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -466,7 +477,8 @@ int run_bearing_command(const BearingCommandOptions& options) {
                        {"moment_y_n_m", p.moment_y},
                        {"secant_stiffness_n_per_m", p.secant},
                        {"tangent_stiffness_n_per_m", p.tangent},
-                       {"max_contact_load_n", p.max_contact_load}});
+                       {"max_contact_load_n", p.max_contact_load},
+                       {"max_contact_pressure_pa", p.max_contact_pressure}});
       jc.push_back({{"speed_rpm", results[i].speed * kRadPerSToRpm}, {"points", pts}});
     }
     j["load_deflection"] = {
@@ -481,13 +493,13 @@ int run_bearing_command(const BearingCommandOptions& options) {
     OutputFile file(options.output_dir / "load_deflection.csv");
     std::ostream& csv = file.stream();
     csv << "speed_rpm,travel_m,load_n,cross_load_n,moment_x_n_m,moment_y_n_m,secant_stiffness_n_per_m,"
-           "tangent_stiffness_n_per_m,max_contact_load_n\n"
+           "tangent_stiffness_n_per_m,max_contact_load_n,max_contact_pressure_pa\n"
         << std::setprecision(10);
     for (std::size_t i = 0; i < curves.size(); ++i)
       for (const LoadDeflectionPoint& p : curves[i])
         csv << results[i].speed * kRadPerSToRpm << ',' << p.travel << ',' << p.load << ',' << p.cross_load << ','
             << p.moment_x << ',' << p.moment_y << ',' << p.secant << ',' << p.tangent << ',' << p.max_contact_load
-            << '\n';
+            << ',' << p.max_contact_pressure << '\n';
     file.commit();
   }
   {
@@ -542,11 +554,14 @@ int run_bearing_command(const BearingCommandOptions& options) {
   }
   for (std::size_t i = 0; i < curves.size(); ++i) {
     std::cout << "  load-deflection at " << std::fixed << std::setprecision(0) << results[i].speed * kRadPerSToRpm
-              << " rpm (tilt held):   travel [um]   load [N]   secant [N/m]   tangent [N/m]   Q_max [N]\n";
+              << " rpm (tilt held):   travel [um]   load [N]   secant [N/m]   tangent [N/m]   Q_max [N]"
+              << "  p0_max [MPa]\n";
     for (const LoadDeflectionPoint& p : curves[i])
       std::cout << std::fixed << std::setw(47) << std::setprecision(2) << p.travel * 1e6 << std::setw(11)
                 << (std::abs(p.load) < 5e-3 ? 0.0 : p.load)  // no "-0.00" from round-off at zero travel
-                << std::scientific << std::setprecision(4) << std::setw(15) << p.secant << std::setw(16) << p.tangent << std::fixed << std::setprecision(1) << std::setw(12) << p.max_contact_load << "\n";
+                << std::scientific << std::setprecision(4) << std::setw(15) << p.secant << std::setw(16) << p.tangent
+                << std::fixed << std::setprecision(1) << std::setw(12) << p.max_contact_load << std::setprecision(0)
+                << std::setw(14) << p.max_contact_pressure * 1e-6 << "\n";
   }
   std::cout << std::defaultfloat;
   if (options.plots) write_bearing_pictures(b.name, results, options.output_dir);

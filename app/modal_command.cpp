@@ -265,7 +265,8 @@ nlohmann::json backbone_json(const std::vector<Backbone>& backbones, const std::
                        {"tilt_rad", x.tilt},
                        {"force_n", x.force},
                        {"moment_nm", x.moment},
-                       {"max_contact_load_n", x.max_contact_load}});
+                       {"max_contact_load_n", x.max_contact_load},
+                       {"max_contact_pressure_pa", x.max_contact_pressure}});
       pts.push_back({{"amplitude_m", p.amplitude},
                      {"speed_rad_s", p.speed},
                      {"speed_rpm", p.speed * kRadPerSToRpm},
@@ -289,14 +290,15 @@ void write_backbone_table(const std::vector<Backbone>& backbones, const std::map
   OutputFile file(path);
   std::ostream& csv = file.stream();
   csv << "branch,amplitude_at,amplitude_m,speed_rad_s,speed_rpm,frequency_hz,bearing,displacement_m,tilt_rad,"
-         "force_n,moment_nm,max_contact_load_n\n"
+         "force_n,moment_nm,max_contact_load_n,max_contact_pressure_pa\n"
       << std::setprecision(10);
   for (const Backbone& b : backbones)
     for (const BackbonePoint& p : b.points)
       for (const BackboneBearing& x : p.bearings)
         csv << b.branch + 1 << ',' << place.at(b.reference_node) << ',' << p.amplitude << ',' << p.speed << ','
             << p.speed * kRadPerSToRpm << ',' << p.speed / (2 * M_PI) << ',' << x.name << ',' << x.displacement << ','
-            << x.tilt << ',' << x.force << ',' << x.moment << ',' << x.max_contact_load << '\n';
+            << x.tilt << ',' << x.force << ',' << x.moment << ',' << x.max_contact_load << ','
+            << x.max_contact_pressure << '\n';
   file.commit();
   std::cout << "Forward 1x critical speeds at a whirl amplitude:\n";
   for (const Backbone& b : backbones) {
@@ -543,7 +545,32 @@ int run_modal_command(const ModalCommandOptions& options) {
     shape_json.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
   }
   j["mode_shapes"] = shape_json;
-  if (!options.amplitudes.empty()) j["backbones"] = backbone_json(backbones, amplitude_place);
+  if (!options.amplitudes.empty()) {
+    j["backbones"] = backbone_json(backbones, amplitude_place);
+    // Where a backbone's whirl loads a ball contact beyond ISO 76's static limit (a real bearing brinells there).
+    std::vector<std::string> warnings;
+    for (const Backbone& b : backbones) {
+      bool warned = false;
+      for (const BackbonePoint& p : b.points) {
+        for (const BackboneBearing& x : p.bearings)
+          if (x.max_contact_pressure > kStaticContactPressureLimit) {
+            std::ostringstream os;
+            os << std::fixed << std::setprecision(2) << "the backbone of forward branch " << b.branch + 1
+               << " passes the contact pressure's limit of " << std::setprecision(0)
+               << kStaticContactPressureLimit * 1e-6 << " MPa in bearings." << x.name << " at a whirl amplitude of "
+               << std::setprecision(2) << p.amplitude * 1e6 << " um (" << std::setprecision(0)
+               << p.speed * kRadPerSToRpm << " rpm, " << x.max_contact_pressure * 1e-6 << " MPa), "
+               << MaxContactPressureProbe().limit_note;
+            warnings.push_back(os.str());
+            warned = true;
+            break;
+          }
+        if (warned) break;
+      }
+    }
+    j["warnings"] = warnings;
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+  }
   write_output_file(options.output_dir / "modal.json", j.dump(1) + "\n");
   {
     OutputFile file(options.output_dir / "campbell.csv");

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -68,6 +69,7 @@ nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
       for (std::size_t b = 0; b < nl.bearings.size(); ++b) {
         c["bearing." + nl.bearings[b] + ".force_n"].push_back(pt.bearing_force[b]);
         c["bearing." + nl.bearings[b] + ".max_contact_load_n"].push_back(pt.max_contact_load[b]);
+        c["bearing." + nl.bearings[b] + ".max_contact_pressure_pa"].push_back(pt.max_contact_pressure[b]);
       }
     }
     out["pieces"].push_back(p);
@@ -80,7 +82,9 @@ void write_nonlinear_csv(const UnbalanceWhirl& nl, const std::filesystem::path& 
   std::ostream& csv = file.stream();
   csv << std::setprecision(12) << "piece,direction,speed_rad_s,speed_hz,stable,divergence_rate_1_s";
   for (const std::string& d : nl.disks) csv << ",disk." << d << ".radius_m,disk." << d << ".phase_rad";
-  for (const std::string& b : nl.bearings) csv << ",bearing." << b << ".force_n,bearing." << b << ".max_contact_load_n";
+  for (const std::string& b : nl.bearings)
+    csv << ",bearing." << b << ".force_n,bearing." << b << ".max_contact_load_n,bearing." << b
+        << ".max_contact_pressure_pa";
   csv << "\n";
   for (std::size_t k = 0; k < nl.pieces.size(); ++k)
     for (const UnbalanceWhirlPoint& pt : nl.pieces[k].points) {
@@ -88,7 +92,7 @@ void write_nonlinear_csv(const UnbalanceWhirl& nl, const std::filesystem::path& 
           << "," << (pt.stable ? 1 : 0) << "," << pt.divergence_rate;
       for (std::size_t d = 0; d < nl.disks.size(); ++d) csv << "," << pt.disk_radius[d] << "," << pt.disk_phase[d];
       for (std::size_t b = 0; b < nl.bearings.size(); ++b)
-        csv << "," << pt.bearing_force[b] << "," << pt.max_contact_load[b];
+        csv << "," << pt.bearing_force[b] << "," << pt.max_contact_load[b] << "," << pt.max_contact_pressure[b];
       csv << "\n";
     }
   file.commit();
@@ -251,6 +255,30 @@ int run_response_command(const ResponseCommandOptions& options) {
       throw ModelError(spec.source.string() + ": --nonlinear: " + e.what());
     }
     j["nonlinear"] = nonlinear_json(nl);
+    // Where the steady whirl loads a ball contact beyond ISO 76's static limit (a real bearing brinells there): per
+    // bearing, the lowest speed of a steady state over it and the largest pressure, over every piece.
+    std::vector<std::string> warnings;
+    for (std::size_t b = 0; b < nl.bearings.size(); ++b) {
+      double lowest = std::numeric_limits<double>::infinity(), top = 0.0, top_speed = 0.0;
+      for (const UnbalanceWhirlPiece& piece : nl.pieces)
+        for (const UnbalanceWhirlPoint& pt : piece.points) {
+          const double p = pt.max_contact_pressure[b];
+          if (p > kStaticContactPressureLimit) lowest = std::min(lowest, pt.speed);
+          if (p > top) {
+            top = p;
+            top_speed = pt.speed;
+          }
+        }
+      if (!std::isfinite(lowest)) continue;
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(0) << "the nonlinear response passes the contact pressure's limit of "
+         << kStaticContactPressureLimit * 1e-6 << " MPa in bearings." << nl.bearings[b] << " from "
+         << lowest * kRadPerSToRpm << " rpm (the lowest speed of such a steady state), up to " << top * 1e-6
+         << " MPa at " << top_speed * kRadPerSToRpm << " rpm, " << MaxContactPressureProbe().limit_note;
+      warnings.push_back(os.str());
+    }
+    j["nonlinear"]["warnings"] = warnings;
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
     write_nonlinear_csv(nl, options.output_dir / "response_nonlinear.csv");
   }
   write_output_file(options.output_dir / "response.json", j.dump(1) + "\n");

@@ -31,7 +31,8 @@ struct BackboneBearing {
   /// Force and moment (theta_y sense) that hold the ring there against the balls, i.e. the balls' reaction on the
   /// shaft negated (N, N m): the secant stiffness of the whirl is force / displacement.
   double force = 0.0, moment = 0.0;
-  double max_contact_load = 0.0;  ///< largest ball contact load (N)
+  double max_contact_load = 0.0;      ///< largest ball contact load (N)
+  double max_contact_pressure = 0.0;  ///< largest Hertz pressure of its contacts (Pa; ISO 76's limit 4,200 MPa)
 };
 
 struct BackbonePoint {

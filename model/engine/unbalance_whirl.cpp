@@ -371,10 +371,8 @@ class Tracer {
       if (s.ball >= 0) {
         const Vector5d f = problem_.ball_force(w, s.ball);
         pt.bearing_force.push_back(std::hypot(f(0), f(1)));
-        double qmax = 0.0;
-        for (const QuasiStaticBall& ball : w.bearings[s.ball].balls)
-          qmax = std::max({qmax, ball.inner_load, ball.outer_load});
-        pt.max_contact_load.push_back(qmax);
+        pt.max_contact_load.push_back(problem_.max_contact_load(w.bearings[s.ball]));
+        pt.max_contact_pressure.push_back(problem_.max_contact_pressure(w.bearings[s.ball], s.ball));
       } else {
         const LinearBearing& lb = rotor_.bearings[s.linear];
         Eigen::Matrix4d k, c;
@@ -386,6 +384,7 @@ class Tracer {
         const Eigen::Vector4d f = k * u + w.speed * (c * ju);
         pt.bearing_force.push_back(std::hypot(f(0), f(1)));
         pt.max_contact_load.push_back(0.0);
+        pt.max_contact_pressure.push_back(0.0);
       }
     }
     return pt;

@@ -30,6 +30,8 @@ struct UnbalanceWhirlPoint {
   std::vector<double> disk_phase;
   std::vector<double> bearing_force;     ///< per bearing (model order): amplitude of the force on the housing (N)
   std::vector<double> max_contact_load;  ///< per bearing: a ball bearing's largest contact load (N), 0 if linear
+  /// per bearing: a ball bearing's largest Hertz contact pressure (Pa; ISO 76's static limit 4,200 MPa), 0 if linear
+  std::vector<double> max_contact_pressure;
   /// The largest real positive eigenvalue of the whirl's small motions about it in the turning frame (1/s; 0 if
   /// none), and whether it is round-off (< 1e-9 of the largest |eigenvalue|): a steady state with one drifts off to
   /// another branch (the middle branch between two folds). Oscillatory growth is not judged (contacts undamped).

@@ -90,6 +90,29 @@ assert len(c["speed_hz"]) == len(c["disk.turbine.radius_m"]) == len(c["bearing.t
 # Between the two folds the branch is unstable (a real eigenvalue), before the first it is stable.
 assert c["stable"][0] and not all(c["stable"]), c["stable"]
 EOF2
+    # The largest contact pressure of each steady state is Hertz's p0 of its largest contact load: between the outer
+    # and the inner contact's p0 / Q^(1/3) (turbodyn bearing gives both per ball), and over ISO 76's limit it is warned
+    # of (the resonances' whirl loads the balls with up to 1.5 kN).
+    grep -q "warning: the nonlinear response passes the contact pressure's limit of 4200 MPa in bearings.compressor" \
+      "$out/log" || fail "no contact pressure warning: $(cat "$out/log")"
+    for name in compressor turbine; do
+      "$exe" bearing "$src/examples/reference_ball.toml" --bearing $name --speeds "30000 rpm" --no-plots \
+        -o "$out/bearing_$name" > "$out/bearing.log" 2>&1 || fail "bearing $name: $(cat "$out/bearing.log")"
+    done
+    python3 - "$out/response.json" "$out" <<'EOF2' || fail "contact pressures"
+import json, sys
+nl = json.load(open(sys.argv[1]))["nonlinear"]
+assert len(nl["warnings"]) == 2, nl["warnings"]
+for name in ("compressor", "turbine"):
+    ball = json.load(open(f"{sys.argv[2]}/bearing_{name}/bearing.json"))["results"][0]["balls"][0]
+    c_in = ball["inner_pressure_pa"] / ball["inner_load_n"] ** (1 / 3)
+    c_out = ball["outer_pressure_pa"] / ball["outer_load_n"] ** (1 / 3)
+    assert c_out < c_in, (c_out, c_in)
+    for piece in nl["pieces"]:
+        c = piece["columns"]
+        for q, p in zip(c[f"bearing.{name}.max_contact_load_n"], c[f"bearing.{name}.max_contact_pressure_pa"]):
+            assert c_out * q ** (1 / 3) * (1 - 1e-9) <= p <= c_in * q ** (1 / 3) * (1 + 1e-9), (name, q, p)
+EOF2
     # A hundred times the paper's unbalance: the curves from both ends climb their resonances beyond Hertz theory,
     # which leaves the speeds between them without a steady state: written so far, exit code 3.
     "$exe" response "$src/examples/reference_ball.toml" --speeds "10000 rpm:80000 rpm:15" --nonlinear --no-plots \
@@ -406,7 +429,19 @@ p = c[1]["points"]
 assert abs(p[-1]["travel_m"] - 50e-6) < 1e-12
 assert all(b["load_n"] > a["load_n"] for a, b in zip(p, p[1:]))
 assert p[-1]["secant_stiffness_n_per_m"] > 3 * p[0]["tangent_stiffness_n_per_m"]
+# The contact pressure: p0 = c Q^(1/3), Hertz's, c between the outer and the inner contact's 334 and 386 MPa/N^(1/3)
+# (the centrifugal force loads the outer contacts most at small travel); at rest the preload's 17.4 N give 1,000 MPa
+# (docs/ball-bearing.md); at 50 um the curve passes ISO 76's 4,200 MPa, which is warned of.
+p0 = c[0]["points"]
+assert abs(p0[0]["max_contact_pressure_pa"] / 1e9 - 1.0) < 0.01, p0[0]
+for a in p0 + p:
+    assert 3.3e8 < a["max_contact_pressure_pa"] / a["max_contact_load_n"] ** (1 / 3) < 3.9e8, a
+assert p[-1]["max_contact_pressure_pa"] > 4.2e9 and p[-2]["max_contact_pressure_pa"] < 4.2e9, p
 EOF2
+    grep -q "warning: the load-deflection curve at 46000 rpm passes the contact pressure's limit of 4200 MPa at 50.00 um" \
+      "$out/log" || fail "no pressure warning: $(cat "$out/log")"
+    head -1 "$out/ld/load_deflection.csv" | grep -q "max_contact_load_n,max_contact_pressure_pa$" \
+      || fail "csv: $(head -1 "$out/ld/load_deflection.csv")"
     ;;
   bearing_floating_ring)
     # turbodyn bearing on the reference floating ring with thermal films: files, pictures, the ring speed ratio
@@ -546,7 +581,12 @@ second = b["branches"][0]
 assert second["amplitude_at"] == "disks.compressor", second["amplitude_at"]
 assert second["branch"] == 1 and second["complete"] and len(second["points"]) == 2, second
 assert 45000 < second["points"][1]["speed_rpm"] < 46000, second["points"][1]
+# The whirl's contact loads as Hertz pressures: at 500 um the compressor bearing passes ISO 76's limit (warned of).
+comp = [x for x in second["points"][1]["bearings"] if x["name"] == "compressor"][0]
+assert comp["max_contact_pressure_pa"] > 4.2e9 and comp["max_contact_load_n"] > 1500, comp
 EOF2
+    grep -q "warning: the backbone of forward branch 2 passes the contact pressure's limit of 4200 MPa in bearings.compressor" \
+      "$out/log" || fail "no pressure warning: $(cat "$out/log")"
     # Without --amplitude-at each branch is measured at the wheel that moves most in its mode.
     "$exe" modal "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:13" --amplitudes "10, 40 um" --no-plots \
       -o "$out/both" > "$out/both.log" 2>&1 || fail "exit $? for both branches: $(cat "$out/both.log")"

@@ -454,8 +454,12 @@ std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double 
     p.cross_load = -s.shaft_force(1);
     p.moment_x = -s.shaft_force(3);
     p.moment_y = -s.shaft_force(4);
-    for (const QuasiStaticBall& b : s.balls)
+    for (const QuasiStaticBall& b : s.balls) {
       p.max_contact_load = std::max({p.max_contact_load, b.inner_load, b.outer_load});
+      p.max_contact_pressure =
+          std::max({p.max_contact_pressure, HertzPeakPressure(element_.inner_contact(), b.inner_load),
+                    HertzPeakPressure(element_.outer_contact(), b.outer_load)});
+    }
     BallBearingEquilibrium a = s, b = s;
     at(target + kStep, a);
     at(target - kStep, b);  // the ring may move to -x: central differences at every travel, 0 included

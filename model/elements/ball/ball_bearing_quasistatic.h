@@ -76,6 +76,8 @@ struct LoadDeflectionPoint {
   double secant = 0.0;
   double tangent = 0.0;            ///< d load / d travel (N/m), central differences
   double max_contact_load = 0.0;   ///< largest Q_i, Q_o (N)
+  /// largest Hertz pressure p_0 of the contacts (Pa, HertzPeakPressure; ISO 76's static limit 4,200 MPa)
+  double max_contact_pressure = 0.0;
 };
 
 struct QuasiStaticOptions {
