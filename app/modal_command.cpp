@@ -31,12 +31,13 @@ namespace turbodyn::app {
 namespace {
 
 // ", AF 278 (s = 0.073)": the amplification factor a steady response to the critical's order would show, from its
-// damping ratio and branch slope (CriticalSpeed), with API 617's "critically damped" below 2.5.
+// damping ratio and branch slope (CriticalSpeed), or API 617's "critically damped" below 2.5; nothing if unstable.
 std::string amplification_note(const CriticalSpeed& c) {
+  if (c.critically_damped) return ", critically damped (AF < 2.5 by API 617's measure)";
+  if (!std::isfinite(c.amplification_factor)) return "";
   std::ostringstream s;
   s << std::fixed << ", AF " << std::setprecision(c.amplification_factor < 100 ? 1 : 0) << c.amplification_factor
-    << " (s = " << std::setprecision(3) << c.branch_slope << ")"
-    << (c.amplification_factor < 2.5 ? ", critically damped by API 617's measure" : "");
+    << " (s = " << std::setprecision(3) << c.branch_slope << ")";
   return s.str();
 }
 
@@ -527,7 +528,8 @@ int run_modal_command(const ModalCommandOptions& options) {
                     {"branch_slope", std::isfinite(c.branch_slope) ? nlohmann::json(c.branch_slope) : nlohmann::json()},
                     {"amplification_factor", std::isfinite(c.amplification_factor)
                                                  ? nlohmann::json(c.amplification_factor)
-                                                 : nlohmann::json()}});
+                                                 : nlohmann::json()},
+                    {"critically_damped", c.critically_damped}});
   j["critical_speeds"] = crit;
   nlohmann::json shape_json = nlohmann::json::array();
   for (const ModalResult& r : shapes) {
@@ -597,7 +599,7 @@ int run_modal_command(const ModalCommandOptions& options) {
     std::cout << "  " << std::defaultfloat << c.order << "x " << std::setw(8) << to_string(c.whirl) << " branch "
               << c.branch + 1 << ": " << std::fixed << std::setprecision(0) << c.speed * kRadPerSToRpm << " rpm ("
               << std::setprecision(1) << c.frequency << " Hz), zeta " << std::setprecision(4) << c.damping_ratio
-              << (std::isfinite(c.amplification_factor) ? amplification_note(c) : "") << "\n";
+              << amplification_note(c) << "\n";
   std::cout << std::defaultfloat;
   if (!options.amplitudes.empty()) write_backbone_table(backbones, amplitude_place, options.output_dir / "backbone.csv");
 

@@ -223,7 +223,8 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
   page.heading("Critical speeds");
   page.paragraph("Crossings of the natural frequencies with the order lines. The branch slope s = df_n/df_d at the "
                  "crossing and the damping ratio ζ give the amplification factor a steady response to that order "
-                 "would show, |n − s|/(2nζ) to first order (API RP 684's half-power AF; – for an unstable mode).");
+                 "would show, |n − s|/(2nζ) to first order (API RP 684's half-power AF; below 2.5 API 617 calls a "
+                 "resonance critically damped, and a first-order reading no longer holds; – for an unstable mode).");
   std::vector<Row> rows;
   const nlohmann::json& crit = j.at("critical_speeds");
   for (std::size_t i = 0; i < crit.size(); ++i) {
@@ -233,7 +234,9 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
                     HtmlPage::number(F, j, at + "/frequency_hz", 1.0, "Hz"),
                     HtmlPage::number(F, j, at + "/damping_ratio", 1.0, "", 3),
                     HtmlPage::number(F, j, at + "/branch_slope", 1.0, "", 3),
-                    HtmlPage::number(F, j, at + "/amplification_factor", 1.0, "", 3)});
+                    crit[i].value("critically_damped", false)
+                        ? std::string("< 2.5 (critically damped)")
+                        : HtmlPage::number(F, j, at + "/amplification_factor", 1.0, "", 3)});
   }
   if (rows.empty()) page.paragraph("No order line crosses a natural frequency in the speed range.");
   else page.table("critical_speeds", {"order", "whirl", "rotor speed", "natural frequency", "damping ratio",

@@ -256,6 +256,15 @@ double branch_frequency(const ModalResult& r, Whirl whirl, int branch) {
   return std::nan("");
 }
 
+// Frequency (Hz) of the mode of whirl class `whirl` nearest `frequency`, NaN if none: the branch followed across a
+// small change of speed by continuity (the branch index may change where modes reorder).
+double nearest_frequency(const ModalResult& r, Whirl whirl, double frequency) {
+  double best = std::nan("");
+  for (const Mode& m : r.modes)
+    if (m.whirl == whirl && !(std::abs(m.frequency - frequency) >= std::abs(best - frequency))) best = m.frequency;
+  return best;
+}
+
 const Mode* branch_mode(const ModalResult& r, Whirl whirl, int branch) {
   int k = 0;
   for (const Mode& m : r.modes)
@@ -283,6 +292,7 @@ Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds,
           if (!(std::isfinite(flo) && std::isfinite(fhi)) || flo * fhi > 0.0 || (flo == 0.0 && i > 1)) continue;
           // Bisection on the branch frequency minus the order line.
           ModalResult mid_r = c.points[i];
+          double f_lo = branch_frequency(c.points[i - 1], whirl, branch), f_hi = branch_frequency(mid_r, whirl, branch);
           for (int it = 0; it < 100 && hi - lo > kRelativeSpeedTolerance * std::max(1.0, hi); ++it) {
             const double mid = 0.5 * (lo + hi);
             mid_r = modal_analysis(rotor, mid, options);
@@ -291,10 +301,17 @@ Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds,
             if ((fm > 0.0) == (flo > 0.0)) {
               lo = mid;
               flo = fm;
+              f_lo = branch_frequency(mid_r, whirl, branch);
             } else {
               hi = mid;
+              f_hi = branch_frequency(mid_r, whirl, branch);
             }
           }
+          // A branch that jumps across the order line (its index passing to another mode where a mode appears or
+          // changes its whirl, as the floating rings' heavily damped ones do) crosses nothing: its frequency differs
+          // on the two sides of the final bracket by far more than a crossing branch moves in it.
+          const double f_line = order * 0.5 * (lo + hi) / (2.0 * M_PI);
+          if (!(std::abs(f_hi - f_lo) <= 0.01 * f_line + 0.5)) continue;
           CriticalSpeed cs;
           cs.order = order;
           cs.branch = branch;
@@ -306,11 +323,15 @@ Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds,
           constexpr double kSlopeStep = 1e-4;  // of the speed
           const double dw = kSlopeStep * cs.speed;
           if (dw > 0.0) {
-            const double f_up = branch_frequency(modal_analysis(rotor, cs.speed + dw, options), whirl, branch);
-            const double f_down = branch_frequency(modal_analysis(rotor, cs.speed - dw, options), whirl, branch);
+            const double f_c = cs.frequency;  // the branch's frequency at the crossing
+            const double f_up = nearest_frequency(modal_analysis(rotor, cs.speed + dw, options), whirl, f_c);
+            const double f_down = nearest_frequency(modal_analysis(rotor, cs.speed - dw, options), whirl, f_c);
             cs.branch_slope = (f_up - f_down) / (2.0 * dw / (2.0 * M_PI));
-            if (std::isfinite(cs.branch_slope) && cs.damping_ratio > 0.0)
-              cs.amplification_factor = std::abs(order - cs.branch_slope) / (2.0 * order * cs.damping_ratio);
+            if (std::isfinite(cs.branch_slope) && cs.damping_ratio > 0.0) {
+              const double af = std::abs(order - cs.branch_slope) / (2.0 * order * cs.damping_ratio);
+              cs.critically_damped = af < kCriticallyDampedAmplification;
+              if (!cs.critically_damped) cs.amplification_factor = af;
+            }
           }
           c.critical.push_back(cs);
         }

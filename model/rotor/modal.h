@@ -59,6 +59,10 @@ Eigen::VectorXd balance_for_eigenvalues(Eigen::MatrixXd& A);
 /// Whirl direction of a mode shape at each node and overall.
 Whirl classify_whirl(const Rotor& rotor, const Eigen::VectorXcd& shape, std::vector<int>* node_whirl = nullptr);
 
+/// API 617's bound: a resonance with an amplification factor below it is critically damped (needs no separation
+/// margin).
+inline constexpr double kCriticallyDampedAmplification = 2.5;
+
 struct CriticalSpeed {
   double order = 1.0;       ///< excitation order (1 = synchronous)
   int branch = 0;           ///< index of the branch among the modes of the same whirl direction, from 0
@@ -72,8 +76,12 @@ struct CriticalSpeed {
   /// The amplification factor a steady response to this order's excitation would show, to first order in the damping:
   /// |n - s| / (2 n zeta) (the response goes as 1 / (f_n(f_d) - n f_d + i zeta f_n), so its half-power band in rotor
   /// speed is 2 zeta f_c / |n - s|; API RP 684's half-power AF, 1 / (2 zeta) without gyroscopic effects;
-  /// docs/references.md §11). NaN for zeta <= 0 (no resonance: the mode is unstable) or without the slope.
+  /// docs/references.md §11). NaN for zeta <= 0 (no resonance: the mode is unstable), without the slope, and where
+  /// it would be below 2.5: a mode that damped has no half-power band a first-order reading could give (an unbalance
+  /// response of one degree of freedom has none at all above zeta of about 0.38), and API 617 calls it critically
+  /// damped (critically_damped).
   double amplification_factor = std::nan("");
+  bool critically_damped = false;
 };
 
 struct Campbell {

@@ -512,6 +512,21 @@ for p in j["campbell"]:
     assert any(m["whirl"] == "forward" and m["damping_ratio"] < 0 for m in modes), p
     assert any(m["damping_ratio"] > 0 for m in modes), p
 EOF2
+    # Between 30,000 and 35,000 rpm a heavily damped ring mode (73 Hz) turns up among the backward ones, so the
+    # backward branches' order changes there: a jump of a branch across an order line is no critical speed. The one
+    # backward 1x crossing is the 536-Hz mode's, whose branch falls (s = -0.11), and its AF is first order's.
+    "$exe" modal "$src/examples/reference_floating_ring.toml" --speeds "25000:40000 rpm:4" --no-plots \
+      -o "$out/jump" > "$out/jump.log" 2>&1 || fail "exit $?: $(cat "$out/jump.log")"
+    python3 - "$out/jump/modal.json" <<'EOF2' || fail "critical speeds: $(cat "$out/jump.log")"
+import json, sys
+crit = json.load(open(sys.argv[1]))["critical_speeds"]
+assert len(crit) == 2, crit
+back = [c for c in crit if c["whirl"] == "backward"]
+assert len(back) == 1 and back[0]["order"] == 1.0 and 530 < back[0]["frequency_hz"] < 540, back
+c = back[0]
+assert -0.13 < c["branch_slope"] < -0.09 and not c["critically_damped"], c
+assert abs(c["amplification_factor"] - (1 - c["branch_slope"]) / (2 * c["damping_ratio"])) < 1e-9 * c["amplification_factor"]
+EOF2
     ;;
   bearing_bad_input)
     # Each bad input: exit 2 and a message naming the file or option and the cause.
