@@ -370,7 +370,8 @@ int run_response_command(const ResponseCommandOptions& options) {
   std::cout << resonance_listing.str();
   if (options.nonlinear) print_nonlinear(nl);
   std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json, report.html"
-            << (options.plots ? ", response.png, response_phase.png" : "") << (options.nonlinear ? ", response_nonlinear.csv" : "")
+            << (options.plots ? ", response.png, response_phase.png" : "")
+            << (options.nonlinear ? ", response_nonlinear.csv" : "")
             << " (" << speeds.size() << " speeds)\n";
   // Part of the range without a steady state within the model: written so far, exit code 3.
   if (options.nonlinear && !nl.covers_range) {
