@@ -547,10 +547,10 @@ int run_modal_command(const ModalCommandOptions& options) {
     shape_json.push_back({{"speed_rad_s", r.speed}, {"speed_rpm", r.speed * kRadPerSToRpm}, {"modes", modes}});
   }
   j["mode_shapes"] = shape_json;
+  std::vector<std::string> warnings;
   if (!options.amplitudes.empty()) {
     j["backbones"] = backbone_json(backbones, amplitude_place);
     // Where a backbone's whirl loads a ball contact beyond ISO 76's static limit (a real bearing brinells there).
-    std::vector<std::string> warnings;
     for (const Backbone& b : backbones) {
       bool warned = false;
       for (const BackbonePoint& p : b.points) {
@@ -627,7 +627,7 @@ int run_modal_command(const ModalCommandOptions& options) {
   }
   std::vector<std::string> files{"modal.json", "campbell.csv"};
   if (!options.amplitudes.empty()) files.push_back("backbone.csv");
-  post::write_modal_report(options.output_dir, j, {command_line(), pictures, files, {}});
+  post::write_modal_report(options.output_dir, j, {command_line(), pictures, files, warnings});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "Wrote " << (options.output_dir / "modal.json").string() << ", campbell.csv, report.html"
             << (options.plots ? ", campbell.png, damping.png, modes_*.png" : "") << " (" << std::setprecision(3) << wall

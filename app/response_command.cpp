@@ -239,6 +239,7 @@ int run_response_command(const ResponseCommandOptions& options) {
     throw ModelError(spec.source.string() + ": a ball bearing's linearisation failed: " + e.what());
   }
   UnbalanceWhirl nl;
+  std::vector<std::string> warnings;
   if (options.nonlinear) {
     UnbalanceWhirlOptions no;
     no.end_speed = speeds.back();
@@ -257,7 +258,6 @@ int run_response_command(const ResponseCommandOptions& options) {
     j["nonlinear"] = nonlinear_json(nl);
     // Where the steady whirl loads a ball contact beyond ISO 76's static limit (a real bearing brinells there): per
     // bearing, the lowest speed of a steady state over it and the largest pressure, over every piece.
-    std::vector<std::string> warnings;
     for (std::size_t b = 0; b < nl.bearings.size(); ++b) {
       double lowest = std::numeric_limits<double>::infinity(), top = 0.0, top_speed = 0.0;
       for (const UnbalanceWhirlPiece& piece : nl.pieces)
@@ -366,7 +366,7 @@ int run_response_command(const ResponseCommandOptions& options) {
                               {command_line(), options.plots ? std::vector<std::string>{"response.png",
                                                                                         "response_phase.png"}
                                                              : std::vector<std::string>{},
-                               files, {}});
+                               files, warnings});
   std::cout << resonance_listing.str();
   if (options.nonlinear) print_nonlinear(nl);
   std::cout << "Wrote " << (options.output_dir / "response.csv").string() << ", response.json, report.html"

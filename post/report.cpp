@@ -278,6 +278,8 @@ void write_modal_report(const std::filesystem::path& dir, const nlohmann::json& 
         page.table("backbone_" + std::to_string(b), {"whirl amplitude", "critical speed", "frequency"}, rows);
     }
   }
+  if (!in.warnings.empty()) page.heading("Warnings");
+  page.warnings(in.warnings);
   pictures_and_files(page, in);
   page.write(dir);
 }
@@ -452,6 +454,8 @@ void write_response_report(const std::filesystem::path& dir, const nlohmann::jso
       page.table("nonlinear_folds", {"piece", "the speed", "at rotor speed", "frequency", "largest wheel whirl"},
                  folds);
   }
+  if (!in.warnings.empty()) page.heading("Warnings");
+  page.warnings(in.warnings);
   pictures_and_files(page, in);
   page.write(dir);
 }

@@ -95,6 +95,8 @@ EOF2
     # of (the resonances' whirl loads the balls with up to 1.5 kN).
     grep -q "warning: the nonlinear response passes the contact pressure's limit of 4200 MPa in bearings.compressor" \
       "$out/log" || fail "no contact pressure warning: $(cat "$out/log")"
+    grep -q "<li>the nonlinear response passes the contact pressure" "$out/report.html" \
+      || fail "report without the pressure warning"
     for name in compressor turbine; do
       "$exe" bearing "$src/examples/reference_ball.toml" --bearing $name --speeds "30000 rpm" --no-plots \
         -o "$out/bearing_$name" > "$out/bearing.log" 2>&1 || fail "bearing $name: $(cat "$out/bearing.log")"
@@ -602,6 +604,8 @@ assert comp["max_contact_pressure_pa"] > 4.2e9 and comp["max_contact_load_n"] > 
 EOF2
     grep -q "warning: the backbone of forward branch 2 passes the contact pressure's limit of 4200 MPa in bearings.compressor" \
       "$out/log" || fail "no pressure warning: $(cat "$out/log")"
+    grep -q "<li>the backbone of forward branch 2 passes the contact pressure" "$out/report.html" \
+      || fail "report without the pressure warning"
     # Without --amplitude-at each branch is measured at the wheel that moves most in its mode.
     "$exe" modal "$src/examples/reference_ball.toml" --speeds "0:60000 rpm:13" --amplitudes "10, 40 um" --no-plots \
       -o "$out/both" > "$out/both.log" 2>&1 || fail "exit $? for both branches: $(cat "$out/both.log")"
