@@ -30,6 +30,24 @@
 namespace turbodyn::app {
 namespace {
 
+// Where a run-up at the model's ramp (speed.start to speed.end in speed.duration) peaks at each 1x critical with an
+// amplification factor: the mode's passage (ramp_passage) with the detuning swept at (1 - s) times the ramp, so the
+// rotor speed at the peak is the critical's times 1 + (W / omega_n - 1) / (1 - s). Nothing for a speed table.
+void add_runup_passages(const SpeedProfile& speed, Campbell& campbell) {
+  if (speed.kind != SpeedProfile::Kind::Ramp || !(speed.duration > 0.0) || !(speed.end > speed.start)) return;
+  const double rate = (speed.end - speed.start) / speed.duration;  // rad/s^2
+  for (CriticalSpeed& c : campbell.critical) {
+    if (c.order != 1.0 || !std::isfinite(c.amplification_factor) || c.speed < speed.start || c.speed > speed.end)
+      continue;
+    const double detuning = 1.0 - c.branch_slope, omega = 2.0 * M_PI * c.frequency;
+    const double lambda = detuning * rate / (omega * omega);
+    if (!(detuning > 0.0 && lambda < 0.1)) continue;
+    const RampPassage p = ramp_passage(lambda, c.damping_ratio);
+    c.runup_peak_speed = c.speed * (1.0 + (p.speed_ratio - 1.0) / detuning);
+    c.runup_peak_fraction = p.peak_fraction;
+  }
+}
+
 // ", AF 278 (s = 0.073)": the amplification factor a steady response to the critical's order would show, from its
 // damping ratio and branch slope (CriticalSpeed), or API 617's "critically damped" below 2.5; nothing if unstable.
 std::string amplification_note(const CriticalSpeed& c) {
@@ -38,6 +56,10 @@ std::string amplification_note(const CriticalSpeed& c) {
   std::ostringstream s;
   s << std::fixed << ", AF " << std::setprecision(c.amplification_factor < 100 ? 1 : 0) << c.amplification_factor
     << " (s = " << std::setprecision(3) << c.branch_slope << ")";
+  if (std::isfinite(c.runup_peak_speed))
+    s << "; the model's ramp peaks at " << std::setprecision(0) << c.runup_peak_speed * kRadPerSToRpm << " rpm ("
+      << std::showpos << std::setprecision(1) << 100.0 * (c.runup_peak_speed / c.speed - 1.0) << std::noshowpos
+      << " %) with " << std::setprecision(3) << c.runup_peak_fraction << " of the steady peak";
   return s.str();
 }
 
@@ -457,6 +479,7 @@ int run_modal_command(const ModalCommandOptions& options) {
   } catch (const QuasiStaticError& e) {
     throw ModelError(spec.source.string() + ": a ball bearing's linearisation failed: " + e.what());
   }
+  add_runup_passages(spec.speed, campbell);
 
   // Critical speeds at an amplitude: each forward 1x critical of the analysed range continued in amplitude.
   std::vector<Backbone> backbones;
@@ -529,7 +552,12 @@ int run_modal_command(const ModalCommandOptions& options) {
                     {"amplification_factor", std::isfinite(c.amplification_factor)
                                                  ? nlohmann::json(c.amplification_factor)
                                                  : nlohmann::json()},
-                    {"critically_damped", c.critically_damped}});
+                    {"critically_damped", c.critically_damped},
+                    {"runup_peak_speed_rpm", std::isfinite(c.runup_peak_speed)
+                                                 ? nlohmann::json(c.runup_peak_speed * kRadPerSToRpm)
+                                                 : nlohmann::json()},
+                    {"runup_peak_fraction", std::isfinite(c.runup_peak_fraction) ? nlohmann::json(c.runup_peak_fraction)
+                                                                                 : nlohmann::json()}});
   j["critical_speeds"] = crit;
   nlohmann::json shape_json = nlohmann::json::array();
   for (const ModalResult& r : shapes) {

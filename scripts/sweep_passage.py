@@ -13,7 +13,9 @@ the unit unbalance being 1 here). The ramp enters only through lambda = a / w_n^
 with lambda = (dn/dt) / (2 pi f_n^2) for a ramp of dn/dt Hz per second through a critical of f_n Hz: the paper's
 2,500 Hz in 4 s through 700 Hz gives lambda = 625 / (2 pi 700^2) = 2.03e-4. On a rotor whose natural frequency
 moves with the speed (Campbell slope s = d f_n / d f_d) the ramp sweeps the mode's detuning at (1 - s) times the
-speed's rate: use lambda (1 - s). The classical study of this passage is F. M. Lewis, "Vibration during acceleration
+speed's rate: use lambda (1 - s), and the rotor speed at the peak is the critical's times 1 + (ratio - 1) / (1 - s).
+`turbodyn modal` does this for every 1x critical at the model's own ramp (model/rotor/modal.h, ramp_passage). The
+classical study of this passage is F. M. Lewis, "Vibration during acceleration
 through a critical speed", Trans. ASME 54 (1932) 253-261.
 """
 import math

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <string>
 #include <stdexcept>
 #include <tuple>
 
@@ -273,6 +275,48 @@ const Mode* branch_mode(const ModalResult& r, Whirl whirl, int branch) {
 }
 
 }  // namespace
+
+RampPassage ramp_passage(double lambda, double zeta) {
+  if (!(lambda > 0.0 && lambda < 0.1) || !(zeta >= 0.0 && zeta < 0.5))
+    throw std::invalid_argument("ramp_passage: needs 0 < lambda < 0.1 (a ramp slow against the mode) and 0 <= zeta < "
+                                "0.5, not lambda = " + std::to_string(lambda) + ", zeta = " + std::to_string(zeta));
+  const double steady = zeta > 0.0 ? 1.0 / (2.0 * zeta * std::sqrt(1.0 - zeta * zeta)) : 0.0;
+  RampPassage out;
+  constexpr double kQuasiSteady = 1e-5;
+  if (lambda < kQuasiSteady) {
+    if (zeta == 0.0) throw std::invalid_argument("ramp_passage: an undamped mode needs lambda >= 1e-5");
+    out.speed_ratio = 1.0 / std::sqrt(1.0 - 2.0 * zeta * zeta);
+    out.peak = steady;
+    return out;
+  }
+  // From W0 = 0.5 on the steady response there, x = Re(X e^{i phi}), X = W0^2 / (1 - W0^2 + 2 i zeta W0).
+  const double w0 = 0.5, w_end = 1.0 + std::max(0.5, 10.0 * std::sqrt(lambda));
+  double t = w0 / lambda;
+  const std::complex<double> X = w0 * w0 / std::complex<double>(1.0 - w0 * w0, 2.0 * zeta * w0);
+  const std::complex<double> e0 = std::polar(1.0, 0.5 * lambda * t * t);
+  double x = std::real(X * e0), v = std::real(std::complex<double>(0.0, w0) * X * e0);
+  auto acc = [&](double tt, double xx, double vv) {
+    const double w = lambda * tt;
+    return w * w * std::cos(0.5 * lambda * tt * tt) - 2.0 * zeta * vv - xx;
+  };
+  const double dt = 2.0 * M_PI / 400.0;
+  const double t_end = w_end / lambda;
+  while (t < t_end) {
+    const double a1 = acc(t, x, v);
+    const double x2 = x + 0.5 * dt * v, v2 = v + 0.5 * dt * a1, a2 = acc(t + 0.5 * dt, x2, v2);
+    const double x3 = x + 0.5 * dt * v2, v3 = v + 0.5 * dt * a2, a3 = acc(t + 0.5 * dt, x3, v3);
+    const double x4 = x + dt * v3, v4 = v + dt * a3, a4 = acc(t + dt, x4, v4);
+    x += dt / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4);
+    v += dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+    t += dt;
+    if (std::abs(x) > out.peak) {
+      out.peak = std::abs(x);
+      out.speed_ratio = lambda * t;
+    }
+  }
+  out.peak_fraction = zeta > 0.0 ? out.peak / steady : 0.0;
+  return out;
+}
 
 Campbell campbell_diagram(const Rotor& rotor, const std::vector<double>& speeds, const std::vector<double>& orders,
                           const ModalOptions& options) {

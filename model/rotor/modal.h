@@ -82,7 +82,28 @@ struct CriticalSpeed {
   /// damped (critically_damped).
   double amplification_factor = std::nan("");
   bool critically_damped = false;
+  /// For the 1x criticals with an amplification factor, when the caller gives a ramp (ramp_passage): the speed (rad/s)
+  /// where a run-up at that rate peaks, and the peak's fraction of the steady resonance; NaN otherwise.
+  double runup_peak_speed = std::nan("");
+  double runup_peak_fraction = std::nan("");
 };
+
+/// Where a mode run up through its critical speed at a constant rate peaks: one degree of freedom forced like an
+/// unbalance, x'' + 2 zeta x' + x = W^2 cos(phi), phi' = W = lambda t (time in 1 / omega_n, x in the unit unbalance's
+/// static deflection), integrated by classical RK4 (400 steps per period) from W = 0.5, started on the steady response
+/// there, to the peak of |x|. lambda = (n - s) (d Omega / dt) / omega_c^2 for order n on a branch of slope s (the ramp
+/// sweeps the mode's detuning at (n - s) times its rate). A finite ramp makes the peak late and low: the speed ratio
+/// grows about as the square root of lambda, and a mode whose steady peak 1 / (2 zeta) would need longer than the
+/// passage to ring up reaches a fraction of it (F. M. Lewis, "Vibration during acceleration through a critical speed",
+/// Trans. ASME 54 (1932) 253-261, the classical study; docs/validation.md, "The reference rotor on linear bearings").
+/// Below lambda = 1e-5 the passage is taken as quasi-steady: the steady peak, at W^2 = 1 / (1 - 2 zeta^2).
+struct RampPassage {
+  double speed_ratio = 1.0;  ///< W / omega_n at the peak
+  double peak = 0.0;         ///< |x| at the peak (the static deflection of the unbalance's force being 1)
+  double peak_fraction = 1.0;  ///< peak over the steady resonance's 1 / (2 zeta sqrt(1 - zeta^2)); 0 for zeta = 0
+};
+/// Throws std::invalid_argument unless 0 < lambda < 0.1 and 0 <= zeta < 0.5.
+RampPassage ramp_passage(double lambda, double zeta);
 
 struct Campbell {
   std::vector<ModalResult> points;      ///< one per speed

@@ -3,6 +3,7 @@
 #include "model/rotor/modal.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -98,6 +99,34 @@ TEST(Modal, ReferenceRotorSanityFiguresNonRotating) {
   EXPECT_NEAR(stiff[0] / 540.0, 1.0, kAbout);
   EXPECT_NEAR(stiff[1] / 820.0, 1.0, kAbout);
   EXPECT_NEAR(stiff[2] / 3300.0, 1.0, kAbout);
+}
+
+TEST(RampPassage, SlowRampsAreTheSteadyResonanceAndFastOnesPeakLateAndLow) {
+  // Quasi-steady: a ramp slow against the mode's ring-up (lambda = 1e-5, zeta = 0.1: the band 2 zeta wide is crossed
+  // in 2e4 time units, the mode settles in 10) peaks where and as high as the steady unbalance response,
+  // W^2 = 1 / (1 - 2 zeta^2) and 1 / (2 zeta sqrt(1 - zeta^2)) (docs/references.md §11).
+  const RampPassage slow = ramp_passage(1e-5, 0.1);
+  EXPECT_NEAR(slow.speed_ratio, 1.0 / std::sqrt(1.0 - 2.0 * 0.01), 0.002);
+  EXPECT_NEAR(slow.peak_fraction, 1.0, 0.01);
+  // Undamped, the peak's delay grows as the square root of the rate and its height falls as its inverse square root:
+  // a fourfold rate doubles the one and halves the other (2.16 % and 147.5 at lambda = 1e-4, about 2.2 sqrt(lambda)).
+  const RampPassage a = ramp_passage(1e-4, 0.0), b = ramp_passage(4e-4, 0.0), c = ramp_passage(1.6e-3, 0.0);
+  EXPECT_NEAR(a.speed_ratio, 1.0216, 3e-4);
+  EXPECT_NEAR(a.peak, 147.5, 0.5);
+  EXPECT_NEAR((b.speed_ratio - 1.0) / (a.speed_ratio - 1.0), 2.0, 0.05);
+  EXPECT_NEAR((c.speed_ratio - 1.0) / (b.speed_ratio - 1.0), 2.0, 0.05);
+  EXPECT_NEAR(a.peak / b.peak, 2.0, 0.05);
+  EXPECT_NEAR(b.peak / c.peak, 2.0, 0.05);
+  EXPECT_GT(a.speed_ratio, 1.0);
+  EXPECT_EQ(a.peak_fraction, 0.0);
+  // The reference rotor's second forward critical on linear bearings at the paper's ramp (lambda (1 - s) = 1.87e-4,
+  // zeta = 0.00191): 2.7 % late with a third of the steady peak, as scripts/sweep_passage.py integrates it.
+  const RampPassage r = ramp_passage(1.87e-4, 0.00191);
+  EXPECT_NEAR(r.speed_ratio, 1.0268, 5e-4);
+  EXPECT_NEAR(r.peak_fraction, 0.327, 0.003);
+  EXPECT_THROW(ramp_passage(0.0, 0.1), std::invalid_argument);
+  EXPECT_THROW(ramp_passage(1e-4, 0.6), std::invalid_argument);
+  EXPECT_THROW(ramp_passage(1e-6, 0.0), std::invalid_argument);
 }
 
 }  // namespace
