@@ -408,8 +408,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
   std::vector<double> max_pressure;
   std::vector<std::string> warnings;
   for (const BallBearingEquilibrium& r : results) {
-    double p = 0.0;
-    for (const QuasiStaticBall& q : r.balls) p = std::max({p, inner_pressure(q), outer_pressure(q)});
+    const double p = r.max_contact_pressure(*element);
     max_pressure.push_back(p);
     if (p > kStaticContactPressureLimit) {
       std::ostringstream os;
@@ -543,8 +542,7 @@ int run_bearing_command(const BearingCommandOptions& options) {
                "k_tilt [N m/rad]  p_max [MPa]\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const BallBearingEquilibrium& r = results[i];
-    double qmax = 0.0;
-    for (const QuasiStaticBall& q : r.balls) qmax = std::max({qmax, q.inner_load, q.outer_load});
+    const double qmax = r.max_contact_load();
     std::cout << std::fixed << std::setw(16) << std::setprecision(0) << r.speed * kRadPerSToRpm << std::setw(12)
               << std::setprecision(5) << (r.speed != 0.0 ? r.cage_speed / r.speed : 0.0) << std::setw(12)
               << std::setprecision(2) << r.balls[0].inner_angle * kDeg << std::setw(12) << r.balls[0].outer_angle * kDeg

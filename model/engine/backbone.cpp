@@ -75,8 +75,8 @@ BackbonePoint make_point(const WhirlProblem& problem, const WhirlState& w, doubl
     const Vector5d f = problem.ball_force(w, b);
     bb.force = -f(0);
     bb.moment = -f(4);
-    bb.max_contact_load = problem.max_contact_load(e);
-    bb.max_contact_pressure = problem.max_contact_pressure(e, b);
+    bb.max_contact_load = e.max_contact_load();
+    bb.max_contact_pressure = e.max_contact_pressure(problem.ball_element(b));
     pt.bearings.push_back(bb);
   }
   return pt;

@@ -98,21 +98,6 @@ int WhirlProblem::ball_node(int b) const { return balls_.at(b)->node; }
 const BallBearingElement& WhirlProblem::ball_element(int b) const { return *balls_.at(b)->element; }
 const BallBearingQuasiStatic& WhirlProblem::ball_model(int b) const { return *balls_.at(b)->qs; }
 
-double WhirlProblem::max_contact_load(const BallBearingEquilibrium& e) const {
-  double q = 0.0;
-  for (const QuasiStaticBall& ball : e.balls) q = std::max({q, ball.inner_load, ball.outer_load});
-  return q;
-}
-
-double WhirlProblem::max_contact_pressure(const BallBearingEquilibrium& e, int b) const {
-  const BallBearingElement& el = ball_element(b);
-  double p = 0.0;
-  for (const QuasiStaticBall& ball : e.balls)
-    p = std::max({p, HertzPeakPressure(el.inner_contact(), ball.inner_load),
-                  HertzPeakPressure(el.outer_contact(), ball.outer_load)});
-  return p;
-}
-
 std::vector<BallBearingEquilibrium> WhirlProblem::centred_bearings(double speed) const {
   std::vector<BallBearingEquilibrium> out;
   for (const auto& s : balls_) out.push_back(s->qs->solve(speed, Eigen::Vector3d::Zero()));

@@ -85,11 +85,6 @@ class WhirlProblem {
   /// d residual / d speed by central differences of the whole residual.
   bool jacobian_speed(const WhirlState& w, Eigen::VectorXd& Js) const;
 
-  /// The largest ball-race contact load (N) of ball bearing b in the equilibrium e, and the largest Hertz pressure p_0
-  /// of its contacts (Pa, HertzPeakPressure with the inner and the outer contact's ellipse; against ISO 76's static
-  /// limit kStaticContactPressureLimit).
-  double max_contact_load(const BallBearingEquilibrium& e) const;
-  double max_contact_pressure(const BallBearingEquilibrium& e, int b) const;
   /// The ball bearing's force on the shaft at the state (x, y, z, theta_x, theta_y; N, N m), in the reduced frame.
   Vector5d ball_force(const WhirlState& w, int b) const;
   /// The ring's deflection (x, y, 0, theta_x, theta_y) at the reduced deflection p.

@@ -371,8 +371,8 @@ class Tracer {
       if (s.ball >= 0) {
         const Vector5d f = problem_.ball_force(w, s.ball);
         pt.bearing_force.push_back(std::hypot(f(0), f(1)));
-        pt.max_contact_load.push_back(problem_.max_contact_load(w.bearings[s.ball]));
-        pt.max_contact_pressure.push_back(problem_.max_contact_pressure(w.bearings[s.ball], s.ball));
+        pt.max_contact_load.push_back(w.bearings[s.ball].max_contact_load());
+        pt.max_contact_pressure.push_back(w.bearings[s.ball].max_contact_pressure(problem_.ball_element(s.ball)));
       } else {
         const LinearBearing& lb = rotor_.bearings[s.linear];
         Eigen::Matrix4d k, c;

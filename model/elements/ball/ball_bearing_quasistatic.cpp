@@ -410,6 +410,20 @@ BearingLinearisation ball_bearing_linearisation(const std::string& name, const B
   };
 }
 
+double BallBearingEquilibrium::max_contact_load() const {
+  double q = 0.0;
+  for (const QuasiStaticBall& ball : balls) q = std::max({q, ball.inner_load, ball.outer_load});
+  return q;
+}
+
+double BallBearingEquilibrium::max_contact_pressure(const BallBearingElement& element) const {
+  double p = 0.0;
+  for (const QuasiStaticBall& ball : balls)
+    p = std::max({p, HertzPeakPressure(element.inner_contact(), ball.inner_load),
+                  HertzPeakPressure(element.outer_contact(), ball.outer_load)});
+  return p;
+}
+
 std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double speed,
                                                                         const std::vector<double>& travel,
                                                                         const BallBearingEquilibrium* centred_in) const {
@@ -454,12 +468,8 @@ std::vector<LoadDeflectionPoint> BallBearingQuasiStatic::load_deflection(double 
     p.cross_load = -s.shaft_force(1);
     p.moment_x = -s.shaft_force(3);
     p.moment_y = -s.shaft_force(4);
-    for (const QuasiStaticBall& b : s.balls) {
-      p.max_contact_load = std::max({p.max_contact_load, b.inner_load, b.outer_load});
-      p.max_contact_pressure =
-          std::max({p.max_contact_pressure, HertzPeakPressure(element_.inner_contact(), b.inner_load),
-                    HertzPeakPressure(element_.outer_contact(), b.outer_load)});
-    }
+    p.max_contact_load = s.max_contact_load();
+    p.max_contact_pressure = s.max_contact_pressure(element_);
     BallBearingEquilibrium a = s, b = s;
     at(target + kStep, a);
     at(target - kStep, b);  // the ring may move to -x: central differences at every travel, 0 included

@@ -61,6 +61,12 @@ struct BallBearingEquilibrium {
   Matrix5d stiffness = Matrix5d::Zero(), damping = Matrix5d::Zero();
   double cage_speed = 0.0;  ///< mean of the balls' orbital speeds (rad/s)
   int iterations = 0;       ///< Newton iterations of the inner-ring equilibrium
+
+  /// The largest ball-race contact load (N), and the largest Hertz pressure p_0 of the contacts (Pa,
+  /// HertzPeakPressure with `element`'s inner and outer contact ellipses; against ISO 76's static limit
+  /// kStaticContactPressureLimit, as a run's max_contact_pressure probe).
+  double max_contact_load() const;
+  double max_contact_pressure(const BallBearingElement& element) const;
 };
 
 /// One point of a bearing's load-deflection curve (BallBearingQuasiStatic::load_deflection): the inner ring moved
