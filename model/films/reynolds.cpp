@@ -175,6 +175,19 @@ struct FilmSolver::Impl {
     const int N = n * nz;
     kind.assign(N, -1);
     const double half = 0.5 * g.length * (1.0 + 1e-12);
+    // For the refusals below: how a groove is named, and how far apart the axial rows about a place z lie.
+    auto groove_label = [&](std::size_t k) {
+      std::ostringstream os;
+      os << (g.grooves.size() == 1 ? "the groove" : "groove " + std::to_string(k)) << " (" << g.grooves[k].width * 1e3
+         << " mm wide at z = " << g.grooves[k].z * 1e3 << " mm)";
+      return os.str();
+    };
+    auto rows_apart = [&](double z) {
+      int below = -1;
+      for (int j = 0; j < nz; ++j)
+        if (zn[j] < z) below = j;
+      return below < 0 ? zn[0] + half : below + 1 < nz ? zn[below + 1] - zn[below] : half - zn[nz - 1];
+    };
     for (std::size_t k = 0; k < g.grooves.size(); ++k) {
       const Groove& gr = g.grooves[k];
       if (!(gr.width > 0.0) || !std::isfinite(gr.z) || !std::isfinite(gr.pressure))
@@ -191,14 +204,8 @@ struct FilmSolver::Impl {
       if (!any) {
         // Fixing a row outside the groove would put the supply pressure on the land (an even grid's two middle rows
         // about a narrow central groove: 10 % less squeeze damping with 12 rows). Refused, with the way out.
-        int below = -1;
-        for (int j = 0; j < nz; ++j)
-          if (zn[j] < gr.z) below = j;
-        const double gap = below < 0 ? zn[0] + half : below + 1 < nz ? zn[below + 1] - zn[below] : half - zn[nz - 1];
         std::ostringstream why;
-        why << (g.grooves.size() == 1 ? "the groove" : "groove " + std::to_string(k)) << " (" << gr.width * 1e3
-            << " mm wide at z = " << gr.z * 1e3 << " mm) holds no node of the axial grid, whose nodes lie "
-            << gap * 1e3
+        why << groove_label(k) << " holds no node of the axial grid, whose nodes lie " << rows_apart(gr.z) * 1e3
             << " mm apart there: more axial nodes, or for a groove at mid-width an odd number of them (a node at "
                "its centre)";
         throw GrooveGridError(why.str());
@@ -225,17 +232,13 @@ struct FilmSolver::Impl {
         for (int j = 0; j < nz; ++j)
           held = held || (kind[j] == -1 && side * (zn[j] - edge) > 0.0 && side * (far - zn[j]) > 0.0);
         if (held) continue;
-        int beside = 0;  // the grid row nearest the edge, for the rows' spacing there
-        for (int j = 0; j < nz; ++j)
-          if (std::abs(zn[j] - edge) < std::abs(zn[beside] - edge)) beside = j;
         std::ostringstream why;
-        why << (g.grooves.size() == 1 ? "the groove" : "groove " + std::to_string(k)) << " (" << gr.width * 1e3
-            << " mm wide at z = " << gr.z * 1e3 << " mm) leaves no land with a node of the axial grid between it and ";
+        why << groove_label(k) << " leaves no land with a node of the axial grid between it and ";
         if (next < g.grooves.size())
           why << "groove " << next;
         else
           why << "the film's end at z = " << far * 1e3 << " mm";
-        why << " (a land of " << std::abs(far - edge) * 1e3 << " mm, nodes " << dzf[beside + (side > 0 ? 1 : 0)] * 1e3
+        why << " (a land of " << std::abs(far - edge) * 1e3 << " mm, nodes " << rows_apart(edge) * 1e3
             << " mm apart there): a narrower groove, one further from the end, or more axial nodes";
         throw GrooveGridError(why.str());
       }
