@@ -17,6 +17,7 @@
 #include "model/engine/backbone.h"
 #include "model/io/output_file.h"
 #include "model/io/result_header.h"
+#include "studies/table.h"
 #include "post/plot.h"
 #include "post/plot_style.h"
 #include "post/report.h"
@@ -548,16 +549,11 @@ int run_modal_command(const ModalCommandOptions& options) {
                     {"speed_rpm", c.speed * kRadPerSToRpm},
                     {"frequency_hz", c.frequency},
                     {"damping_ratio", c.damping_ratio},
-                    {"branch_slope", std::isfinite(c.branch_slope) ? nlohmann::json(c.branch_slope) : nlohmann::json()},
-                    {"amplification_factor", std::isfinite(c.amplification_factor)
-                                                 ? nlohmann::json(c.amplification_factor)
-                                                 : nlohmann::json()},
+                    {"branch_slope", studies::json_number(c.branch_slope)},
+                    {"amplification_factor", studies::json_number(c.amplification_factor)},
                     {"critically_damped", c.critically_damped},
-                    {"runup_peak_speed_rpm", std::isfinite(c.runup_peak_speed)
-                                                 ? nlohmann::json(c.runup_peak_speed * kRadPerSToRpm)
-                                                 : nlohmann::json()},
-                    {"runup_peak_fraction", std::isfinite(c.runup_peak_fraction) ? nlohmann::json(c.runup_peak_fraction)
-                                                                                 : nlohmann::json()}});
+                    {"runup_peak_speed_rpm", studies::json_number(c.runup_peak_speed * kRadPerSToRpm)},
+                    {"runup_peak_fraction", studies::json_number(c.runup_peak_fraction)}});
   j["critical_speeds"] = crit;
   nlohmann::json shape_json = nlohmann::json::array();
   for (const ModalResult& r : shapes) {

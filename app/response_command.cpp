@@ -13,6 +13,7 @@
 #include "model/elements/ball/ball_bearing_quasistatic.h"
 #include "model/engine/unbalance_whirl.h"
 #include "model/spec/constants.h"
+#include "studies/table.h"
 #include "post/plot.h"
 #include "post/resonance.h"
 #include "post/report.h"
@@ -60,8 +61,7 @@ nlohmann::json nonlinear_json(const UnbalanceWhirl& nl) {
       c["speed_rad_s"].push_back(pt.speed);
       c["speed_hz"].push_back(pt.speed / (2 * M_PI));
       c["stable"].push_back(pt.stable);
-      c["divergence_rate_1_s"].push_back(std::isfinite(pt.divergence_rate) ? nlohmann::json(pt.divergence_rate)
-                                                                           : nlohmann::json());
+      c["divergence_rate_1_s"].push_back(studies::json_number(pt.divergence_rate));
       for (std::size_t d = 0; d < nl.disks.size(); ++d) {
         c["disk." + nl.disks[d] + ".radius_m"].push_back(pt.disk_radius[d]);
         c["disk." + nl.disks[d] + ".phase_rad"].push_back(pt.disk_phase[d]);
@@ -133,7 +133,6 @@ nlohmann::json resonances_json(const Rotor& rotor, const std::vector<double>& sp
     listing << "Resonances: not sought (they need at least three increasing speeds)\n";
     return out;
   }
-  auto json_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   listing << "Resonances (peaks of the orbits' major semi-axes, half-power points at 1/sqrt(2) of the peak, "
              "amplification factor AF = speed / band, API RP 684):\n";
   std::size_t found = 0;
@@ -151,9 +150,9 @@ nlohmann::json resonances_json(const Rotor& rotor, const std::vector<double>& sp
                      {"speed_hz", r.speed / (2 * M_PI)},
                      {"speed_rpm", r.speed * kRadPerSToRpm},
                      {"peak", r.peak},
-                     {"lower_speed_hz", json_or_null(r.lower / (2 * M_PI))},
-                     {"upper_speed_hz", json_or_null(r.upper / (2 * M_PI))},
-                     {"amplification_factor", json_or_null(r.amplification_factor)}});
+                     {"lower_speed_hz", studies::json_number(r.lower / (2 * M_PI))},
+                     {"upper_speed_hz", studies::json_number(r.upper / (2 * M_PI))},
+                     {"amplification_factor", studies::json_number(r.amplification_factor)}});
       ++found;
       listing << "  disk " << disk.name << ": " << std::fixed << std::setprecision(1) << r.speed / (2 * M_PI)
               << " Hz (" << std::setprecision(0) << r.speed * kRadPerSToRpm << " rpm), " << std::setprecision(2)
