@@ -42,7 +42,9 @@ void add_runup_passages(const SpeedProfile& speed, Campbell& campbell) {
       continue;
     const double detuning = 1.0 - c.branch_slope, omega = 2.0 * M_PI * c.frequency;
     const double lambda = detuning * rate / (omega * omega);
-    if (!(detuning > 0.0 && lambda < 0.1)) continue;
+    // ramp_passage's range: a ramp slow against the mode and a mode damped below half of critical (an AF of 2.5 or
+    // more allows more only on a steeply falling branch)
+    if (!(detuning > 0.0 && lambda < 0.1 && c.damping_ratio < 0.5)) continue;
     const RampPassage p = ramp_passage(lambda, c.damping_ratio);
     c.runup_peak_speed = c.speed * (1.0 + (p.speed_ratio - 1.0) / detuning);
     c.runup_peak_fraction = p.peak_fraction;
